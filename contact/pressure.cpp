@@ -1,0 +1,163 @@
+#include "contact/pressure.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace igac {
+
+double HertzSolution::pressure(double r) const { return r < a ? p0 * std::sqrt(1 - r * r / (a * a)) : 0.0; }
+
+HertzSolution hertz_cylinder(double R, double P, double E, double nu) {
+  HertzSolution h;
+  h.a = std::sqrt(8 * R * R * P * (1 - nu * nu) / (std::numbers::pi * E));
+  h.p0 = 4 * R * P / (std::numbers::pi * h.a);
+  return h;
+}
+
+HertzSolution hertz_sphere(double R, double P, double E, double nu) {
+  HertzSolution h;
+  h.a = std::cbrt(3 * std::numbers::pi * R * R * R * P * (1 - nu * nu) / (4 * E));
+  h.p0 = 3 * R * R * P / (2 * h.a * h.a);
+  return h;
+}
+
+ContactPressure::ContactPressure(const NurbsPatch& patch, const ContactFace& cf, Eigen::VectorXd lambda,
+                                 Eigen::VectorXd weights, std::vector<char> active, Eigen::VectorXd X0,
+                                 Eigen::VectorXd normal)
+    : patch_(patch), cf_(cf), lambda_(std::move(lambda)), weights_(std::move(weights)), active_(std::move(active)),
+      X0_(std::move(X0)), n_(std::move(normal)) {}
+
+double ContactPressure::r_of(const Eigen::VectorXd& X) const {
+  const Eigen::VectorXd d = X - X0_;
+  return (d - d.dot(n_) * n_).norm();
+}
+
+double ContactPressure::pressure_at(const Eigen::VectorXd& xi) const {
+  std::vector<int> idx;
+  std::vector<double> val;
+  cf_.space.basis(xi, idx, val);
+  double p = 0;
+  for (size_t k = 0; k < idx.size(); ++k) p -= lambda_[idx[k]] * val[k];
+  return p;
+}
+
+PressureReport ContactPressure::report() const {
+  PressureReport rep;
+  const int m = int(lambda_.size());
+  for (int K = 0; K < m; ++K) {
+    const Eigen::VectorXd X = cf_.face_patch.point(cf_.space.anchor(K));
+    rep.multipliers.push_back({r_of(X), -lambda_[K]});
+    rep.max_pressure = std::max(rep.max_pressure, -lambda_[K]);
+    rep.total_force -= lambda_[K] * weights_[K];
+    rep.active += active_[K] ? 1 : 0;
+  }
+  if (cf_.face_patch.param_dim() != 1) {
+    for (int K = 0; K < m; ++K)
+      if (active_[K]) rep.half_width = std::max(rep.half_width, rep.multipliers[K].r);
+    return rep;
+  }
+  // 1D face: breakpoints in parameter, P1 re-interpolation at breakpoints
+  const KnotVector& mk = cf_.space.knots()[0];
+  const auto b = mk.breakpoints();
+  std::vector<double> rb(b.size());
+  for (size_t j = 0; j < b.size(); ++j) rb[j] = r_of(cf_.face_patch.point(Eigen::VectorXd::Constant(1, b[j])));
+  if (mk.degree() == 0) {
+    // nodal value = length-weighted mean of the adjacent element constants
+    for (size_t j = 0; j < b.size(); ++j) {
+      double s = 0, w = 0;
+      for (int e : {int(j) - 1, int(j)})
+        if (e >= 0 && e < m) {
+          const double len = std::abs(rb[e + 1] - rb[e]);
+          s += -lambda_[e] * len;
+          w += len;
+        }
+      rep.p1.push_back({rb[j], w > 0 ? s / w : 0.0});
+    }
+  } else {
+    for (size_t j = 0; j < b.size(); ++j) rep.p1.push_back({rb[j], pressure_at(Eigen::VectorXd::Constant(1, b[j]))});
+  }
+  // Half width: the contact edge lies in the first element whose pressure
+  // vanishes after the last pressed one.  For S0, fit p = c sqrt(a - r)
+  // (the generic shape of a smooth contact edge) to the means of the last
+  // two pressed elements; otherwise where the P1 pressure reaches zero.
+  int last = -1;
+  for (int K = 0; K < m; ++K)
+    if (-lambda_[K] > 0) last = std::max(last, K);
+  if (last < 0) return rep;
+  if (mk.degree() == 0 && last >= 1 && last + 1 < int(rb.size())) {
+    const double r0 = rb[last - 1], r1 = rb[last], r2 = rb[last + 1];
+    const double ratio = -lambda_[last] / -lambda_[last - 1];
+    auto mean = [](double a, double lo, double hi) {  // mean of sqrt(a - r) on [lo, hi]
+      const double A = std::pow(std::max(a - lo, 0.0), 1.5), B = std::pow(std::max(a - hi, 0.0), 1.5);
+      return (2.0 / 3.0) * (A - B) / (hi - lo);
+    };
+    auto f = [&](double a) { return mean(a, r1, r2) / mean(a, r0, r1) - ratio; };
+    double lo = r1 + 1e-12 * (r2 - r1), hi = r2 + (r2 - r1);
+    if (f(lo) < 0 && f(hi) > 0) {
+      for (int it = 0; it < 100; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (f(mid) < 0 ? lo : hi) = mid;
+      }
+      rep.half_width = 0.5 * (lo + hi);
+    } else {
+      rep.half_width = 0.5 * (r1 + r2);
+    }
+  } else {
+    // P1 pressure: last positive node to the next node
+    size_t j = 0;
+    for (size_t i = 0; i < rep.p1.size(); ++i)
+      if (rep.p1[i].pressure > 0) j = i;
+    rep.half_width = j + 1 < rep.p1.size() ? rep.p1[j + 1].r : rep.p1[j].r;
+  }
+  return rep;
+}
+
+std::pair<double, double> ContactPressure::l2_error(
+    const ContactFace& mesh, const std::function<double(const Eigen::VectorXd&, const Eigen::VectorXd&)>& p,
+    int points) const {
+  const PatchQuadrature quad = mesh.quadrature(points);
+  ElementData ed;
+  double e2 = 0, n2 = 0;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) {
+      const Eigen::VectorXd xi = ed.xi.row(q).transpose();
+      const double ref = p(xi, ed.X.row(q).transpose());
+      const double ph = pressure_at(xi);
+      e2 += (ph - ref) * (ph - ref) * ed.JxW[q];
+      n2 += ref * ref * ed.JxW[q];
+    }
+  }
+  return {std::sqrt(e2), std::sqrt(n2)};
+}
+
+std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
+                                                                  const Obstacle& obstacle) {
+  const PatchQuadrature quad = cf.quadrature(gauss_points_for(patch.degree(0)));
+  ElementData ed;
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd X0, n0;
+  auto consider = [&](const Eigen::VectorXd& X) {
+    const ObstacleProbe pr = obstacle.probe(X);
+    if (pr.gap < best) {
+      best = pr.gap;
+      X0 = X;
+      n0 = pr.normal;
+    }
+  };
+  // face corners/breakpoints, then Gauss points
+  for (int i = 0; i < cf.face_patch.num_control_points(); ++i) {
+    const auto mi = cf.face_patch.multi_index(i);
+    bool corner = true;
+    for (int d = 0; d < cf.face_patch.param_dim(); ++d)
+      corner = corner && (mi[d] == 0 || mi[d] == cf.face_patch.num_basis(d) - 1);
+    if (corner) consider(cf.face_patch.points().row(i).transpose());
+  }
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) consider(ed.X.row(q).transpose());
+  }
+  return {X0, n0};
+}
+
+}  // namespace igac

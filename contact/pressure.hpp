@@ -1,0 +1,68 @@
+// Contact pressure p = -lambda (>= 0) after a solve, and its comparison with
+// Hertz (Johnson, Contact Mechanics, ch. 4; DESIGN.md):
+//   2D (force per unit length F' = 2 R P): a = sqrt(8 R^2 P (1-nu^2) / (pi E)),
+//       p0 = 4 R P / (pi a);
+//   3D (F = pi R^2 P): a = (3 pi R^3 P (1-nu^2) / (4 E))^(1/3), p0 = 3 R^2 P / (2 a^2);
+//   p(r) = p0 sqrt(1 - r^2/a^2) for r < a, 0 beyond.
+// r is the distance from the initial contact point X0 measured along the
+// obstacle (orthogonal to its normal at X0).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "contact/weighted_gap.hpp"
+
+namespace igac {
+
+struct HertzSolution {
+  double a = 0, p0 = 0;
+  double pressure(double r) const;
+};
+HertzSolution hertz_cylinder(double R, double P, double E, double nu);  // 2D
+HertzSolution hertz_sphere(double R, double P, double E, double nu);    // 3D
+
+struct PressureSample {
+  double r = 0, pressure = 0;
+};
+
+struct PressureReport {
+  std::vector<PressureSample> multipliers;   // per multiplier: anchor and -lambda_K
+  std::vector<PressureSample> p1;            // P1 re-interpolation (2D faces)
+  double max_pressure = 0;                   // max_K -lambda_K
+  double total_force = 0;                    // sum_K -lambda_K K_K
+  double half_width = 0;                     // extent of the contact zone in r
+  int active = 0;
+};
+
+class ContactPressure {
+ public:
+  // X0: the initial contact point; normal: the obstacle normal there.
+  ContactPressure(const NurbsPatch& patch, const ContactFace& cf, Eigen::VectorXd lambda,
+                  Eigen::VectorXd weights, std::vector<char> active, Eigen::VectorXd X0, Eigen::VectorXd normal);
+  double r_of(const Eigen::VectorXd& X) const;
+  // p_h at face parameter xi.
+  double pressure_at(const Eigen::VectorXd& xi) const;
+  PressureReport report() const;
+  // || p_h - p ||_{L2(Gamma_C)} and || p ||, p given as a function of face
+  // parameter and physical point, integrated with `points` Gauss points per
+  // face element direction of `mesh` (a face of the same geometry, perhaps
+  // finer).
+  std::pair<double, double> l2_error(const ContactFace& mesh,
+                                     const std::function<double(const Eigen::VectorXd& xi, const Eigen::VectorXd& X)>& p,
+                                     int points) const;
+
+ private:
+  const NurbsPatch& patch_;
+  const ContactFace& cf_;
+  Eigen::VectorXd lambda_, weights_;
+  std::vector<char> active_;
+  Eigen::VectorXd X0_, n_;
+};
+
+// The point of the contact face with the smallest initial gap, and the
+// obstacle normal there (sampled at the face's Gauss points and anchors).
+std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
+                                                                  const Obstacle& obstacle);
+
+}  // namespace igac

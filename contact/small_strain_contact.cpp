@@ -1,0 +1,137 @@
+#include "contact/small_strain_contact.hpp"
+
+#include <chrono>
+#include <fmt/format.h>
+#include <set>
+
+namespace igac {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
+                                           const WeightedGapOperator& op, const RigidModes& modes,
+                                           SparseCholesky& chol, const ContactSolverOptions& opt) {
+  ContactSolution sol;
+  const int n = int(K.rows()), m = int(op.weights.size()), k = int(modes.modes.cols());
+  auto t0 = Clock::now();
+  chol.factorize(pin_equations(K, modes.pinned));
+  sol.factorize_s = since(t0);
+
+  // G with the pinned columns removed (they carry no unknown of K_p).
+  Eigen::SparseMatrix<double, Eigen::RowMajor> Gp = op.G;
+  for (int r = 0; r < Gp.outerSize(); ++r)
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Gp, r); it; ++it)
+      for (int p : modes.pinned)
+        if (it.col() == p) it.valueRef() = 0.0;
+  Eigen::VectorXd fp = f;
+  for (int p : modes.pinned) fp[p] = 0.0;
+
+  t0 = Clock::now();
+  const Eigen::VectorXd vf = chol.solve(fp);
+  const Eigen::VectorXd Gvf = op.G * vf;
+  const Eigen::MatrixXd GR = op.G * modes.modes;  // m x k
+  const Eigen::VectorXd Rf = modes.modes.transpose() * f;
+  Eigen::MatrixXd S(m, m);           // columns valid where have_column
+  std::vector<char> have_column(m, 0);
+  auto ensure_columns = [&](const std::vector<int>& want) {
+    std::vector<int> missing;
+    for (int K_ : want)
+      if (!have_column[K_]) missing.push_back(K_);
+    if (missing.empty()) return;
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n, missing.size());
+    for (size_t j = 0; j < missing.size(); ++j)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Gp, missing[j]); it; ++it)
+        B(it.col(), j) = it.value();
+    const Eigen::MatrixXd Z = chol.solve(B);
+    const Eigen::MatrixXd SZ = Gp * Z;
+    for (size_t j = 0; j < missing.size(); ++j) {
+      S.col(missing[j]) = SZ.col(j);
+      have_column[missing[j]] = 1;
+    }
+    sol.schur_columns += int(missing.size());
+  };
+  sol.schur_s += since(t0);
+
+  // Initial active set: closed initial gaps; a body not held otherwise
+  // starts with the multipliers nearest to the obstacle.
+  std::vector<char> active(m, 0);
+  const Eigen::VectorXd gap0 = op.g0.cwiseQuotient(op.weights);
+  for (int K_ = 0; K_ < m; ++K_) active[K_] = gap0[K_] <= opt.initial_gap_tolerance;
+  if (k > 0 && std::count(active.begin(), active.end(), 1) < k && m > 0) {
+    std::vector<int> order(m);
+    for (int i = 0; i < m; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return gap0[a] < gap0[b]; });
+    for (int i = 0; i < std::min(k, m); ++i) active[order[i]] = 1;
+  }
+
+  std::set<std::vector<char>> seen;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), c = Eigen::VectorXd::Zero(k), Gu(m);
+  const auto t_iter = Clock::now();
+  for (int it = 0; it < opt.max_iterations; ++it) {
+    seen.insert(active);
+    std::vector<int> A;
+    for (int K_ = 0; K_ < m; ++K_)
+      if (active[K_]) A.push_back(K_);
+    sol.active_set_sizes.push_back(int(A.size()));
+    auto ts = Clock::now();
+    ensure_columns(A);
+    sol.schur_s += since(ts);
+    const int na = int(A.size());
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(na + k, na + k);
+    Eigen::VectorXd rhs(na + k);
+    for (int i = 0; i < na; ++i) {
+      for (int j = 0; j < na; ++j) M(i, j) = S(A[i], A[j]);
+      for (int j = 0; j < k; ++j) M(i, na + j) = M(na + j, i) = -GR(A[i], j);
+      rhs[i] = op.g0[A[i]] + Gvf[A[i]];
+    }
+    rhs.tail(k) = -Rf;
+    Eigen::VectorXd x;
+    if (na + k > 0) {
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+      if (lu.rank() < na + k) {
+        sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions";
+        return sol;
+      }
+      x = lu.solve(rhs);
+    }
+    lambda.setZero();
+    for (int i = 0; i < na; ++i) lambda[A[i]] = x[i];
+    c = x.tail(k);
+    // G u = G v_f - S(:, A) lambda_A + G R c
+    Gu = Gvf + GR * c;
+    for (int i = 0; i < na; ++i) Gu -= S.col(A[i]) * lambda[A[i]];
+    const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
+    const double lam_scale = std::max(lambda.cwiseAbs().maxCoeff(), 1e-300);
+    std::vector<char> next(m, 0);
+    for (int K_ = 0; K_ < m; ++K_)
+      next[K_] = lambda[K_] + opt.complementarity_scale * gap[K_] < -1e-12 * lam_scale;
+    sol.weighted_gap = gap;
+    if (next == active) {
+      sol.converged = true;
+      sol.status = "converged";
+      break;
+    }
+    if (seen.count(next)) {
+      sol.status = fmt::format("active set cycling after {} iterations", it + 1);
+      break;
+    }
+    active = next;
+  }
+  sol.iterations_s = since(t_iter);
+  if (!sol.converged && sol.status.empty())
+    sol.status = fmt::format("active set not settled in {} iterations", opt.max_iterations);
+
+  // Final displacement: one more solve with the converged multipliers.
+  t0 = Clock::now();
+  Eigen::VectorXd rhs = fp - Gp.transpose() * lambda;
+  sol.u = chol.solve(rhs);
+  if (k > 0) sol.u += modes.modes * c;
+  sol.iterations_s += since(t0);
+  sol.lambda = lambda;
+  sol.active = active;
+  return sol;
+}
+
+}  // namespace igac

@@ -1,0 +1,73 @@
+#include "contact/weighted_gap.hpp"
+
+namespace igac {
+
+ContactFace::ContactFace(const NurbsPatch& patch, const Face& f)
+    : face_patch(patch.face_patch(f)), face_cps(patch.face_control_points(f)), face(f), space(face_patch) {}
+
+namespace {
+int contact_points(const NurbsPatch& patch) { return gauss_points_for(patch.degree(0)) + 1; }
+}  // namespace
+
+WeightedGapOperator assemble_weighted_gaps(const NurbsPatch& patch, const DofMap& dofs, const ContactFace& cf,
+                                           const Obstacle& obstacle) {
+  const int dim = patch.space_dim(), m = cf.space.size();
+  const PatchQuadrature quad = cf.quadrature(contact_points(patch));
+  WeightedGapOperator op;
+  op.weights = Eigen::VectorXd::Zero(m);
+  op.g0 = Eigen::VectorXd::Zero(m);
+  std::vector<Eigen::Triplet<double>> trip;
+  ElementData ed;
+  std::vector<int> kidx;
+  std::vector<double> kval;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) {
+      cf.space.basis(ed.xi.row(q).transpose(), kidx, kval);
+      const ObstacleProbe pr = obstacle.probe(ed.X.row(q).transpose());
+      for (size_t k = 0; k < kidx.size(); ++k) {
+        const double bw = kval[k] * ed.JxW[q];
+        if (bw == 0.0) continue;
+        op.weights[kidx[k]] += bw;
+        op.g0[kidx[k]] += pr.gap * bw;
+        for (size_t a = 0; a < ed.cps.size(); ++a)
+          for (int i = 0; i < dim; ++i) {
+            const int dof = ed.cps[a] * dim + i;
+            const double v = bw * ed.N(q, a) * pr.normal[i];
+            if (dofs.equation(dof) >= 0) trip.emplace_back(kidx[k], dofs.equation(dof), v);
+            else op.g0[kidx[k]] += v * dofs.prescribed_value(dof);
+          }
+      }
+    }
+  }
+  op.G.resize(m, dofs.num_free());
+  op.G.setFromTriplets(trip.begin(), trip.end());
+  op.G.prune(0.0);
+  return op;
+}
+
+Eigen::VectorXd exact_weighted_gaps(const NurbsPatch& patch, const Eigen::MatrixXd& u, const ContactFace& cf,
+                                    const Obstacle& obstacle) {
+  const int m = cf.space.size();
+  const PatchQuadrature quad = cf.quadrature(contact_points(patch));
+  Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
+  ElementData ed;
+  std::vector<int> kidx;
+  std::vector<double> kval;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) {
+      Eigen::VectorXd x = ed.X.row(q).transpose();
+      for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
+      const double g = obstacle.probe(x).gap;
+      cf.space.basis(ed.xi.row(q).transpose(), kidx, kval);
+      for (size_t k = 0; k < kidx.size(); ++k) {
+        num[kidx[k]] += g * kval[k] * ed.JxW[q];
+        den[kidx[k]] += kval[k] * ed.JxW[q];
+      }
+    }
+  }
+  return num.cwiseQuotient(den);
+}
+
+}  // namespace igac

@@ -1,0 +1,67 @@
+// Degrees of freedom and the linear-elastic system of a patch.
+//
+// Unknowns are control-point displacements, dof = cp * dim + component.
+// Dirichlet conditions fix one component on whole faces (with a value,
+// usually 0 for symmetry); fixed dofs are eliminated, so the matrix is the
+// SPD block K_ff and the prescribed values move to the right-hand side.
+//
+// a(u, v) = int sigma(u) : eps(v) dX, assembled element by element with
+// (p+1)^dim Gauss points, threaded over elements (OpenMP).  Loads: a
+// pressure P on faces (traction -P n, n the outward normal of the body) and a
+// body force b (per unit volume).
+#pragma once
+
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "engine/discretisation.hpp"
+#include "materials/linear_elastic.hpp"
+
+namespace igac {
+
+struct DirichletCondition {
+  std::vector<Face> faces;
+  int component = 0;
+  double value = 0.0;
+};
+
+class DofMap {
+ public:
+  DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& conditions);
+  int dim() const { return dim_; }
+  int num_dofs() const { return int(equation_.size()); }
+  int num_free() const { return n_free_; }
+  // Free equation number of a dof, or -1 when it is prescribed.
+  int equation(int dof) const { return equation_[dof]; }
+  double prescribed_value(int dof) const { return value_[dof]; }
+  // Full coefficient matrix (n_cp x dim) from the free unknowns.
+  Eigen::MatrixXd expand(const Eigen::VectorXd& free) const;
+
+ private:
+  int dim_;
+  int n_free_ = 0;
+  std::vector<int> equation_;
+  std::vector<double> value_;
+};
+
+// Face quadrature: the face as its own patch, numbered by the parent's cps.
+PatchQuadrature face_quadrature(const NurbsPatch& patch, const Face& f, int points);
+
+struct LinearSystem {
+  Eigen::SparseMatrix<double> K;  // free x free, SPD when the body is held
+  Eigen::VectorXd f;              // loads minus the lift of prescribed values
+  double min_det_J = 0;           // smallest Jacobian met at a Gauss point
+};
+
+// Throws std::runtime_error when the geometry map folds (det J <= 0 at a
+// Gauss point).
+LinearSystem assemble_linear_elasticity(const NurbsPatch& patch, const DofMap& dofs,
+                                        const LinearElastic& material,
+                                        const Eigen::VectorXd& body_force);
+// Adds the work of a pressure P on the faces to f (free numbering).
+void add_pressure_load(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces,
+                       double pressure, Eigen::VectorXd& f);
+// The number of Gauss points per direction used everywhere for degree p.
+inline int gauss_points_for(int degree) { return degree + 1; }
+
+}  // namespace igac

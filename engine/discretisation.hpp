@@ -1,0 +1,68 @@
+// Element values: per element of a patch (or of a face of it), the rational
+// basis, its physical gradient and the quadrature weights JxW at Gauss points
+// (the FEValues role).  Univariate B-spline values are tabulated once per
+// direction; an element evaluation only forms tensor products, so nothing is
+// allocated inside the quadrature loop once an ElementData has its size.
+//
+// Volume patches (param_dim == space_dim): dN/dX = dN/dxi J^{-1},
+// JxW = det J * w.  Face patches (param_dim == space_dim - 1): the outward
+// area vector s cof(J) e_d gives the unit normal and dGamma = |n dA| w.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "engine/quadrature.hpp"
+#include "engine/spline/nurbs_patch.hpp"
+
+namespace igac {
+
+// Values of the degree+1 B-splines of one direction at the Gauss points of
+// every element of that direction.
+struct UnivariateTable {
+  int degree = 0;
+  int n_points = 0;
+  std::vector<int> span;        // per element
+  std::vector<double> xi;       // [e * n_points + q]
+  std::vector<double> weight;   // Gauss weight times element length
+  std::vector<double> value;    // [(e * n_points + q) * (degree+1) + j]
+  std::vector<double> deriv;
+};
+UnivariateTable tabulate(const KnotVector& kv, const GaussRule& rule);
+
+struct ElementData {
+  std::vector<int> cps;              // control points (parent numbering)
+  Eigen::MatrixXd N;                 // n_q x n_loc
+  std::vector<Eigen::MatrixXd> dN;   // per q: n_loc x space_dim (volume only)
+  Eigen::MatrixXd X;                 // n_q x space_dim
+  Eigen::MatrixXd xi;                // n_q x param_dim
+  Eigen::VectorXd JxW;               // n_q
+  Eigen::MatrixXd normal;            // n_q x space_dim, unit outward (faces only)
+  double min_det_J = 0;              // volume: smallest det J at the points
+};
+
+class PatchQuadrature {
+ public:
+  // Gauss rule with `points` per direction.  For a face patch pass the face
+  // (of the parent) and the parent's control point numbers of the face.
+  PatchQuadrature(const NurbsPatch& patch, int points, std::optional<Face> face = {},
+                  std::vector<int> parent_cps = {});
+
+  int num_elements() const { return n_el_[0] * n_el_[1] * n_el_[2]; }
+  int num_points() const;
+  int num_local() const;
+  std::array<int, 3> element_index(int e) const;
+  const NurbsPatch& patch() const { return patch_; }
+  // Fills `out` for element e; gradients only when asked (volume patches).
+  void evaluate(int e, ElementData& out, bool gradients) const;
+
+ private:
+  NurbsPatch patch_;
+  std::optional<Face> face_;
+  std::vector<int> parent_cps_;
+  std::array<UnivariateTable, 3> tables_;
+  std::array<int, 3> n_el_{1, 1, 1};
+};
+
+}  // namespace igac

@@ -1,0 +1,110 @@
+#include "engine/geometry/shapes.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+namespace igac {
+namespace {
+
+const double kHalfSqrt2 = std::sqrt(0.5);
+
+KnotVector bezier(int p) { return KnotVector::uniform(p, 1); }
+
+void check_positive(double v, const char* what) {
+  if (!(v > 0) || !std::isfinite(v)) throw SplineError(fmt::format("{} must be positive, got {}", what, v));
+}
+
+}  // namespace
+
+Geometry quarter_disc(double R) {
+  check_positive(R, "radius");
+  const double d = 0.5 * R;  // the straight corner D = (0, -d)
+  Eigen::MatrixXd P(9, 2);
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(9);
+  // row v = 0: the arc (exact circle)
+  P.row(0) << 0, -R;
+  P.row(1) << R, -R;
+  w[1] = kHalfSqrt2;
+  P.row(2) << R, 0;
+  // row v = 1/2
+  P.row(3) << 0, -(R + d) / 2;
+  P.row(4) << 0.6 * R, -0.6 * R;  // chosen for the most even det J (min/max)
+  P.row(5) << R / 2, 0;
+  // row v = 1: x = 0 from D to the centre
+  P.row(6) << 0, -d;
+  P.row(7) << 0, -d / 2;
+  P.row(8) << 0, 0;
+  Geometry g{NurbsPatch({bezier(2), bezier(2)}, P, w), {}};
+  g.faces["curved"] = {Face{1, false}};
+  g.faces["top"] = {Face{0, true}};
+  g.faces["left"] = {Face{0, false}, Face{1, true}};
+  return g;
+}
+
+Geometry quarter_annulus(double a, double b) {
+  check_positive(a, "inner radius");
+  check_positive(b, "outer radius");
+  if (!(b > a)) throw SplineError(fmt::format("outer radius {} must exceed inner radius {}", b, a));
+  // u radial (degree 1), v along the angle from the x axis (degree 2): det J > 0.
+  Eigen::MatrixXd P(6, 2);
+  Eigen::VectorXd w(6);
+  P << a, 0, b, 0, a, a, b, b, 0, a, 0, b;
+  w << 1, 1, kHalfSqrt2, kHalfSqrt2, 1, 1;
+  Geometry g{NurbsPatch({bezier(1), bezier(2)}, P, w), {}};
+  g.faces["inner"] = {Face{0, false}};
+  g.faces["outer"] = {Face{0, true}};
+  g.faces["bottom"] = {Face{1, false}};
+  g.faces["left"] = {Face{1, true}};
+  return g;
+}
+
+Geometry rectangle(double lx, double ly) {
+  check_positive(lx, "rectangle width");
+  check_positive(ly, "rectangle height");
+  Eigen::MatrixXd P(4, 2);
+  P << 0, 0, lx, 0, 0, ly, lx, ly;
+  Geometry g{NurbsPatch({bezier(1), bezier(1)}, P, Eigen::VectorXd::Ones(4)), {}};
+  g.faces["left"] = {Face{0, false}};
+  g.faces["right"] = {Face{0, true}};
+  g.faces["bottom"] = {Face{1, false}};
+  g.faces["top"] = {Face{1, true}};
+  return g;
+}
+
+Geometry box(double lx, double ly, double lz) {
+  check_positive(lx, "box length x");
+  check_positive(ly, "box length y");
+  check_positive(lz, "box length z");
+  Eigen::MatrixXd P(8, 3);
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) P.row(i + 2 * j + 4 * k) << i * lx, j * ly, k * lz;
+  Geometry g{NurbsPatch({bezier(1), bezier(1), bezier(1)}, P, Eigen::VectorXd::Ones(8)), {}};
+  g.faces["left"] = {Face{0, false}};
+  g.faces["right"] = {Face{0, true}};
+  g.faces["front"] = {Face{1, false}};
+  g.faces["back"] = {Face{1, true}};
+  g.faces["bottom"] = {Face{2, false}};
+  g.faces["top"] = {Face{2, true}};
+  return g;
+}
+
+std::optional<std::vector<Face>> find_faces(const Geometry& g, const std::string& name) {
+  if (auto it = g.faces.find(name); it != g.faces.end()) return it->second;
+  static const char* dirs = "uvw";
+  for (int d = 0; d < g.patch.param_dim(); ++d)
+    for (int e = 0; e < 2; ++e)
+      if (name == fmt::format("{}{}", dirs[d], e)) return std::vector<Face>{Face{d, e == 1}};
+  return std::nullopt;
+}
+
+std::vector<std::string> face_names(const Geometry& g) {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : g.faces) out.push_back(k);
+  static const char* dirs = "uvw";
+  for (int d = 0; d < g.patch.param_dim(); ++d)
+    for (int e = 0; e < 2; ++e) out.push_back(fmt::format("{}{}", dirs[d], e));
+  return out;
+}
+
+}  // namespace igac

@@ -1,0 +1,45 @@
+// Exact coarse NURBS geometries (one patch each), with their boundary faces
+// named for people.  Circles are rational quadratics (Piegl & Tiller 7.5), so
+// refinement keeps them exact.  Every shape also answers to the parametric
+// face names u0, u1, v0, v1 (, w0, w1).
+//
+// quarter_disc(R): x >= 0, y in [-R, 0], the 2D Hertz model (paper, 4.1).
+//   v = 0 is the whole arc from the bottom point A = (0, -R) (u = 0) to
+//   B = (R, 0) (u = 1): the contact face, with A at a regular corner.
+//   u = 1 is the top edge y = 0 (from B to the centre).  The x = 0 edge is
+//   covered by u = 0 (from A up to D = (0, -R/2)) and v = 1 (from D to the
+//   centre).  A single quadrilateral patch of a three-cornered region needs
+//   one corner where the boundary is straight: it is D, on the symmetry line
+//   half a radius away from the contact zone; det J > 0 everywhere else.
+// quarter_annulus(a, b): a <= r <= b, x, y >= 0; u radial, v along the angle
+//   from the x axis.  Faces: inner, outer, bottom (y = 0), left (x = 0).
+// rectangle(Lx, Ly) = [0, Lx] x [0, Ly]: left, right, bottom, top.
+// box(Lx, Ly, Lz): left/right (x), front/back (y), bottom/top (z).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/spline/nurbs_patch.hpp"
+
+namespace igac {
+
+struct Geometry {
+  NurbsPatch patch;
+  std::map<std::string, std::vector<Face>> faces;  // named boundary parts
+};
+
+Geometry quarter_disc(double radius);
+Geometry quarter_annulus(double inner_radius, double outer_radius);
+Geometry rectangle(double lx, double ly);
+Geometry box(double lx, double ly, double lz);
+
+// The faces a name stands for on this geometry (named or parametric), or
+// nothing when the name is unknown.
+std::optional<std::vector<Face>> find_faces(const Geometry& g, const std::string& name);
+// All accepted face names, for error messages.
+std::vector<std::string> face_names(const Geometry& g);
+
+}  // namespace igac

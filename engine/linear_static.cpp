@@ -1,0 +1,68 @@
+#include "engine/linear_static.hpp"
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+namespace igac {
+
+RigidModes free_rigid_modes(const NurbsPatch& patch, const DofMap& dofs) {
+  const int dim = patch.space_dim(), n_cp = patch.num_control_points();
+  const int n_modes = dim == 2 ? 3 : 6;
+  const Eigen::RowVectorXd centre = patch.points().colwise().mean();
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n_cp * dim, n_modes);
+  for (int a = 0; a < n_cp; ++a) {
+    const Eigen::RowVectorXd x = patch.points().row(a) - centre;
+    for (int i = 0; i < dim; ++i) M(a * dim + i, i) = 1.0;
+    if (dim == 2) {
+      M(a * 2 + 0, 2) = -x[1];
+      M(a * 2 + 1, 2) = x[0];
+    } else {  // rotations about x, y, z
+      M(a * 3 + 1, 3) = -x[2]; M(a * 3 + 2, 3) = x[1];
+      M(a * 3 + 0, 4) = x[2];  M(a * 3 + 2, 4) = -x[0];
+      M(a * 3 + 0, 5) = -x[1]; M(a * 3 + 1, 5) = x[0];
+    }
+  }
+  std::vector<int> fixed;
+  for (int i = 0; i < dofs.num_dofs(); ++i)
+    if (dofs.equation(i) < 0) fixed.push_back(i);
+  Eigen::MatrixXd null_basis;
+  if (fixed.empty()) {
+    null_basis = Eigen::MatrixXd::Identity(n_modes, n_modes);
+  } else {
+    Eigen::MatrixXd Mf(fixed.size(), n_modes);
+    for (size_t r = 0; r < fixed.size(); ++r) Mf.row(r) = M.row(fixed[r]);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(Mf, Eigen::ComputeFullV);
+    const auto& s = svd.singularValues();
+    const double tol = 1e-10 * std::max(1.0, s.size() ? s[0] : 1.0);
+    int rank = 0;
+    while (rank < s.size() && s[rank] > tol) ++rank;
+    null_basis = svd.matrixV().rightCols(n_modes - rank);
+  }
+  RigidModes r;
+  const int k = int(null_basis.cols());
+  Eigen::MatrixXd R(dofs.num_free(), k);
+  for (int i = 0; i < dofs.num_dofs(); ++i)
+    if (dofs.equation(i) >= 0) R.row(dofs.equation(i)) = M.row(i) * null_basis;
+  if (k > 0) {
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(R);
+    r.modes = qr.householderQ() * Eigen::MatrixXd::Identity(R.rows(), k);
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> piv(r.modes.transpose());
+    for (int j = 0; j < k; ++j) r.pinned.push_back(int(piv.colsPermutation().indices()[j]));
+  } else {
+    r.modes.resize(dofs.num_free(), 0);
+  }
+  return r;
+}
+
+Eigen::SparseMatrix<double> pin_equations(const Eigen::SparseMatrix<double>& K, const std::vector<int>& pinned) {
+  if (pinned.empty()) return K;
+  std::vector<char> is_pinned(K.rows(), 0);
+  for (int p : pinned) is_pinned[p] = 1;
+  Eigen::SparseMatrix<double> A = K;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it)
+      if (is_pinned[it.row()] || is_pinned[it.col()]) it.valueRef() = (it.row() == it.col()) ? 1.0 : 0.0;
+  return A;
+}
+
+}  // namespace igac

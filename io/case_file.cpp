@@ -1,0 +1,296 @@
+#include "io/case_file.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <set>
+#include <toml++/toml.h>
+#include <unistd.h>
+
+namespace igac {
+namespace {
+
+// A view of one TOML table that knows its name for messages and refuses
+// keys it does not expect.
+class Section {
+ public:
+  Section(const std::string& file, std::string name, const toml::table& t, std::set<std::string> allowed)
+      : file_(file), name_(std::move(name)), t_(t) {
+    for (const auto& [k, v] : t)
+      if (!allowed.count(std::string(k.str())))
+        fail(std::string(k.str()), fmt::format("unknown key (expected one of: {})", fmt::join(allowed, ", ")),
+             v.source().begin.line);
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& why, int line = 0) const {
+    if (!line)
+      if (const auto* n = t_.get(key)) line = int(n->source().begin.line);
+    const std::string where = line ? fmt::format("{}:{}", file_, line) : file_;
+    throw InputError(fmt::format("{}: [{}] {}: {}", where, name_, key, why));
+  }
+  bool has(const std::string& key) const { return t_.contains(key); }
+  const toml::node* node(const std::string& key) const { return t_.get(key); }
+
+  double number(const std::string& key, std::optional<double> def = {}) const {
+    const auto* n = t_.get(key);
+    if (!n) {
+      if (def) return *def;
+      fail(key, "missing (a number is required)");
+    }
+    if (auto v = n->value<double>()) {
+      if (!std::isfinite(*v)) fail(key, "must be a finite number");
+      return *v;
+    }
+    fail(key, "must be a number");
+  }
+  int integer(const std::string& key, std::optional<int> def = {}) const {
+    const auto* n = t_.get(key);
+    if (!n) {
+      if (def) return *def;
+      fail(key, "missing (an integer is required)");
+    }
+    if (n->is_integer()) {
+      const auto v = n->value<int64_t>().value();
+      if (v < -1000000000 || v > 1000000000) fail(key, "integer out of range");
+      return int(v);
+    }
+    fail(key, "must be an integer");
+  }
+  std::string string(const std::string& key, std::optional<std::string> def = {}) const {
+    const auto* n = t_.get(key);
+    if (!n) {
+      if (def) return *def;
+      fail(key, "missing (a string is required)");
+    }
+    if (auto v = n->value<std::string>()) return *v;
+    fail(key, "must be a string");
+  }
+  bool boolean(const std::string& key, bool def) const {
+    const auto* n = t_.get(key);
+    if (!n) return def;
+    if (auto v = n->value<bool>()) return *v;
+    fail(key, "must be true or false");
+  }
+  std::vector<double> numbers(const std::string& key, std::optional<size_t> len = {}) const {
+    const auto* n = t_.get(key);
+    if (!n) fail(key, "missing (an array of numbers is required)");
+    const auto* arr = n->as_array();
+    if (!arr) fail(key, "must be an array of numbers");
+    std::vector<double> out;
+    for (const auto& e : *arr) {
+      auto v = e.value<double>();
+      if (!v || !std::isfinite(*v)) fail(key, "must be an array of finite numbers");
+      out.push_back(*v);
+    }
+    if (len && out.size() != *len) fail(key, fmt::format("must have {} entries, has {}", *len, out.size()));
+    return out;
+  }
+  std::vector<std::string> strings(const std::string& key) const {
+    const auto* n = t_.get(key);
+    if (!n) fail(key, "missing (an array of face names is required)");
+    if (auto s = n->value<std::string>()) return {*s};
+    const auto* arr = n->as_array();
+    if (!arr || arr->empty()) fail(key, "must be a non-empty array of strings");
+    std::vector<std::string> out;
+    for (const auto& e : *arr) {
+      auto v = e.value<std::string>();
+      if (!v) fail(key, "must be an array of strings");
+      out.push_back(*v);
+    }
+    return out;
+  }
+  const toml::table& sub(const std::string& key) const {
+    const auto* n = t_.get(key);
+    if (!n || !n->is_table()) fail(key, "missing or not a table");
+    return *n->as_table();
+  }
+  const std::string& name() const { return name_; }
+
+ private:
+  const std::string& file_;
+  std::string name_;
+  const toml::table& t_;
+};
+
+int component_index(const Section& s, const std::string& key, int dim) {
+  const std::string c = s.string(key);
+  static const std::string names = "xyz";
+  if (c.size() == 1 && names.find(c[0]) != std::string::npos && int(names.find(c[0])) < dim)
+    return int(names.find(c[0]));
+  s.fail(key, fmt::format("'{}' is not a displacement component (x, y{})", c, dim == 3 ? ", z" : ""));
+}
+
+// Tables may come as [x] or [[x]]: give every entry of an array of tables.
+std::vector<const toml::table*> tables(const std::string& file, const toml::table& root, const std::string& key) {
+  std::vector<const toml::table*> out;
+  const auto* n = root.get(key);
+  if (!n) return out;
+  if (const auto* t = n->as_table()) return {t};
+  if (const auto* a = n->as_array()) {
+    for (const auto& e : *a) {
+      if (!e.is_table()) break;
+      out.push_back(e.as_table());
+    }
+    if (out.size() == a->size()) return out;
+  }
+  throw InputError(fmt::format("{}:{}: {}: must be a table ([{}] or [[{}]])", file, n->source().begin.line, key, key, key));
+}
+
+}  // namespace
+
+CaseSpec read_case(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("{}: no such case file", path));
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}:{}: malformed TOML: {}", path, e.source().begin.line, e.description()));
+  }
+  CaseSpec c;
+  c.path = path;
+  const Section top(path, "top level", root,
+                    {"name", "description", "geometry", "mesh", "material", "dirichlet", "pressure", "body_force",
+                     "contact", "reference", "output"});
+  c.name = top.string("name", std::filesystem::path(path).stem().string());
+  c.description = top.string("description", "");
+
+  const Section geo(path, "geometry", top.sub("geometry"),
+                    {"shape", "radius", "inner_radius", "outer_radius", "size"});
+  c.shape = geo.string("shape");
+  if (c.shape == "quarter_disc") {
+    c.radius = geo.number("radius");
+    if (!(c.radius > 0)) geo.fail("radius", "must be positive");
+  } else if (c.shape == "quarter_annulus") {
+    c.inner_radius = geo.number("inner_radius");
+    c.outer_radius = geo.number("outer_radius");
+    if (!(c.inner_radius > 0)) geo.fail("inner_radius", "must be positive");
+    if (!(c.outer_radius > c.inner_radius)) geo.fail("outer_radius", "must exceed inner_radius");
+  } else if (c.shape == "rectangle" || c.shape == "box") {
+    c.size = geo.numbers("size", c.shape == "box" ? 3 : 2);
+    for (double s : c.size)
+      if (!(s > 0)) geo.fail("size", "every length must be positive");
+  } else {
+    geo.fail("shape", fmt::format("unknown shape '{}' (quarter_disc, quarter_annulus, rectangle, box)", c.shape));
+  }
+  const int dim = c.dim();
+
+  const Section mesh(path, "mesh", top.sub("mesh"), {"degree", "elements", "refine", "grading"});
+  c.degree = mesh.integer("degree");
+  if (c.degree < 1) mesh.fail("degree", fmt::format("degree {} must be at least 1", c.degree));
+  if (c.degree > 10) mesh.fail("degree", fmt::format("degree {} is above the supported 10", c.degree));
+  for (double e : mesh.numbers("elements", dim)) {
+    if (e != std::floor(e) || e < 1 || e > 1e6) mesh.fail("elements", "entries must be whole numbers from 1 to 1e6");
+    c.elements.push_back(int(e));
+  }
+  c.refine = mesh.integer("refine", 0);
+  if (c.refine < 0) mesh.fail("refine", "must be >= 0");
+  if (mesh.has("grading")) {
+    const Section g(path, "mesh.grading", mesh.sub("grading"), {"direction", "toward", "span_fraction", "range_fraction"});
+    GradingSpec gs;
+    const std::string d = g.string("direction");
+    if (d != "u" && d != "v" && !(d == "w" && dim == 3)) g.fail("direction", fmt::format("'{}' is not a parametric direction (u, v{})", d, dim == 3 ? ", w" : ""));
+    gs.direction = d == "u" ? 0 : d == "v" ? 1 : 2;
+    const std::string t = g.string("toward", "start");
+    if (t != "start" && t != "end") g.fail("toward", "must be \"start\" or \"end\"");
+    gs.at_start = t == "start";
+    gs.span_fraction = g.number("span_fraction");
+    gs.range_fraction = g.number("range_fraction");
+    if (!(gs.span_fraction > 0 && gs.span_fraction < 1)) g.fail("span_fraction", "must lie in (0, 1)");
+    if (!(gs.range_fraction > 0 && gs.range_fraction < 1)) g.fail("range_fraction", "must lie in (0, 1)");
+    if (c.elements[gs.direction] < 2) g.fail("direction", "a graded direction needs at least 2 elements");
+    c.grading = gs;
+  }
+
+  const Section mat(path, "material", top.sub("material"), {"model", "E", "nu"});
+  c.model = mat.string("model", "linear_elastic");
+  if (c.model != "linear_elastic")
+    mat.fail("model", fmt::format("unknown material model '{}' (available: linear_elastic)", c.model));
+  c.E = mat.number("E");
+  c.nu = mat.number("nu");
+  if (!(c.E > 0)) mat.fail("E", fmt::format("E = {} must be positive (Young's modulus)", c.E));
+  if (!(c.nu > -1 && c.nu < 0.5)) mat.fail("nu", fmt::format("nu = {} must lie in (-1, 0.5)", c.nu));
+
+  for (const auto* t : tables(path, root, "dirichlet")) {
+    const Section s(path, "dirichlet", *t, {"faces", "component", "value"});
+    c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.number("value", 0.0)});
+  }
+  for (const auto* t : tables(path, root, "pressure")) {
+    const Section s(path, "pressure", *t, {"faces", "value"});
+    c.pressure.push_back({s.strings("faces"), s.number("value")});
+  }
+  if (root.contains("body_force")) {
+    const Section s(path, "body_force", top.sub("body_force"), {"value"});
+    c.body_force = s.numbers("value", dim);
+  }
+  if (root.contains("contact")) {
+    const Section s(path, "contact", top.sub("contact"), {"face", "obstacle"});
+    ContactSpec cs;
+    cs.face = s.string("face");
+    const Section o(path, "contact.obstacle", s.sub("obstacle"), {"type", "point", "normal", "centre", "radius"});
+    cs.obstacle.type = o.string("type");
+    if (cs.obstacle.type == "plane") {
+      cs.obstacle.point = o.numbers("point", dim);
+      cs.obstacle.normal = o.numbers("normal", dim);
+      double n2 = 0;
+      for (double x : cs.obstacle.normal) n2 += x * x;
+      if (!(n2 > 0)) o.fail("normal", "must not be zero");
+    } else if (cs.obstacle.type == "sphere") {
+      cs.obstacle.centre = o.numbers("centre", dim);
+      cs.obstacle.radius = o.number("radius");
+      if (!(cs.obstacle.radius > 0)) o.fail("radius", "must be positive");
+    } else {
+      o.fail("type", fmt::format("unknown obstacle '{}' (plane, sphere)", cs.obstacle.type));
+    }
+    if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
+    c.contact = cs;
+  }
+  if (root.contains("reference")) {
+    const Section s(path, "reference", top.sub("reference"), {"solution"});
+    c.reference = s.string("solution");
+    if (c.reference != "hertz" && c.reference != "lame" && c.reference != "none")
+      s.fail("solution", fmt::format("unknown reference solution '{}' (hertz, lame, none)", c.reference));
+    if (c.reference == "hertz" && (!c.contact || c.shape != "quarter_disc"))
+      s.fail("solution", "hertz needs a quarter_disc with [contact]");
+    if (c.reference == "lame" && c.shape != "quarter_annulus")
+      s.fail("solution", "lame needs shape = \"quarter_annulus\"");
+  }
+  if (root.contains("output")) {
+    const Section s(path, "output", top.sub("output"), {"vtk"});
+    c.write_vtk = s.boolean("vtk", true);
+  }
+  apply_overrides(c, {}, {});
+  return c;
+}
+
+void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> refine) {
+  if (degree) {
+    if (*degree < 1 || *degree > 10) throw InputError(fmt::format("--degree {}: must lie in 1..10", *degree));
+    if (c.contact && *degree < 2) throw InputError(fmt::format("--degree {}: contact needs degree >= 2", *degree));
+    c.degree = *degree;
+  }
+  if (refine) {
+    if (*refine < 0) throw InputError(fmt::format("--refine {}: must be >= 0", *refine));
+    c.refine = *refine;
+  }
+  // Memory check before anything is built: dofs, stiffness nonzeros and a
+  // generous factor for the Cholesky fill.
+  double cps = 1, elements = 1;
+  for (int e : c.elements) {
+    const double n = std::ldexp(double(e), std::min(c.refine, 60));
+    elements *= n;
+    cps *= n + c.degree;
+  }
+  const int dim = c.dim();
+  const double dofs = cps * dim;
+  const double nnz = dofs * std::pow(2.0 * c.degree + 1, dim) * dim;
+  const double fill = dim == 2 ? 8.0 : 4.0 * std::cbrt(std::max(dofs, 1.0));
+  const double bytes = nnz * 16 * (1 + fill);
+  const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (!(bytes < physical) || elements > 2e9)
+    throw InputError(fmt::format(
+        "{}: [mesh] refine = {}: {:.3g} elements and {:.3g} unknowns need about {:.3g} GiB, more than this "
+        "machine's {:.1f} GiB",
+        c.path, c.refine, elements, dofs, bytes / (1 << 30), physical / (1 << 30)));
+}
+
+}  // namespace igac

@@ -1,0 +1,79 @@
+// Case files: one TOML file per simulation (see README "How a case file
+// reads").  read_case() parses and validates everything it can without
+// building the mesh; any problem is an InputError whose one-line message
+// names the file, the key and the reason.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace igac {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct GradingSpec {
+  int direction = 0;
+  bool at_start = true;
+  double span_fraction = 0.8, range_fraction = 0.1;
+};
+
+struct DirichletSpec {
+  std::vector<std::string> faces;
+  int component = 0;
+  double value = 0;
+};
+
+struct PressureSpec {
+  std::vector<std::string> faces;
+  double value = 0;
+};
+
+struct ObstacleSpec {
+  std::string type;                 // plane | sphere
+  std::vector<double> point, normal;  // plane
+  std::vector<double> centre;         // sphere
+  double radius = 0;
+};
+
+struct ContactSpec {
+  std::string face;
+  ObstacleSpec obstacle;
+};
+
+struct CaseSpec {
+  std::string path, name, description;
+  // geometry
+  std::string shape;
+  double radius = 1, inner_radius = 1, outer_radius = 2;
+  std::vector<double> size;
+  // mesh
+  int degree = 2;
+  std::vector<int> elements;
+  int refine = 0;
+  std::optional<GradingSpec> grading;
+  // material
+  std::string model = "linear_elastic";
+  double E = 1, nu = 0.3;
+  // conditions and loads
+  std::vector<DirichletSpec> dirichlet;
+  std::vector<PressureSpec> pressure;
+  std::vector<double> body_force;
+  std::optional<ContactSpec> contact;
+  std::string reference = "none";  // hertz | lame | none
+  bool write_vtk = true;
+
+  int dim() const { return shape == "box" ? 3 : 2; }
+};
+
+// Throws InputError.
+CaseSpec read_case(const std::string& path);
+// Checks a --degree / --refine override and the memory the mesh would need;
+// throws InputError naming the option.
+void apply_overrides(CaseSpec& spec, std::optional<int> degree, std::optional<int> refine);
+
+}  // namespace igac

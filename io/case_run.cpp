@@ -1,0 +1,212 @@
+#include "io/case_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "engine/spline/refinement.hpp"
+
+namespace igac {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<Face> resolve_faces(const CaseSpec& s, const Geometry& g, const std::vector<std::string>& names,
+                                const char* section) {
+  std::vector<Face> out;
+  for (const auto& n : names) {
+    auto f = find_faces(g, n);
+    if (!f)
+      throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})", s.path, section, n,
+                                   s.shape, fmt::join(face_names(g), ", ")));
+    out.insert(out.end(), f->begin(), f->end());
+  }
+  return out;
+}
+
+double largest_element_diameter(const NurbsPatch& p) {
+  const int pd = p.param_dim();
+  std::array<std::vector<double>, 3> b;
+  std::array<int, 3> ne{1, 1, 1};
+  for (int d = 0; d < pd; ++d) {
+    b[d] = p.knots(d).breakpoints();
+    ne[d] = int(b[d].size()) - 1;
+  }
+  double h = 0;
+  for (int k = 0; k < ne[2]; ++k)
+    for (int j = 0; j < ne[1]; ++j)
+      for (int i = 0; i < ne[0]; ++i) {
+        std::vector<Eigen::VectorXd> corners;
+        for (int c = 0; c < (1 << pd); ++c) {
+          Eigen::VectorXd xi(pd);
+          const std::array<int, 3> e{i, j, k};
+          for (int d = 0; d < pd; ++d) xi[d] = b[d][e[d] + ((c >> d) & 1)];
+          corners.push_back(p.point(xi));
+        }
+        for (size_t a = 0; a < corners.size(); ++a)
+          for (size_t c = a + 1; c < corners.size(); ++c) h = std::max(h, (corners[a] - corners[c]).norm());
+      }
+  return h;
+}
+
+}  // namespace
+
+Model build_model(const CaseSpec& spec) {
+  Model m;
+  m.spec = spec;
+  if (spec.shape == "quarter_disc") m.geometry = quarter_disc(spec.radius);
+  else if (spec.shape == "quarter_annulus") m.geometry = quarter_annulus(spec.inner_radius, spec.outer_radius);
+  else if (spec.shape == "rectangle") m.geometry = rectangle(spec.size[0], spec.size[1]);
+  else m.geometry = box(spec.size[0], spec.size[1], spec.size[2]);
+
+  NurbsPatch patch = elevate_to(m.geometry.patch, spec.degree);
+  for (int d = 0; d < patch.param_dim(); ++d) {
+    KnotVector target = spec.grading && spec.grading->direction == d
+                            ? KnotVector::graded(spec.degree, spec.elements[d], spec.grading->span_fraction,
+                                                 spec.grading->range_fraction, spec.grading->at_start)
+                            : KnotVector::uniform(spec.degree, spec.elements[d]);
+    if (spec.refine > 0) target = target.subdivided(1 << spec.refine);
+    patch = refine_to(patch, d, target);
+  }
+  m.geometry.patch = patch;
+  m.mesh_size = largest_element_diameter(patch);
+
+  std::vector<DirichletCondition> dc;
+  for (const auto& d : spec.dirichlet)
+    dc.push_back({resolve_faces(spec, m.geometry, d.faces, "dirichlet"), d.component, d.value});
+  for (const auto& p : spec.pressure) resolve_faces(spec, m.geometry, p.faces, "pressure");
+  m.dofs = std::make_unique<DofMap>(patch, dc);
+  m.material = LinearElastic(spec.E, spec.nu);
+
+  if (spec.contact) {
+    const auto faces = find_faces(m.geometry, spec.contact->face);
+    if (!faces)
+      throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", spec.path,
+                                   spec.contact->face, spec.shape, fmt::join(face_names(m.geometry), ", ")));
+    if (faces->size() != 1)
+      throw InputError(fmt::format("{}: [contact] face: '{}' is made of {} parametric faces; the contact face must be one",
+                                   spec.path, spec.contact->face, faces->size()));
+    const auto& o = spec.contact->obstacle;
+    auto vec = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()).eval(); };
+    if (o.type == "plane") m.obstacle = std::make_unique<RigidPlane>(vec(o.point), vec(o.normal));
+    else m.obstacle = std::make_unique<RigidSphere>(vec(o.centre), o.radius);
+    m.contact_face = std::make_unique<ContactFace>(patch, faces->front());
+  }
+  return m;
+}
+
+std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec) {
+  if (spec.reference != "lame") return std::nullopt;
+  // Plane strain thick cylinder, internal pressure pi on r = a, free at r = b:
+  // sigma_rr = A - B/r^2, A = pi a^2/(b^2-a^2), B = pi a^2 b^2/(b^2-a^2),
+  // u_r = (1+nu)/E ((1-2nu) A r + B/r).
+  double pi = 0;
+  for (const auto& p : spec.pressure)
+    for (const auto& f : p.faces)
+      if (f == "inner") pi += p.value;
+  const double a = spec.inner_radius, b = spec.outer_radius, E = spec.E, nu = spec.nu;
+  const double A = pi * a * a / (b * b - a * a), B = pi * a * a * b * b / (b * b - a * a);
+  const double c = (1 + nu) / E;
+  return [=](const Eigen::VectorXd& X, Eigen::VectorXd& u, Eigen::MatrixXd& g) {
+    const double r = std::hypot(X[0], X[1]);
+    const double ur = c * ((1 - 2 * nu) * A * r + B / r);
+    const double dur = c * ((1 - 2 * nu) * A - B / (r * r));
+    const double ct = X[0] / r, st = X[1] / r;
+    u.resize(2);
+    u << ur * ct, ur * st;
+    // grad u = dur e_r e_r^T + (ur / r) e_t e_t^T
+    g.resize(2, 2);
+    g << dur * ct * ct + ur / r * st * st, (dur - ur / r) * ct * st, (dur - ur / r) * ct * st,
+        dur * st * st + ur / r * ct * ct;
+  };
+}
+
+RunResult solve_model(const Model& m) {
+  RunResult r;
+  const auto t_start = Clock::now();
+  const NurbsPatch& patch = m.geometry.patch;
+  const int dim = patch.space_dim();
+  auto t0 = Clock::now();
+  Eigen::VectorXd bf = m.spec.body_force.empty()
+                           ? Eigen::VectorXd::Zero(dim)
+                           : Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim).eval();
+  LinearSystem sys = assemble_linear_elasticity(patch, *m.dofs, m.material, bf);
+  for (const auto& p : m.spec.pressure) {
+    std::vector<Face> faces;
+    for (const auto& n : p.faces) {
+      auto f = *find_faces(m.geometry, n);
+      faces.insert(faces.end(), f.begin(), f.end());
+    }
+    add_pressure_load(patch, *m.dofs, faces, p.value, sys.f);
+  }
+  r.timing.assembly = since(t0);
+  const RigidModes modes = free_rigid_modes(patch, *m.dofs);
+  for (const auto& p : m.spec.pressure)  // resultant |int P n dGamma| of the pressure loads
+    for (const auto& n : p.faces) {
+      const std::vector<Face> faces = *find_faces(m.geometry, n);
+      for (const Face& f : faces) {
+        const PatchQuadrature q = face_quadrature(patch, f, gauss_points_for(patch.degree(0)));
+        ElementData ed;
+        Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);
+        for (int e = 0; e < q.num_elements(); ++e) {
+          q.evaluate(e, ed, false);
+          for (int k = 0; k < ed.JxW.size(); ++k) res += p.value * ed.normal.row(k).transpose() * ed.JxW[k];
+        }
+        r.applied_force += res.norm();
+      }
+    }
+  SparseCholesky chol;
+  if (!m.obstacle) {
+    if (modes.modes.cols() > 0)
+      throw std::runtime_error(fmt::format(
+          "the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
+          modes.modes.cols()));
+    t0 = Clock::now();
+    chol.factorize(sys.K);
+    r.timing.factorization = since(t0);
+    t0 = Clock::now();
+    r.u = m.dofs->expand(chol.solve(sys.f));
+    r.timing.linear_solve = since(t0);
+  } else {
+    t0 = Clock::now();
+    auto c = std::make_unique<ContactResult>();
+    c->op = assemble_weighted_gaps(patch, *m.dofs, *m.contact_face, *m.obstacle);
+    r.timing.assembly += since(t0);
+    ContactSolverOptions opt;
+    opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+    t0 = Clock::now();
+    c->solution = solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
+    r.timing.factorization = c->solution.factorize_s;
+    r.timing.contact = since(t0) - c->solution.factorize_s;
+    r.status = c->solution.status;
+    r.u = m.dofs->expand(c->solution.u);
+    t0 = Clock::now();
+    std::tie(c->X0, c->normal) = initial_contact_point(patch, *m.contact_face, *m.obstacle);
+    c->pressure = std::make_unique<ContactPressure>(patch, *m.contact_face, c->solution.lambda, c->op.weights,
+                                                    c->solution.active, c->X0, c->normal);
+    c->report = c->pressure->report();
+    if (m.spec.reference == "hertz") {
+      double P = 0;
+      for (const auto& p : m.spec.pressure) P += p.value;
+      r.hertz = dim == 2 ? hertz_cylinder(m.spec.radius, P, m.spec.E, m.spec.nu)
+                         : hertz_sphere(m.spec.radius, P, m.spec.E, m.spec.nu);
+      const HertzSolution h = *r.hertz;
+      const ContactPressure& cp = *c->pressure;
+      r.pressure_error = cp.l2_error(*m.contact_face,
+                                     [&](const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
+                                     std::max(10, patch.degree(0) + 1));
+    }
+    r.timing.postprocess += since(t0);
+    r.contact = std::move(c);
+  }
+  if (auto exact = exact_displacement(m.spec)) {
+    t0 = Clock::now();
+    r.displacement_errors = errors_against_exact(patch, r.u, *exact, patch.degree(0) + 2);
+    r.timing.postprocess += since(t0);
+  }
+  r.timing.total = since(t_start);
+  return r;
+}
+
+}  // namespace igac

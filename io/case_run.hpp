@@ -1,0 +1,57 @@
+// From a case to a solution: build the refined patch, the dofs and the loads,
+// then solve — one Cholesky solve for a linear case, the active-set contact
+// solve when the case has an obstacle.  No Newton loop, no multipliers and no
+// stress recovery unless the case needs them.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "contact/pressure.hpp"
+#include "contact/small_strain_contact.hpp"
+#include "engine/geometry/shapes.hpp"
+#include "engine/error_norms.hpp"
+#include "io/case_file.hpp"
+
+namespace igac {
+
+struct Model {
+  CaseSpec spec;
+  Geometry geometry;  // geometry.patch is the refined patch
+  std::unique_ptr<DofMap> dofs;
+  LinearElastic material{1.0, 0.0};
+  std::unique_ptr<Obstacle> obstacle;
+  std::unique_ptr<ContactFace> contact_face;
+  double mesh_size = 0;  // largest element diameter
+};
+
+struct ContactResult {
+  ContactSolution solution;
+  WeightedGapOperator op;
+  Eigen::VectorXd X0, normal;
+  PressureReport report;
+  std::unique_ptr<ContactPressure> pressure;
+};
+
+struct Timing {
+  double setup = 0, assembly = 0, factorization = 0, linear_solve = 0, contact = 0, postprocess = 0, total = 0;
+};
+
+struct RunResult {
+  std::string status = "converged";
+  Eigen::MatrixXd u;  // n_cp x dim
+  std::unique_ptr<ContactResult> contact;
+  std::optional<HertzSolution> hertz;
+  std::optional<ErrorNorms> displacement_errors;           // against a closed form
+  std::optional<std::pair<double, double>> pressure_error;  // against Hertz: (error, norm)
+  double applied_force = 0;                                 // resultant of the pressure loads (modelled part)
+  Timing timing;
+};
+
+Model build_model(const CaseSpec& spec);
+RunResult solve_model(const Model& model);
+
+// Closed-form displacement of the case's reference solution, if it has one.
+std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec);
+
+}  // namespace igac

@@ -1,0 +1,92 @@
+#include "io/json_out.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace igac {
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = fmt::format("{}.tmp{}", path, getpid());
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp));
+    out << text;
+    if (!out.good()) throw std::runtime_error(fmt::format("cannot write {}", tmp));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+Json run_summary(const Model& m, const RunResult& r) {
+  const NurbsPatch& patch = m.geometry.patch;
+  Json j;
+  j["case"] = m.spec.name;
+  j["dim"] = patch.space_dim();
+  j["degree"] = patch.degree(0);
+  j["elements"] = patch.num_elements();
+  j["dofs"] = m.dofs->num_free();
+  j["multipliers"] = m.contact_face ? m.contact_face->space.size() : 0;
+  j["mesh_size"] = m.mesh_size;
+  j["status"] = r.status;
+  Json step;
+  step["load_factor"] = 1.0;
+  step["newton_iterations"] = 0;  // small deformation: no Newton loop
+  step["residual_norms"] = Json::array();
+  step["active_set_sizes"] = r.contact ? Json(r.contact->solution.active_set_sizes) : Json::array();
+  step["cut_backs"] = 0;
+  j["load_steps"] = Json::array({step});
+  if (r.contact) {
+    const auto& rep = r.contact->report;
+    Json c;
+    c["active"] = rep.active;
+    c["half_width"] = finite_or_null(rep.half_width);
+    c["max_pressure"] = finite_or_null(rep.max_pressure);
+    c["total_force"] = finite_or_null(rep.total_force);
+    c["applied_force"] = finite_or_null(r.applied_force);
+    c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
+    c["model_part"] = patch.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
+                                             : "modelled part (symmetry)";
+    c["obstacle"] = m.obstacle->describe();
+    j["contact"] = c;
+  }
+  if (r.hertz) j["analytic"] = {{"half_width", r.hertz->a}, {"max_pressure", r.hertz->p0}};
+  Json e = Json::object();
+  if (r.displacement_errors) {
+    const auto& d = *r.displacement_errors;
+    e["displacement_l2"] = finite_or_null(d.l2);
+    e["displacement_h1"] = finite_or_null(d.h1);
+    e["displacement_l2_rel"] = finite_or_null(d.l2 / d.ref_l2);
+    e["displacement_h1_rel"] = finite_or_null(d.h1 / d.ref_h1);
+  }
+  if (r.pressure_error) {
+    e["pressure_l2"] = finite_or_null(r.pressure_error->first);
+    e["pressure_l2_rel"] = finite_or_null(r.pressure_error->first / r.pressure_error->second);
+  }
+  if (!e.empty()) j["errors"] = e;
+  j["timing_s"] = {{"assembly", r.timing.assembly},         {"factorization", r.timing.factorization},
+                   {"linear_solve", r.timing.linear_solve}, {"contact", r.timing.contact},
+                   {"postprocess", r.timing.postprocess},   {"total", r.timing.total}};
+  return j;
+}
+
+std::string pressure_csv(const RunResult& r) {
+  std::string s = "kind,r,pressure,r_over_a,p_over_p0,hertz_p_over_p0\n";
+  const auto& rep = r.contact->report;
+  auto row = [&](const char* kind, const PressureSample& p) {
+    if (r.hertz)
+      s += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", kind, p.r, p.pressure, p.r / r.hertz->a,
+                       p.pressure / r.hertz->p0, r.hertz->pressure(p.r) / r.hertz->p0);
+    else
+      s += fmt::format("{},{:.10g},{:.10g},,,\n", kind, p.r, p.pressure);
+  };
+  for (const auto& p : rep.multipliers) row("multiplier", p);
+  for (const auto& p : rep.p1) row("p1", p);
+  return s;
+}
+
+}  // namespace igac

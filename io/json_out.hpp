@@ -1,0 +1,26 @@
+// Output files of a run: summary.json (keys in DESIGN.md), pressure.csv.
+// Files are written to a temporary name and renamed, so a file that exists
+// is complete; a value that is not finite is written as null and turns the
+// status into a failure, never a NaN that looks like a number.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "io/case_run.hpp"
+
+namespace igac {
+
+using Json = nlohmann::ordered_json;
+
+// Writes text to path atomically (temporary file in the same folder, rename).
+void write_file_atomically(const std::string& path, const std::string& text);
+// A number, or null when it is not finite.
+Json finite_or_null(double v);
+
+Json run_summary(const Model& model, const RunResult& result);
+// Per multiplier and P1 re-interpolation: kind, r, pressure (and r/a,
+// p/p0, Hertz when the case has Hertz as reference).
+std::string pressure_csv(const RunResult& result);
+
+}  // namespace igac

@@ -1,0 +1,135 @@
+// igac — command line.
+//   igac run CASE.toml [--out DIR] [--refine N] [--degree P] [--quiet] [--no-output]
+//   igac study CASE.toml --levels N [--degree P] [--out DIR] [--quiet]
+// Exit codes: 0 converged, 1 the solve failed (summary.json says why),
+// 2 bad input (one line on stderr naming file, key and reason).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "engine/spline/knot_vector.hpp"
+#include "io/case_run.hpp"
+#include "io/json_out.hpp"
+#include "io/plots.hpp"
+#include "io/study.hpp"
+
+using namespace igac;
+
+namespace {
+
+std::string percent(double v, double ref) { return fmt::format("{:+.2f} %", 100 * (v - ref) / ref); }
+
+void print_summary(const Model& m, const RunResult& r, const std::string& out) {
+  const auto& p = m.geometry.patch;
+  fmt::print("igac: {} — {}D, degree {}, {} elements, {} dofs, {} multipliers\n", m.spec.name, p.space_dim(),
+             p.degree(0), p.num_elements(), m.dofs->num_free(), m.contact_face ? m.contact_face->space.size() : 0);
+  std::string status = r.status;
+  if (r.contact) {
+    std::string sizes;
+    for (int s : r.contact->solution.active_set_sizes) sizes += (sizes.empty() ? "" : " -> ") + std::to_string(s);
+    status += fmt::format(" (active set sizes per iteration: {})", sizes);
+  }
+  fmt::print("  status        {}\n", status);
+  if (r.contact) {
+    const auto& rep = r.contact->report;
+    if (r.hertz) {
+      fmt::print("  half width    {:.6g}  (Hertz {:.6g}, {})\n", rep.half_width, r.hertz->a, percent(rep.half_width, r.hertz->a));
+      fmt::print("  max pressure  {:.6g}  (Hertz {:.6g}, {})\n", rep.max_pressure, r.hertz->p0, percent(rep.max_pressure, r.hertz->p0));
+    } else {
+      fmt::print("  half width    {:.6g}\n  max pressure  {:.6g}\n", rep.half_width, rep.max_pressure);
+    }
+    fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force, r.applied_force,
+               std::abs(rep.total_force - r.applied_force) / std::max(r.applied_force, 1e-300));
+  }
+  if (r.pressure_error)
+    fmt::print("  pressure L2   {:.4e}  (relative {:.4e}, against Hertz)\n", r.pressure_error->first,
+               r.pressure_error->first / r.pressure_error->second);
+  if (r.displacement_errors)
+    fmt::print("  displacement  L2 error {:.4e}, H1 error {:.4e} (relative {:.3e}, {:.3e})\n", r.displacement_errors->l2,
+               r.displacement_errors->h1, r.displacement_errors->l2 / r.displacement_errors->ref_l2,
+               r.displacement_errors->h1 / r.displacement_errors->ref_h1);
+  fmt::print("  time          {:.3f} s (assembly {:.3f}, factorisation {:.3f}, solve {:.3f}, contact {:.3f})\n",
+             r.timing.total, r.timing.assembly, r.timing.factorization, r.timing.linear_solve, r.timing.contact);
+  if (!out.empty()) fmt::print("  output        {}/summary.json\n", out);
+}
+
+int run_command(const std::string& path, std::string out, std::optional<int> refine, std::optional<int> degree,
+                bool quiet, bool no_output) {
+  CaseSpec spec = read_case(path);
+  apply_overrides(spec, degree, refine);
+  if (no_output) out.clear();
+  else if (out.empty()) out = "out/" + spec.name;
+  const Model model = build_model(spec);
+  RunResult r = solve_model(model);
+  Json summary = run_summary(model, r);
+  const bool finite = summary.dump().find("null") == std::string::npos || r.status != "converged";
+  if (!finite) {
+    r.status = "failed: a result is not finite";
+    summary["status"] = r.status;
+  }
+  if (!out.empty()) {
+    std::filesystem::create_directories(out);
+    if (r.contact) {
+      write_file_atomically(out + "/pressure.csv", pressure_csv(r));
+      if (model.geometry.patch.space_dim() == 2)
+        draw_plot("plot_pressure.py", fmt::format("'{}/pressure.csv' '{}/pressure.png' '{}'", out, out, spec.name), quiet);
+    }
+    write_file_atomically(out + "/summary.json", summary.dump(2) + "\n");
+  }
+  if (!quiet) print_summary(model, r, out);
+  return r.status == "converged" ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"igac: isogeometric contact mechanics (NURBS bodies pressed on rigid obstacles)"};
+  app.require_subcommand(1);
+  std::string case_path, out;
+  std::optional<int> refine, degree;
+  bool quiet = false, no_output = false;
+  int levels = 4;
+
+  auto* run = app.add_subcommand("run", "run one case");
+  run->add_option("case", case_path, "case file (TOML)")->required();
+  run->add_option("--out", out, "output folder (default out/<case name>)");
+  run->add_option("--refine", refine, "extra uniform refinements (each halves every span)");
+  run->add_option("--degree", degree, "NURBS degree p (contact needs p >= 2)");
+  run->add_flag("--quiet", quiet, "print nothing but errors");
+  run->add_flag("--no-output", no_output, "write no files (and compute nothing only output needs)");
+
+  auto* study = app.add_subcommand("study", "refinement study on nested meshes");
+  study->add_option("case", case_path, "case file (TOML)")->required();
+  study->add_option("--levels", levels, "number of refinement levels")->required();
+  study->add_option("--degree", degree, "NURBS degree p");
+  study->add_option("--out", out, "output folder for study.json, study.csv, study.png");
+  study->add_flag("--quiet", quiet, "print only the table");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output);
+    CaseSpec spec = read_case(case_path);
+    apply_overrides(spec, degree, {});
+    return run_study(spec, StudyOptions{levels, out, quiet});
+  } catch (const InputError& e) {
+    fmt::print(stderr, "igac: error: {}\n", e.what());
+    return 2;
+  } catch (const SplineError& e) {
+    fmt::print(stderr, "igac: error: {}: {}\n", case_path, e.what());
+    return 2;
+  } catch (const MaterialError& e) {
+    fmt::print(stderr, "igac: error: {}: [material] {}\n", case_path, e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "igac: error: {}: out of memory (reduce refine or degree)\n", case_path);
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "igac: error: {}: {}\n", case_path, e.what());
+    return 1;
+  }
+}

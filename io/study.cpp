@@ -1,0 +1,124 @@
+#include "io/study.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+
+#include "io/case_run.hpp"
+#include "io/json_out.hpp"
+#include "io/plots.hpp"
+
+namespace igac {
+
+int run_study(CaseSpec spec, const StudyOptions& opt) {
+  if (opt.levels < 2) throw InputError(fmt::format("--levels {}: a study needs at least 2 levels", opt.levels));
+  const int r0 = spec.refine;
+  std::vector<Model> models;
+  std::vector<RunResult> results;
+  for (int l = 0; l < opt.levels; ++l) {
+    apply_overrides(spec, {}, r0 + l);
+    models.push_back(build_model(spec));
+    results.push_back(solve_model(models.back()));
+    if (!opt.quiet)
+      fmt::print(stderr, "level {}: h = {:.4g}, {} dofs, {:.2f} s, {}\n", l, models.back().mesh_size,
+                 models.back().dofs->num_free(), results.back().timing.total, results.back().status);
+    if (results.back().status != "converged")
+      throw std::runtime_error(fmt::format("level {} did not converge: {}", l, results.back().status));
+  }
+  const bool exact = exact_displacement(spec).has_value();
+  const int n_ref = opt.levels - 1;
+  std::vector<int> reported;
+  for (int l = 0; l < opt.levels; ++l)
+    if (exact || (l < n_ref && models[l].mesh_size >= 4 * models[n_ref].mesh_size * (1 - 1e-9))) reported.push_back(l);
+  if (reported.size() < 2)
+    throw InputError(fmt::format("--levels {}: too few levels with h >= 4 h_ref to form a rate (use at least 4)", opt.levels));
+
+  std::vector<std::map<std::string, double>> errors(opt.levels);
+  const Model& ref = models[n_ref];
+  const RunResult& rref = results[n_ref];
+  for (int l : reported) {
+    auto& e = errors[l];
+    const RunResult& r = results[l];
+    ErrorNorms d = exact ? *r.displacement_errors
+                         : errors_against_reference(models[l].geometry.patch, r.u, ref.geometry.patch, rref.u,
+                                                    ref.geometry.patch.degree(0) + 1);
+    e["displacement_l2"] = d.l2;
+    e["displacement_h1"] = d.h1;
+    e["displacement_l2_rel"] = d.l2 / d.ref_l2;
+    e["displacement_h1_rel"] = d.h1 / d.ref_h1;
+    if (r.pressure_error) {
+      e["pressure_l2"] = r.pressure_error->first;
+      e["pressure_l2_rel"] = r.pressure_error->first / r.pressure_error->second;
+    }
+    if (r.contact && !exact) {
+      const ContactPressure& pref = *rref.contact->pressure;
+      const auto pe = r.contact->pressure->l2_error(
+          *ref.contact_face, [&](const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return pref.pressure_at(xi); },
+          ref.geometry.patch.degree(0) + 2);
+      e["pressure_l2_vs_reference"] = pe.first;
+      e["pressure_l2_vs_reference_rel"] = pe.first / pe.second;
+    }
+  }
+  Json j;
+  j["case"] = spec.name;
+  j["degree"] = spec.degree;
+  j["reference"] = exact ? Json("closed form") : Json(fmt::format("level {} (h = {:.6g}, {} dofs)", n_ref, ref.mesh_size, ref.dofs->num_free()));
+  Json levels = Json::array();
+  for (int l : reported) {
+    Json lv;
+    lv["level"] = l;
+    lv["h"] = models[l].mesh_size;
+    lv["dofs"] = models[l].dofs->num_free();
+    lv["multipliers"] = models[l].contact_face ? models[l].contact_face->space.size() : 0;
+    lv["time_s"] = results[l].timing.total;
+    Json ej;
+    for (const auto& [k, v] : errors[l]) ej[k] = finite_or_null(v);
+    lv["errors"] = ej;
+    levels.push_back(lv);
+  }
+  j["levels"] = levels;
+  Json rates;
+  for (const auto& [name, v0] : errors[reported.front()]) {
+    Json arr = Json::array();
+    for (size_t i = 0; i + 1 < reported.size(); ++i) {
+      const int a = reported[i], b = reported[i + 1];
+      arr.push_back(finite_or_null(std::log(errors[a][name] / errors[b][name]) /
+                                   std::log(models[a].mesh_size / models[b].mesh_size)));
+    }
+    rates[name] = arr;
+  }
+  j["rates"] = rates;
+
+  // table on stdout
+  std::vector<std::string> names;
+  for (const auto& [k, v] : errors[reported.front()])
+    if (k.find("_rel") == std::string::npos) names.push_back(k);
+  std::string head = fmt::format("{:>5} {:>10} {:>8}", "level", "h", "dofs");
+  for (const auto& n : names) head += fmt::format(" {:>24} {:>5}", n, "rate");
+  fmt::print("{}\n", head);
+  std::string csv = "level,h,dofs";
+  for (const auto& n : names) csv += fmt::format(",{},{}_rate", n, n);
+  csv += "\n";
+  for (size_t i = 0; i < reported.size(); ++i) {
+    const int l = reported[i];
+    std::string line = fmt::format("{:>5} {:>10.4g} {:>8}", l, models[l].mesh_size, models[l].dofs->num_free());
+    std::string row = fmt::format("{},{:.8g},{}", l, models[l].mesh_size, models[l].dofs->num_free());
+    for (const auto& n : names) {
+      const double rate = i == 0 ? NAN : j["rates"][n][i - 1].is_null() ? NAN : j["rates"][n][i - 1].get<double>();
+      line += fmt::format(" {:>24.4e} {:>5}", errors[l][n], i == 0 ? "" : fmt::format("{:.2f}", rate));
+      row += fmt::format(",{:.8g},{}", errors[l][n], i == 0 ? "" : fmt::format("{:.4f}", rate));
+    }
+    fmt::print("{}\n", line);
+    csv += row + "\n";
+  }
+  if (!opt.out.empty()) {
+    std::filesystem::create_directories(opt.out);
+    write_file_atomically(opt.out + "/study.csv", csv);
+    write_file_atomically(opt.out + "/study.json", j.dump(2) + "\n");
+    draw_plot("plot_study.py", fmt::format("'{}/study.csv' '{}/study.png' '{}'", opt.out, opt.out, spec.name), opt.quiet);
+  }
+  return 0;
+}
+
+}  // namespace igac

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# ./run.sh CASE [options]   — set up (packages, build) when needed, run one case.
+# Options are those of `build/igac run` (--out DIR, --refine N, --degree P, --quiet, --no-output).
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+"$here/scripts/bootstrap.sh"
+[ $# -ge 1 ] || { echo "usage: ./run.sh CASE.toml [--out DIR] [--refine N] [--degree P] [--quiet]" >&2; exit 2; }
+exec "$here/build/igac" run "$@"

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# ./test.sh   — set up (packages, build) when needed, then run the whole suite through CTest.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+"$here/scripts/bootstrap.sh"
+cd "$here/build"
+ctest --output-on-failure -j "$(nproc)" "$@"
