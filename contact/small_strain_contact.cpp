@@ -15,16 +15,31 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
                                            SparseCholesky& chol, const ContactSolverOptions& opt) {
   ContactSolution sol;
   const int n = int(K.rows()), m = int(op.weights.size()), k = int(modes.modes.cols());
+  // Contact-face equations (those G touches) are ordered last, so that the
+  // factor's trailing block gives S = G K^-1 G^T for all multipliers at once.
+  std::vector<char> pinned(n, 0);
+  for (int p : modes.pinned) pinned[p] = 1;
+  std::vector<int> face_eqs;
+  {
+    std::vector<char> on_face(n, 0);
+    for (int r = 0; r < op.G.outerSize(); ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(op.G, r); it; ++it)
+        on_face[it.col()] = !pinned[it.col()];
+    for (int i = 0; i < n; ++i)
+      if (on_face[i]) face_eqs.push_back(i);
+  }
   auto t0 = Clock::now();
-  chol.factorize(pin_equations(K, modes.pinned));
+  const Eigen::SparseMatrix<double> Kp = pin_equations(K, modes.pinned);
+  chol.analyze(Kp, face_eqs);
+  chol.factorize(Kp);
   sol.factorize_s = since(t0);
 
   // G with the pinned columns removed (they carry no unknown of K_p).
   Eigen::SparseMatrix<double, Eigen::RowMajor> Gp = op.G;
   for (int r = 0; r < Gp.outerSize(); ++r)
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(Gp, r); it; ++it)
-      for (int p : modes.pinned)
-        if (it.col() == p) it.valueRef() = 0.0;
+      if (pinned[it.col()]) it.valueRef() = 0.0;
+  Gp.prune(0.0);
   Eigen::VectorXd fp = f;
   for (int p : modes.pinned) fp[p] = 0.0;
 
@@ -33,8 +48,19 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
   const Eigen::VectorXd Gvf = op.G * vf;
   const Eigen::MatrixXd GR = op.G * modes.modes;  // m x k
   const Eigen::VectorXd Rf = modes.modes.transpose() * f;
-  Eigen::MatrixXd S(m, m);           // columns valid where have_column
+  Eigen::MatrixXd S(m, m);  // columns valid where have_column
   std::vector<char> have_column(m, 0);
+  // The trailing block is the face (plus what the ordering could not keep
+  // apart); when it stays small, S comes whole from it.
+  const int face_block_limit = 4 * int(face_eqs.size()) + 4000;
+  if (chol.trailing_size() <= face_block_limit) {
+    const Eigen::SparseMatrix<double> Gt = Eigen::SparseMatrix<double>(Gp.transpose());
+    const Eigen::MatrixXd Y = chol.half_solve_trailing(Gt);
+    S.noalias() = Y.transpose() * Y;
+    std::fill(have_column.begin(), have_column.end(), 1);
+  }
+  // Otherwise columns come from sparse solves, only for multipliers that
+  // become active, each computed once.
   auto ensure_columns = [&](const std::vector<int>& want) {
     std::vector<int> missing;
     for (int K_ : want)

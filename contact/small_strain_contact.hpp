@@ -4,11 +4,15 @@
 // Each active-set iteration is one linear solve; the iteration stops when the
 // active set no longer changes.
 //
-// How it stays cheap: K is factorised once (CHOLMOD), and every iteration
-// works on the Schur complement S = G K^-1 G^T restricted to the active
-// multipliers, a small dense matrix whose columns are computed (one sparse
-// triangular solve each, in blocks) only when a multiplier first becomes
-// active and then reused.  A body held only by contact has rigid motions R
+// How it stays cheap: K is factorised once (CHOLMOD) with the contact-face
+// equations ordered last, so the dense trailing block L_TT of the factor
+// gives the Schur complement of every multiplier at once,
+// S = G K^-1 G^T = Y^T Y with Y = L_TT^-1 (P G^T)_T — a dense triangular
+// solve of the size of the face.  Every active-set iteration then works on
+// S restricted to the active multipliers, a small dense matrix.  (Should
+// the ordering not keep the face apart, columns of S come from sparse
+// solves, computed only when a multiplier first becomes active.)  A body
+// held only by contact has rigid motions R
 // (K R = 0): they are pinned while K is factorised and their amplitudes c
 // enter the dense system with the equilibrium rows R^T (f - G^T lambda) = 0,
 // so the contact force balances the load to round-off:

@@ -1,0 +1,91 @@
+// bench/contact_vs_cholesky: the cost of the whole small-deformation contact
+// solve against the floor of any direct method, one sparse Cholesky
+// factorisation (analysis + numeric, CHOLMOD's own ordering) of the same
+// stiffness matrix with the rigid mode pinned, both measured in this process.
+//
+//   build/bench/contact_vs_cholesky CASE.toml REFINE [REFINE ...] [--csv FILE] [--repeat N]
+//
+// Writes one CSV row per refinement: dofs, multipliers, active set
+// iterations, the best of N timings of each, their ratio, the BLAS library.
+#include <algorithm>
+#include <chrono>
+#include <fmt/format.h>
+#include <fstream>
+#include <string>
+
+#include "contact/small_strain_contact.hpp"
+#include "io/case_run.hpp"
+
+using namespace igac;
+using Clock = std::chrono::steady_clock;
+
+static std::string blas_library() {
+  std::ifstream maps("/proc/self/maps");
+  std::string line;
+  while (std::getline(maps, line))
+    if (line.find("blas") != std::string::npos) return line.substr(line.find('/'));
+  return "unknown";
+}
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    fmt::print(stderr, "usage: {} CASE.toml REFINE [REFINE ...] [--csv FILE] [--repeat N]\n", argv[0]);
+    return 2;
+  }
+  std::string csv_path;
+  int repeat = 3;
+  std::vector<int> refines;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--csv" && i + 1 < argc) csv_path = argv[++i];
+    else if (a == "--repeat" && i + 1 < argc) repeat = std::stoi(argv[++i]);
+    else refines.push_back(std::stoi(a));
+  }
+  std::string csv = "case,refine,dofs,multipliers,active_set_iterations,cholesky_s,contact_solve_s,ratio,blas\n";
+  for (int refine : refines) {
+    CaseSpec spec = read_case(argv[1]);
+    apply_overrides(spec, {}, refine);
+    const Model m = build_model(spec);
+    const NurbsPatch& patch = m.geometry.patch;
+    LinearSystem sys = assemble_linear_elasticity(patch, *m.dofs, m.material, Eigen::VectorXd::Zero(patch.space_dim()));
+    for (const auto& p : spec.pressure) {
+      std::vector<Face> faces;
+      for (const auto& n : p.faces) {
+        const auto f = *find_faces(m.geometry, n);
+        faces.insert(faces.end(), f.begin(), f.end());
+      }
+      add_pressure_load(patch, *m.dofs, faces, p.value, sys.f);
+    }
+    const RigidModes modes = free_rigid_modes(patch, *m.dofs);
+    const WeightedGapOperator op = assemble_weighted_gaps(patch, *m.dofs, *m.contact_face, *m.obstacle);
+    const Eigen::SparseMatrix<double> Kp = pin_equations(sys.K, modes.pinned);
+    ContactSolverOptions opt;
+    opt.complementarity_scale = spec.E / m.mesh_size;
+    double best_chol = 1e300, best_contact = 1e300;
+    int iterations = 0;
+    for (int r = 0; r < repeat; ++r) {
+      {
+        SparseCholesky chol;
+        const auto t0 = Clock::now();
+        chol.analyze(Kp);
+        chol.factorize(Kp);
+        best_chol = std::min(best_chol, std::chrono::duration<double>(Clock::now() - t0).count());
+      }
+      {
+        SparseCholesky chol;
+        const auto t0 = Clock::now();
+        const ContactSolution s = solve_small_strain_contact(sys.K, sys.f, op, modes, chol, opt);
+        best_contact = std::min(best_contact, std::chrono::duration<double>(Clock::now() - t0).count());
+        iterations = int(s.active_set_sizes.size());
+        if (!s.converged) fmt::print(stderr, "warning: refine {}: {}\n", refine, s.status);
+      }
+    }
+    const std::string row = fmt::format("{},{},{},{},{},{:.4f},{:.4f},{:.3f},{}\n", spec.name, refine,
+                                        m.dofs->num_free(), m.contact_face->space.size(), iterations, best_chol,
+                                        best_contact, best_contact / best_chol, blas_library());
+    fmt::print("{}", row);
+    csv += row;
+  }
+  if (!csv_path.empty()) std::ofstream(csv_path) << csv;
+  return 0;
+}
