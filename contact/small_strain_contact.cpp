@@ -118,6 +118,10 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
       Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
       if (lu.rank() < na + k) {
         sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions";
+        sol.u = Eigen::VectorXd::Zero(n);
+        sol.lambda = Eigen::VectorXd::Zero(m);
+        sol.active = active;
+        sol.weighted_gap = gap0;
         return sol;
       }
       x = lu.solve(rhs);
@@ -129,10 +133,26 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     Gu = Gvf + GR * c;
     for (int i = 0; i < na; ++i) Gu -= S.col(A[i]) * lambda[A[i]];
     const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
-    const double lam_scale = std::max(lambda.cwiseAbs().maxCoeff(), 1e-300);
+    // Round-off guard: where |lambda_K + c_n g_K| is below round-off of the
+    // larger of the two terms, the multiplier keeps its state (at zero load
+    // both vanish and nothing changes).
+    const double cn = opt.complementarity_scale;
+    const double scale = std::max(lambda.cwiseAbs().maxCoeff(), cn * gap.cwiseAbs().maxCoeff());
+    const double tol = 1e-12 * scale;
     std::vector<char> next(m, 0);
-    for (int K_ = 0; K_ < m; ++K_)
-      next[K_] = lambda[K_] + opt.complementarity_scale * gap[K_] < -1e-12 * lam_scale;
+    for (int K_ = 0; K_ < m; ++K_) {
+      const double v = lambda[K_] + cn * gap[K_];
+      next[K_] = std::abs(v) <= tol ? active[K_] : v < 0;
+    }
+    if (k > 0 && std::count(next.begin(), next.end(), 1) < k) {
+      // A body held only by contact needs k active multipliers: keep the
+      // ones nearest to activation.
+      std::vector<int> order(m);
+      for (int i = 0; i < m; ++i) order[i] = i;
+      std::sort(order.begin(), order.end(),
+                [&](int a, int b) { return lambda[a] + cn * gap[a] < lambda[b] + cn * gap[b]; });
+      for (int i = 0; i < std::min(k, m); ++i) next[order[i]] = 1;
+    }
     sol.weighted_gap = gap;
     if (next == active) {
       sol.converged = true;

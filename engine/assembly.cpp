@@ -24,6 +24,8 @@ DofMap::DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& c
 }
 
 Eigen::MatrixXd DofMap::expand(const Eigen::VectorXd& free) const {
+  if (free.size() != n_free_)
+    throw std::invalid_argument(fmt::format("{} free values given for {} free dofs", free.size(), n_free_));
   Eigen::MatrixXd u(num_dofs() / dim_, dim_);
   for (int i = 0; i < num_dofs(); ++i)
     u(i / dim_, i % dim_) = equation_[i] >= 0 ? free[equation_[i]] : value_[i];

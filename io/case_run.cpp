@@ -180,6 +180,8 @@ RunResult solve_model(const Model& m) {
     r.timing.factorization = c->solution.factorize_s;
     r.timing.contact = since(t0) - c->solution.factorize_s;
     r.status = c->solution.status;
+    if (c->solution.u.size() != m.dofs->num_free())
+      throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
     r.u = m.dofs->expand(c->solution.u);
     t0 = Clock::now();
     std::tie(c->X0, c->normal) = initial_contact_point(patch, *m.contact_face, *m.obstacle);

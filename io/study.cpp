@@ -30,7 +30,7 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
   const int n_ref = opt.levels - 1;
   std::vector<int> reported;
   for (int l = 0; l < opt.levels; ++l)
-    if (exact || (l < n_ref && models[l].mesh_size >= 4 * models[n_ref].mesh_size * (1 - 1e-9))) reported.push_back(l);
+    if (exact || l <= n_ref - 2) reported.push_back(l);  // nested bisection: h_ref = h / 2^(n_ref - l) <= h/4
   if (reported.size() < 2)
     throw InputError(fmt::format("--levels {}: too few levels with h >= 4 h_ref to form a rate (use at least 4)", opt.levels));
 
