@@ -13,6 +13,7 @@
 #include "io/json_out.hpp"
 #include "io/plots.hpp"
 #include "io/study.hpp"
+#include "io/vtk_output.hpp"
 
 using namespace igac;
 
@@ -76,6 +77,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
         draw_plot("plot_pressure.py", fmt::format("'{}/pressure.csv' '{}/pressure.png' '{}'", out, out, spec.name), quiet);
     }
     write_file_atomically(out + "/summary.json", summary.dump(2) + "\n");
+    // ParaView files (and the stress recovery they need) only when asked for.
+    if (spec.write_vtk && finite && r.u.allFinite()) VtkSeries(out).write_step(model, r, 1.0);
   }
   if (!quiet) print_summary(model, r, out);
   return r.status == "converged" ? 0 : 1;

@@ -1,0 +1,404 @@
+#include "io/vtk_output.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <stdexcept>
+#include <unistd.h>
+
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkHigherOrderHexahedron.h>
+#include <vtkHigherOrderQuadrilateral.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include "engine/quadrature.hpp"
+#include "io/json_out.hpp"
+
+namespace igac {
+
+// ---------------------------------------------------------------- stress
+
+StressLaw linear_elastic_stress(double lambda, double mu) {
+  return [lambda, mu](const Eigen::Matrix3d& g) -> Eigen::Matrix3d {
+    const Eigen::Matrix3d eps = 0.5 * (g + g.transpose());
+    return lambda * eps.trace() * Eigen::Matrix3d::Identity() + 2 * mu * eps;
+  };
+}
+
+double von_mises(const Eigen::Matrix3d& s) {
+  const Eigen::Matrix3d dev = s - s.trace() / 3.0 * Eigen::Matrix3d::Identity();
+  return std::sqrt(1.5 * dev.cwiseProduct(dev).sum());
+}
+
+namespace {
+
+// Tensor-product Gauss points on [0, 1]^d.
+struct LocalRule {
+  std::vector<Eigen::VectorXd> s;
+  std::vector<double> w;
+};
+LocalRule local_rule(int param_dim, int n) {
+  const GaussRule g = gauss_legendre(n);
+  LocalRule r;
+  const int n1 = n, n2 = param_dim > 1 ? n : 1, n3 = param_dim > 2 ? n : 1;
+  for (int k = 0; k < n3; ++k)
+    for (int j = 0; j < n2; ++j)
+      for (int i = 0; i < n1; ++i) {
+        Eigen::VectorXd s(param_dim);
+        double w = g.weights[i];
+        s[0] = g.points[i];
+        if (param_dim > 1) s[1] = g.points[j], w *= g.weights[j];
+        if (param_dim > 2) s[2] = g.points[k], w *= g.weights[k];
+        r.s.push_back(s);
+        r.w.push_back(w);
+      }
+  return r;
+}
+
+int max_degree(const BezierMesh& m) { return std::max({m.degree(0), m.degree(1), m.degree(2)}); }
+
+// Measure of the map dX/ds (space_dim x param_dim): |det| for volumes, the
+// length / area of the tangents for curves and surfaces.
+double measure(const Eigen::MatrixXd& J) {
+  if (J.rows() == J.cols()) return std::abs(J.determinant());
+  return std::sqrt((J.transpose() * J).determinant());
+}
+
+}  // namespace
+
+RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
+  const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
+  if (pd != dim) throw std::invalid_argument("stress recovery needs a volume mesh");
+  if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
+    throw std::invalid_argument("stress recovery needs the displacement as field 0");
+  const LocalRule rule = local_rule(pd, max_degree(mesh) + 3);
+  RecoveredStress out;
+  out.stress.resize(mesh.num_points(), 6);
+  out.von_mises.resize(mesh.num_points());
+  out.magnitude.resize(mesh.num_points());
+  static constexpr int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+
+  Eigen::VectorXd R;
+  Eigen::MatrixXd dR, M(nl, nl), B(nl, 8);
+  Eigen::RowVectorXd f(8);
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    const BezierElement& el = mesh.element(e);
+    M.setZero();
+    B.setZero();
+    for (size_t q = 0; q < rule.s.size(); ++q) {
+      mesh.basis(el, rule.s[q], R, &dR);
+      const Eigen::MatrixXd J = el.points.transpose() * dR;      // dX/ds
+      const Eigen::MatrixXd G = el.fields[0].transpose() * dR;   // du/ds
+      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
+      grad.topLeftCorner(dim, dim) = G * J.inverse();
+      const Eigen::Matrix3d sigma = law(grad);
+      for (int c = 0; c < 6; ++c) f[c] = sigma(comp[c][0], comp[c][1]);
+      f[6] = von_mises(sigma);
+      f[7] = sigma.norm();
+      const double wt = rule.w[q] * std::abs(J.determinant());
+      M.noalias() += wt * R * R.transpose();
+      B.noalias() += wt * R * f;
+    }
+    const Eigen::MatrixXd C = M.llt().solve(B);
+    out.stress.middleRows(e * nl, nl) = C.leftCols(6);
+    out.von_mises.segment(e * nl, nl) = C.col(6);
+    out.magnitude.segment(e * nl, nl) = C.col(7);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- VTK grids
+
+namespace {
+
+// Position in VTK's Bezier cell ordering (corners, edges, faces, interior;
+// vtkHigherOrder*::PointIndexFromIJK) of every lexicographic local point.
+std::vector<int> vtk_ordering(const BezierMesh& m) {
+  std::vector<int> pos(m.num_local());
+  const int p0 = m.degree(0), p1 = m.degree(1), p2 = m.degree(2);
+  for (int c = 0; c <= p2; ++c)
+    for (int b = 0; b <= p1; ++b)
+      for (int a = 0; a <= p0; ++a) {
+        const int l = m.local_index(a, b, c);
+        if (m.param_dim() == 1) {
+          pos[l] = a == 0 ? 0 : a == p0 ? 1 : a + 1;
+        } else if (m.param_dim() == 2) {
+          const int order[2] = {p0, p1};
+          pos[l] = vtkHigherOrderQuadrilateral::PointIndexFromIJK(a, b, order);
+        } else {
+          const int order[3] = {p0, p1, p2};
+          pos[l] = vtkHigherOrderHexahedron::PointIndexFromIJK(a, b, c, order);
+        }
+      }
+  return pos;
+}
+
+int bezier_cell_type(int param_dim) {
+  return param_dim == 1 ? VTK_BEZIER_CURVE : param_dim == 2 ? VTK_BEZIER_QUADRILATERAL : VTK_BEZIER_HEXAHEDRON;
+}
+
+vtkSmartPointer<vtkDoubleArray> make_array(const char* name, int components, vtkIdType tuples) {
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  return a;
+}
+
+// Points, cells, RationalWeights, HigherOrderDegrees and "displacement"
+// (field 0, padded to 3 components) of an extracted mesh.
+vtkSmartPointer<vtkUnstructuredGrid> bezier_grid(const BezierMesh& m) {
+  const int nl = m.num_local(), np = m.num_points(), sd = m.space_dim();
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(np);
+  auto weights = make_array("RationalWeights", 1, np);
+  auto disp = make_array("displacement", 3, np);
+  auto degrees = make_array("HigherOrderDegrees", 3, m.num_elements());
+  const std::vector<int> pos = vtk_ordering(m);
+  std::vector<vtkIdType> ids(nl);
+  grid->Allocate(m.num_elements());
+  for (int e = 0; e < m.num_elements(); ++e) {
+    const BezierElement& el = m.element(e);
+    for (int l = 0; l < nl; ++l) {
+      const vtkIdType id = vtkIdType(e) * nl + l;
+      double x[3] = {0, 0, 0}, u[3] = {0, 0, 0};
+      for (int d = 0; d < sd; ++d) {
+        x[d] = el.points(l, d);
+        if (!el.fields.empty()) u[d] = el.fields[0](l, d);
+      }
+      pts->SetPoint(id, x);
+      disp->SetTuple(id, u);
+      weights->SetValue(id, el.weights[l]);
+      ids[pos[l]] = id;
+    }
+    grid->InsertNextCell(bezier_cell_type(m.param_dim()), nl, ids.data());
+    const double deg[3] = {double(m.degree(0)), double(m.degree(1)), double(m.degree(2))};
+    degrees->SetTuple(e, deg);
+  }
+  grid->SetPoints(pts);
+  grid->GetPointData()->SetRationalWeights(weights);
+  grid->GetPointData()->AddArray(disp);
+  grid->GetPointData()->SetActiveVectors("displacement");
+  grid->GetCellData()->SetHigherOrderDegrees(degrees);
+  return grid;
+}
+
+void check_finite(vtkDataSetAttributes* attrs, const std::string& file) {
+  for (int a = 0; a < attrs->GetNumberOfArrays(); ++a) {
+    vtkDataArray* arr = attrs->GetArray(a);
+    if (!arr) continue;
+    const vtkIdType n = arr->GetNumberOfValues();
+    for (vtkIdType i = 0; i < n; ++i)
+      if (!std::isfinite(arr->GetComponent(i / arr->GetNumberOfComponents(), int(i % arr->GetNumberOfComponents()))))
+        throw std::runtime_error(fmt::format("{}: array '{}' has a value that is not finite; nothing written", file,
+                                             arr->GetName() ? arr->GetName() : "?"));
+  }
+}
+
+void write_grid(vtkUnstructuredGrid* grid, const std::string& dir, const std::string& name) {
+  const std::string path = dir + "/" + name;
+  check_finite(grid->GetPointData(), path);
+  check_finite(grid->GetCellData(), path);
+  if (grid->GetPoints()) {
+    vtkDataArray* p = grid->GetPoints()->GetData();
+    for (vtkIdType i = 0; i < p->GetNumberOfTuples(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if (!std::isfinite(p->GetComponent(i, c)))
+          throw std::runtime_error(fmt::format("{}: a point coordinate is not finite; nothing written", path));
+  }
+  const std::string tmp = fmt::format("{}.tmp{}", path, getpid());
+  vtkNew<vtkXMLUnstructuredGridWriter> w;
+  w->SetFileName(tmp.c_str());
+  w->SetInputData(grid);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  w->SetCompressorTypeToZLib();
+  if (w->Write() != 1) {
+    std::filesystem::remove(tmp);
+    throw std::runtime_error(fmt::format("cannot write {}", path));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+// Body: Bezier cells with displacement and recovered stress.
+vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResult& r) {
+  const NurbsPatch& patch = model.geometry.patch;
+  if (r.u.rows() != patch.num_control_points() || r.u.cols() != patch.space_dim())
+    throw std::runtime_error(fmt::format("VTK output: displacement is {} x {} for {} control points in {}D",
+                                         r.u.rows(), r.u.cols(), patch.num_control_points(), patch.space_dim()));
+  const BezierMesh mesh(patch, {r.u});
+  auto grid = bezier_grid(mesh);
+  const RecoveredStress s = recover_stress(mesh, linear_elastic_stress(model.material.lambda(), model.material.mu()));
+  const vtkIdType np = mesh.num_points();
+  auto stress = make_array("stress", 6, np);
+  const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
+  for (int c = 0; c < 6; ++c) stress->SetComponentName(c, names[c]);
+  auto vm = make_array("von_mises", 1, np);
+  auto mag = make_array("stress_magnitude", 1, np);
+  for (vtkIdType i = 0; i < np; ++i) {
+    for (int c = 0; c < 6; ++c) stress->SetComponent(i, c, s.stress(i, c));
+    vm->SetValue(i, s.von_mises[i]);
+    mag->SetValue(i, s.magnitude[i]);
+  }
+  grid->GetPointData()->AddArray(stress);
+  grid->GetPointData()->AddArray(vm);
+  grid->GetPointData()->AddArray(mag);
+  grid->GetPointData()->SetActiveScalars("von_mises");
+  return grid;
+}
+
+// Contact face: Bezier curves / quadrilaterals with the pressure, weighted
+// gap and active flag (see the header for what is exact).
+vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r) {
+  const ContactFace& cf = *model.contact_face;
+  const ContactSolution& sol = r.contact->solution;
+  Eigen::MatrixXd u_face(cf.face_cps.size(), r.u.cols());
+  for (size_t i = 0; i < cf.face_cps.size(); ++i) u_face.row(i) = r.u.row(cf.face_cps[i]);
+  const BezierMesh mesh(cf.face_patch, {u_face});
+  auto grid = bezier_grid(mesh);
+  const int nl = mesh.num_local(), ne = mesh.num_elements();
+  auto p_point = make_array("pressure", 1, mesh.num_points());
+  auto p_cell = make_array("pressure", 1, ne);
+  auto g_cell = make_array("weighted_gap", 1, ne);
+  auto a_cell = make_array("active", 1, ne);
+
+  const LocalRule rule = local_rule(mesh.param_dim(), max_degree(mesh) + 3);
+  Eigen::VectorXd R;
+  Eigen::MatrixXd dR, M(nl, nl);
+  Eigen::VectorXd b(nl);
+  std::vector<int> idx;
+  std::vector<double> val;
+  for (int e = 0; e < ne; ++e) {
+    const BezierElement& el = mesh.element(e);
+    M.setZero();
+    b.setZero();
+    double area = 0, p_int = 0, g_int = 0;
+    bool active = false;
+    for (size_t q = 0; q < rule.s.size(); ++q) {
+      mesh.basis(el, rule.s[q], R, &dR);
+      const double wt = rule.w[q] * measure(el.points.transpose() * dR);
+      cf.space.basis(el.parameter(rule.s[q]), idx, val);
+      double p = 0, g = 0;
+      for (size_t k = 0; k < idx.size(); ++k) {
+        p -= sol.lambda[idx[k]] * val[k];
+        g += sol.weighted_gap[idx[k]] * val[k];
+        if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
+      }
+      M.noalias() += wt * R * R.transpose();
+      b += wt * p * R;
+      area += wt;
+      p_int += wt * p;
+      g_int += wt * g;
+    }
+    const Eigen::VectorXd c = M.llt().solve(b);
+    for (int l = 0; l < nl; ++l) p_point->SetValue(vtkIdType(e) * nl + l, c[l]);
+    p_cell->SetValue(e, p_int / area);
+    g_cell->SetValue(e, g_int / area);
+    a_cell->SetValue(e, active ? 1.0 : 0.0);
+  }
+  grid->GetPointData()->AddArray(p_point);
+  grid->GetPointData()->SetActiveScalars("pressure");
+  grid->GetCellData()->AddArray(p_cell);
+  grid->GetCellData()->AddArray(g_cell);
+  grid->GetCellData()->AddArray(a_cell);
+  return grid;
+}
+
+// One vertex per multiplier at its anchor on the reference face.
+vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r) {
+  const ContactFace& cf = *model.contact_face;
+  const ContactSolution& sol = r.contact->solution;
+  const int m = cf.space.size(), sd = cf.face_patch.space_dim();
+  Eigen::MatrixXd u_face(cf.face_cps.size(), r.u.cols());
+  for (size_t i = 0; i < cf.face_cps.size(); ++i) u_face.row(i) = r.u.row(cf.face_cps[i]);
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(m);
+  auto lambda = make_array("lambda", 1, m);
+  auto pressure = make_array("pressure", 1, m);
+  auto gap = make_array("weighted_gap", 1, m);
+  auto active = make_array("active", 1, m);
+  auto weight = make_array("weight", 1, m);
+  auto disp = make_array("displacement", 3, m);
+  grid->Allocate(m);
+  for (int K = 0; K < m; ++K) {
+    const Eigen::VectorXd xi = cf.space.anchor(K);
+    const Eigen::VectorXd X = cf.face_patch.point(xi), u = cf.face_patch.field(u_face, xi);
+    double x[3] = {0, 0, 0}, d[3] = {0, 0, 0};
+    for (int c = 0; c < sd; ++c) x[c] = X[c], d[c] = u[c];
+    pts->SetPoint(K, x);
+    disp->SetTuple(K, d);
+    lambda->SetValue(K, sol.lambda[K]);
+    pressure->SetValue(K, -sol.lambda[K]);
+    gap->SetValue(K, sol.weighted_gap[K]);
+    active->SetValue(K, sol.active[K] ? 1.0 : 0.0);
+    weight->SetValue(K, r.contact->op.weights[K]);
+    const vtkIdType id = K;
+    grid->InsertNextCell(VTK_VERTEX, 1, &id);
+  }
+  grid->SetPoints(pts);
+  for (auto* a : {lambda.Get(), pressure.Get(), gap.Get(), active.Get(), weight.Get(), disp.Get()})
+    grid->GetPointData()->AddArray(a);
+  grid->GetPointData()->SetActiveScalars("pressure");
+  grid->GetPointData()->SetActiveVectors("displacement");
+  return grid;
+}
+
+}  // namespace
+
+VtkStep write_vtk(const std::string& dir, const Model& model, const RunResult& result, int step_index,
+                  double load_factor) {
+  if (!std::isfinite(load_factor)) throw std::runtime_error("VTK output: the load factor is not finite");
+  std::filesystem::create_directories(dir);
+  VtkStep step{step_index, load_factor, {}};
+  // Build every grid first: a failure (a NaN) leaves no file of this step.
+  auto body = body_grid(model, result);
+  vtkSmartPointer<vtkUnstructuredGrid> contact, multipliers;
+  if (result.contact && model.contact_face) {
+    contact = contact_grid(model, result);
+    multipliers = multiplier_grid(model, result);
+  }
+  step.files.push_back(fmt::format("solution_{:04d}.vtu", step_index));
+  write_grid(body, dir, step.files.back());
+  if (contact) {
+    step.files.push_back(fmt::format("contact_{:04d}.vtu", step_index));
+    write_grid(contact, dir, step.files.back());
+    step.files.push_back(fmt::format("multipliers_{:04d}.vtu", step_index));
+    write_grid(multipliers, dir, step.files.back());
+  }
+  return step;
+}
+
+void write_pvd(const std::string& dir, const std::vector<VtkStep>& steps) {
+  static const char* part_names[] = {"body", "contact_face", "multipliers"};
+  std::string s =
+      "<?xml version=\"1.0\"?>\n"
+      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "  <Collection>\n";
+  for (const VtkStep& st : steps) {
+    if (!std::isfinite(st.load_factor)) throw std::runtime_error("VTK output: a load factor is not finite");
+    for (size_t k = 0; k < st.files.size(); ++k)
+      s += fmt::format("    <DataSet timestep=\"{:.17g}\" part=\"{}\" name=\"{}\" file=\"{}\"/>\n", st.load_factor, k,
+                       k < 3 ? part_names[k] : "part", st.files[k]);
+  }
+  s += "  </Collection>\n</VTKFile>\n";
+  std::filesystem::create_directories(dir);
+  write_file_atomically(dir + "/solution.pvd", s);
+}
+
+const VtkStep& VtkSeries::write_step(const Model& model, const RunResult& result, double load_factor) {
+  steps_.push_back(write_vtk(dir_, model, result, int(steps_.size()), load_factor));
+  write_pvd(dir_, steps_);
+  return steps_.back();
+}
+
+}  // namespace igac
