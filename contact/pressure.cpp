@@ -1,5 +1,7 @@
 #include "contact/pressure.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -51,47 +53,70 @@ PressureReport ContactPressure::report() const {
     rep.total_force -= lambda_[K] * weights_[K];
     rep.active += active_[K] ? 1 : 0;
   }
-  if (cf_.face_patch.param_dim() != 1) {
-    for (int K = 0; K < m; ++K)
-      if (active_[K]) rep.half_width = std::max(rep.half_width, rep.multipliers[K].r);
-    return rep;
-  }
-  // 1D face: breakpoints in parameter, P1 re-interpolation at breakpoints
-  const KnotVector& mk = cf_.space.knots()[0];
-  const auto b = mk.breakpoints();
-  std::vector<double> rb(b.size());
-  for (size_t j = 0; j < b.size(); ++j) rb[j] = r_of(cf_.face_patch.point(Eigen::VectorXd::Constant(1, b[j])));
-  if (mk.degree() == 0) {
-    // nodal value = length-weighted mean of the adjacent element constants
-    for (size_t j = 0; j < b.size(); ++j) {
-      double s = 0, w = 0;
-      for (int e : {int(j) - 1, int(j)})
-        if (e >= 0 && e < m) {
-          const double len = std::abs(rb[e + 1] - rb[e]);
-          s += -lambda_[e] * len;
-          w += len;
-        }
-      rep.p1.push_back({rb[j], w > 0 ? s / w : 0.0});
+  // Pressure profile along the face edge that starts at the initial contact
+  // point (the whole face in 2D; in 3D the edge on a symmetry plane):
+  // element values for S0, nodal values at the breakpoints, and the P1
+  // re-interpolation.
+  const NurbsPatch& fp = cf_.face_patch;
+  const int fd = fp.param_dim();
+  std::array<bool, 2> at_end{false, false};  // which corner of the face holds X0
+  {
+    double best = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < (1 << fd); ++c) {
+      Eigen::VectorXd xi(fd);
+      for (int d = 0; d < fd; ++d) xi[d] = (c >> d) & 1 ? fp.knots(d).last() : fp.knots(d).first();
+      const double dist = (fp.point(xi) - X0_).norm();
+      if (dist < best) {
+        best = dist;
+        for (int d = 0; d < fd; ++d) at_end[d] = (c >> d) & 1;
+      }
     }
-  } else {
-    for (size_t j = 0; j < b.size(); ++j) rep.p1.push_back({rb[j], pressure_at(Eigen::VectorXd::Constant(1, b[j]))});
+  }
+  auto line = [&](double t) {
+    Eigen::VectorXd xi(fd);
+    xi[0] = t;
+    if (fd == 2) xi[1] = at_end[1] ? fp.knots(1).last() : fp.knots(1).first();
+    return xi;
+  };
+  std::vector<double> b = fp.knots(0).breakpoints();
+  if (at_end[0]) std::reverse(b.begin(), b.end());
+  const int ne = int(b.size()) - 1;
+  std::vector<double> rb(b.size());
+  for (size_t j = 0; j < b.size(); ++j) rb[j] = r_of(fp.point(line(b[j])));
+  const bool constants = cf_.space.degree() == 0;
+  std::vector<double> mean(ne);
+  for (int e = 0; e < ne; ++e) mean[e] = pressure_at(line(0.5 * (b[e] + b[e + 1])));
+  for (size_t j = 0; j < b.size(); ++j) {
+    if (!constants) {
+      rep.p1.push_back({rb[j], pressure_at(line(b[j]))});
+      continue;
+    }
+    // nodal value = length-weighted mean of the adjacent element constants
+    double sum = 0, w = 0;
+    for (int e : {int(j) - 1, int(j)})
+      if (e >= 0 && e < ne) {
+        const double len = std::abs(rb[e + 1] - rb[e]);
+        sum += mean[e] * len;
+        w += len;
+      }
+    rep.p1.push_back({rb[j], w > 0 ? sum / w : 0.0});
   }
   // Half width: the contact edge lies in the first element whose pressure
   // vanishes after the last pressed one.  For S0, fit p = c sqrt(a - r)
-  // (the generic shape of a smooth contact edge) to the means of the last
-  // two pressed elements; otherwise where the P1 pressure reaches zero.
+  // (the shape of a smooth contact edge) to the means of the last two
+  // pressed elements; otherwise where the P1 pressure reaches zero.
   int last = -1;
-  for (int K = 0; K < m; ++K)
-    if (-lambda_[K] > 0) last = std::max(last, K);
+  for (int e = 0; e < ne; ++e)
+    if (mean[e] > 0) last = e;
   if (last < 0) return rep;
-  if (mk.degree() == 0 && last >= 1 && last + 1 < int(rb.size())) {
+  if (constants && last >= 1 && last + 1 < int(rb.size())) {
     const double r0 = rb[last - 1], r1 = rb[last], r2 = rb[last + 1];
-    const double ratio = -lambda_[last] / -lambda_[last - 1];
-    auto mean = [](double a, double lo, double hi) {  // mean of sqrt(a - r) on [lo, hi]
+    const double ratio = mean[last] / mean[last - 1];
+    auto sqrt_mean = [](double a, double lo, double hi) {  // mean of sqrt(a - r) on [lo, hi]
       const double A = std::pow(std::max(a - lo, 0.0), 1.5), B = std::pow(std::max(a - hi, 0.0), 1.5);
       return (2.0 / 3.0) * (A - B) / (hi - lo);
     };
-    auto f = [&](double a) { return mean(a, r1, r2) / mean(a, r0, r1) - ratio; };
+    auto f = [&](double a) { return sqrt_mean(a, r1, r2) / sqrt_mean(a, r0, r1) - ratio; };
     double lo = r1 + 1e-12 * (r2 - r1), hi = r2 + (r2 - r1);
     if (f(lo) < 0 && f(hi) > 0) {
       for (int it = 0; it < 100; ++it) {
@@ -103,7 +128,6 @@ PressureReport ContactPressure::report() const {
       rep.half_width = 0.5 * (r1 + r2);
     }
   } else {
-    // P1 pressure: last positive node to the next node
     size_t j = 0;
     for (size_t i = 0; i < rep.p1.size(); ++i)
       if (rep.p1[i].pressure > 0) j = i;

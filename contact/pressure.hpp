@@ -28,10 +28,11 @@ struct PressureSample {
 
 struct PressureReport {
   std::vector<PressureSample> multipliers;   // per multiplier: anchor and -lambda_K
-  std::vector<PressureSample> p1;            // P1 re-interpolation (2D faces)
+  std::vector<PressureSample> p1;            // P1 re-interpolation along the profile edge
   double max_pressure = 0;                   // max_K -lambda_K
   double total_force = 0;                    // sum_K -lambda_K K_K
-  double half_width = 0;                     // extent of the contact zone in r
+  double half_width = 0;                     // extent of the contact zone in r (along the
+                                             // face edge through X0 in 3D: a symmetry plane)
   int active = 0;
 };
 

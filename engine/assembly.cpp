@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "engine/assembly.hpp"
 
 #include <fmt/format.h>
@@ -6,9 +7,54 @@
 
 namespace igac {
 
+namespace {
+
+// Representative control point of each control point: lines of coincident
+// control points on a face (a face collapsed onto a curve or a point, as on
+// the axis of a body of revolution) share one set of unknowns, so the
+// displacement there is single-valued.
+std::vector<int> merge_collapsed_lines(const NurbsPatch& patch) {
+  const int n = patch.num_control_points(), pd = patch.param_dim();
+  std::vector<int> rep(n);
+  for (int i = 0; i < n; ++i) rep[i] = i;
+  const double size = (patch.points().colwise().maxCoeff() - patch.points().colwise().minCoeff()).norm();
+  const double tol = 1e-10 * size;
+  for (int d = 0; d < pd; ++d)
+    for (int end = 0; end < 2; ++end) {
+      const std::vector<int> cps = patch.face_control_points(Face{d, end == 1});
+      for (int along = 0; along < pd; ++along) {
+        if (along == d) continue;
+        // lines of the face along `along`: group by the other multi-indices
+        bool collapsed = true;
+        for (int cp : cps) {
+          auto mi = patch.multi_index(cp);
+          if (mi[along] == 0) continue;
+          mi[along] -= 1;
+          if ((patch.points().row(cp) - patch.points().row(patch.index(mi))).norm() > tol) {
+            collapsed = false;
+            break;
+          }
+        }
+        if (!collapsed) continue;
+        for (int cp : cps) {
+          auto mi = patch.multi_index(cp);
+          mi[along] = 0;
+          rep[cp] = rep[patch.index(mi)];
+        }
+      }
+    }
+  for (int i = 0; i < n; ++i)  // resolve chains (a face collapsed to a point)
+    while (rep[rep[i]] != rep[i]) rep[i] = rep[rep[i]];
+  return rep;
+}
+
+}  // namespace
+
 DofMap::DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& conditions)
     : dim_(patch.space_dim()) {
   const int n = patch.num_control_points() * dim_;
+  const std::vector<int> rep = merge_collapsed_lines(patch);
+  auto rep_dof = [&](int cp, int c) { return rep[cp] * dim_ + c; };
   equation_.assign(n, 0);
   value_.assign(n, 0.0);
   for (const auto& c : conditions) {
@@ -16,11 +62,16 @@ DofMap::DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& c
       throw std::invalid_argument(fmt::format("Dirichlet component {} out of range", c.component));
     for (const auto& f : c.faces)
       for (int cp : patch.face_control_points(f)) {
-        equation_[cp * dim_ + c.component] = -1;
-        value_[cp * dim_ + c.component] = c.value;
+        equation_[rep_dof(cp, c.component)] = -1;
+        value_[rep_dof(cp, c.component)] = c.value;
       }
   }
-  for (int& e : equation_) e = (e == 0) ? n_free_++ : -1;
+  for (int i = 0; i < n; ++i)
+    if (rep[i / dim_] == i / dim_) equation_[i] = equation_[i] == 0 ? n_free_++ : -1;
+  for (int i = 0; i < n; ++i) {
+    equation_[i] = equation_[rep_dof(i / dim_, i % dim_)];
+    value_[i] = value_[rep_dof(i / dim_, i % dim_)];
+  }
 }
 
 Eigen::MatrixXd DofMap::expand(const Eigen::VectorXd& free) const {
@@ -36,81 +87,155 @@ PatchQuadrature face_quadrature(const NurbsPatch& patch, const Face& f, int poin
   return PatchQuadrature(patch.face_patch(f), points, f, patch.face_control_points(f));
 }
 
+namespace {
+
+// Sparsity pattern of the stiffness matrix in the free numbering: equations
+// are coupled when their control points share an element.  Values are zero.
+Eigen::SparseMatrix<double> stiffness_pattern(const PatchQuadrature& quad, const DofMap& dofs) {
+  const int dim = dofs.dim(), n_free = dofs.num_free();
+  const int n_cp = dofs.num_dofs() / dim;
+  // node adjacency through elements (nodes = representative control points,
+  // identified by their first free equation or, if none, the cp itself)
+  std::vector<std::vector<int>> adj(n_cp);
+  std::vector<int> cps;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.control_points(e, cps);
+    for (int a : cps)
+      for (int b : cps) adj[a].push_back(b);
+  }
+  std::vector<std::vector<int>> cols(n_free);
+  for (int a = 0; a < n_cp; ++a) {
+    auto& v = adj[a];
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    for (int i = 0; i < dim; ++i) {
+      const int r = dofs.equation(a * dim + i);
+      if (r < 0) continue;
+      for (int b : v)
+        for (int j = 0; j < dim; ++j) {
+          const int c = dofs.equation(b * dim + j);
+          if (c >= 0) cols[r].push_back(c);
+        }
+    }
+    std::vector<int>().swap(v);
+  }
+  Eigen::SparseMatrix<double> K(n_free, n_free);
+  std::vector<int> nnz(n_free);
+  for (int r = 0; r < n_free; ++r) {
+    auto& v = cols[r];
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    nnz[r] = int(v.size());
+  }
+  K.reserve(nnz);
+  // symmetric: row r's columns are column r's rows
+  for (int r = 0; r < n_free; ++r)
+    for (int c : cols[r]) K.insert(c, r) = 0.0;
+  K.makeCompressed();
+  return K;
+}
+
+}  // namespace
+
 LinearSystem assemble_linear_elasticity(const NurbsPatch& patch, const DofMap& dofs,
                                         const LinearElastic& mat, const Eigen::VectorXd& body_force) {
   const int dim = patch.space_dim();
-  const PatchQuadrature quad(patch, gauss_points_for(patch.degree(0)));
+  int max_degree = 0;
+  for (int d = 0; d < patch.param_dim(); ++d) max_degree = std::max(max_degree, patch.degree(d));
+  const PatchQuadrature quad(patch, gauss_points_for(max_degree));
   const int n_el = quad.num_elements();
   const double lambda = mat.lambda(), mu = mat.mu();
   const int n_free = dofs.num_free();
   const bool has_body_force = body_force.size() == dim && body_force.norm() > 0;
 
+  LinearSystem s;
+  s.K = stiffness_pattern(quad, dofs);
+  const int* outer = s.K.outerIndexPtr();
+  const int* inner = s.K.innerIndexPtr();
+  const int nnz = int(s.K.nonZeros());
+
   const int n_threads = omp_get_max_threads();
-  std::vector<std::vector<Eigen::Triplet<double>>> triplets(n_threads);
-  std::vector<Eigen::VectorXd> rhs(n_threads, Eigen::VectorXd::Zero(n_free));
+  // Each thread adds into its own copy of the values (no races, also where
+  // collapsed control points join elements that are far apart).
+  std::vector<std::vector<double>> values(n_threads);
+  std::vector<Eigen::VectorXd> rhs(n_threads);
   std::vector<double> min_det(n_threads, std::numeric_limits<double>::infinity());
 
 #pragma omp parallel
   {
     const int tid = omp_get_thread_num();
+    values[tid].assign(nnz, 0.0);
+    rhs[tid].setZero(n_free);
+    double* val = values[tid].data();
     ElementData ed;
-    Eigen::MatrixXd Ke;
+    Eigen::MatrixXd Ke, Gw;
+    std::array<Eigen::MatrixXd, 3> Gd;  // per direction: n_loc x n_q gradients
+    std::array<std::array<Eigen::MatrixXd, 3>, 3> M;
     std::vector<int> eq;
-    auto& trip = triplets[tid];
-    trip.reserve(size_t(n_el / n_threads + 1) * quad.num_local() * quad.num_local() * dim * dim);
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 64)
     for (int e = 0; e < n_el; ++e) {
       quad.evaluate(e, ed, true);
       min_det[tid] = std::min(min_det[tid], ed.min_det_J);
-      const int nl = int(ed.cps.size()), nd = nl * dim;
-      Ke.setZero(nd, nd);
-      for (int q = 0; q < ed.JxW.size(); ++q) {
-        const Eigen::MatrixXd& G = ed.dN[q];
-        const double jw = ed.JxW[q];
-        const Eigen::MatrixXd GG = G * G.transpose() * (mu * jw);
-        for (int a = 0; a < nl; ++a)
-          for (int b = 0; b < nl; ++b)
-            for (int i = 0; i < dim; ++i) {
-              Ke(a * dim + i, b * dim + i) += GG(a, b);
-              for (int j = 0; j < dim; ++j)
-                Ke(a * dim + i, b * dim + j) += jw * (lambda * G(a, i) * G(b, j) + mu * G(a, j) * G(b, i));
-            }
+      const int nl = int(ed.cps.size()), nq = int(ed.JxW.size()), nd = nl * dim;
+      // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
+      // K_(a i)(b j) = lambda M_ij + mu M_ji + mu delta_ij sum_k M_kk.
+      for (int i = 0; i < dim; ++i) {
+        Gd[i].resize(nl, nq);
+        for (int q = 0; q < nq; ++q) Gd[i].col(q) = ed.dN[q].col(i);
       }
+      for (int i = 0; i < dim; ++i) {
+        Gw.noalias() = Gd[i] * ed.JxW.asDiagonal();
+        for (int j = i; j < dim; ++j) M[i][j].noalias() = Gw * Gd[j].transpose();
+      }
+      Eigen::MatrixXd trace = M[0][0];
+      for (int k = 1; k < dim; ++k) trace += M[k][k];
+      Ke.resize(nd, nd);
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j) {
+          const Eigen::MatrixXd& Mij = i <= j ? M[i][j] : M[j][i];
+          for (int b = 0; b < nl; ++b)
+            for (int a = 0; a < nl; ++a) {
+              const double mij = i <= j ? Mij(a, b) : Mij(b, a);  // M_ij(a, b)
+              const double mji = i <= j ? Mij(b, a) : Mij(a, b);  // M_ji(a, b)
+              Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
+            }
+        }
       eq.resize(nd);
       for (int a = 0; a < nl; ++a)
         for (int i = 0; i < dim; ++i) eq[a * dim + i] = dofs.equation(ed.cps[a] * dim + i);
-      for (int r = 0; r < nd; ++r) {
-        if (eq[r] < 0) continue;
-        for (int c = 0; c < nd; ++c) {
-          if (eq[c] >= 0) {
-            trip.emplace_back(eq[r], eq[c], Ke(r, c));
-          } else {
-            const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
-            if (g != 0.0) rhs[tid][eq[r]] -= Ke(r, c) * g;
-          }
+      for (int c = 0; c < nd; ++c) {
+        if (eq[c] < 0) {  // prescribed: lift its value into the right-hand side
+          const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
+          if (g != 0.0)
+            for (int r = 0; r < nd; ++r)
+              if (eq[r] >= 0) rhs[tid][eq[r]] -= Ke(r, c) * g;
+          continue;
+        }
+        const int* first = inner + outer[eq[c]];
+        const int* past = inner + outer[eq[c] + 1];
+        for (int r = 0; r < nd; ++r) {
+          if (eq[r] < 0) continue;
+          const int* pos = std::lower_bound(first, past, eq[r]);
+          val[pos - inner] += Ke(r, c);
         }
       }
       if (has_body_force)
-        for (int q = 0; q < ed.JxW.size(); ++q)
+        for (int q = 0; q < nq; ++q)
           for (int a = 0; a < nl; ++a)
             for (int i = 0; i < dim; ++i)
               if (eq[a * dim + i] >= 0) rhs[tid][eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
     }
   }
-  LinearSystem s;
   s.min_det_J = *std::min_element(min_det.begin(), min_det.end());
   if (!(s.min_det_J > 0))
     throw std::runtime_error(fmt::format("the geometry map folds: det J = {:.3g} at a Gauss point", s.min_det_J));
-  size_t total = 0;
-  for (const auto& t : triplets) total += t.size();
-  std::vector<Eigen::Triplet<double>> all;
-  all.reserve(total);
-  for (auto& t : triplets) {
-    all.insert(all.end(), t.begin(), t.end());
-    std::vector<Eigen::Triplet<double>>().swap(t);
+  double* out = s.K.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nnz; ++k) {
+    double v = 0;
+    for (int t = 0; t < n_threads; ++t) v += values[t][k];
+    out[k] = v;
   }
-  s.K.resize(n_free, n_free);
-  s.K.setFromTriplets(all.begin(), all.end());
   s.f = Eigen::VectorXd::Zero(n_free);
   for (const auto& r : rhs) s.f += r;
   return s;

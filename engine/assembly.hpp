@@ -4,6 +4,7 @@
 // Dirichlet conditions fix one component on whole faces (with a value,
 // usually 0 for symmetry); fixed dofs are eliminated, so the matrix is the
 // SPD block K_ff and the prescribed values move to the right-hand side.
+// Coincident control points of a collapsed face share their unknowns.
 //
 // a(u, v) = int sigma(u) : eps(v) dX, assembled element by element with
 // (p+1)^dim Gauss points, threaded over elements (OpenMP).  Loads: a

@@ -56,6 +56,21 @@ std::array<int, 3> PatchQuadrature::element_index(int e) const {
   return {e % n_el_[0], (e / n_el_[0]) % n_el_[1], e / (n_el_[0] * n_el_[1])};
 }
 
+void PatchQuadrature::control_points(int e, std::vector<int>& cps) const {
+  const int pd = patch_.param_dim();
+  const auto ei = element_index(e);
+  std::array<int, 3> np{1, 1, 1};
+  for (int d = 0; d < pd; ++d) np[d] = tables_[d].degree + 1;
+  cps.resize(np[0] * np[1] * np[2]);
+  for (int a = 0; a < int(cps.size()); ++a) {
+    const std::array<int, 3> loc{a % np[0], (a / np[0]) % np[1], a / (np[0] * np[1])};
+    std::array<int, 3> gi{0, 0, 0};
+    for (int d = 0; d < pd; ++d) gi[d] = tables_[d].span[ei[d]] - tables_[d].degree + loc[d];
+    const int own = patch_.index(gi);
+    cps[a] = parent_cps_.empty() ? own : parent_cps_[own];
+  }
+}
+
 void PatchQuadrature::evaluate(int e, ElementData& out, bool gradients) const {
   const int pd = patch_.param_dim(), sd = patch_.space_dim();
   const auto ei = element_index(e);

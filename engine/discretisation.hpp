@@ -56,6 +56,8 @@ class PatchQuadrature {
   const NurbsPatch& patch() const { return patch_; }
   // Fills `out` for element e; gradients only when asked (volume patches).
   void evaluate(int e, ElementData& out, bool gradients) const;
+  // Control points (parent numbering) of element e, without evaluating.
+  void control_points(int e, std::vector<int>& cps) const;
 
  private:
   NurbsPatch patch_;

@@ -55,7 +55,7 @@ struct CaseSpec {
   int degree = 2;
   std::vector<int> elements;
   int refine = 0;
-  std::optional<GradingSpec> grading;
+  std::vector<GradingSpec> gradings;  // at most one per direction
   // material
   std::string model = "linear_elastic";
   double E = 1, nu = 0.3;
@@ -67,7 +67,7 @@ struct CaseSpec {
   std::string reference = "none";  // hertz | lame | none
   bool write_vtk = true;
 
-  int dim() const { return shape == "box" ? 3 : 2; }
+  int dim() const { return shape == "box" || shape == "sphere_octant" ? 3 : 2; }
 };
 
 // Throws InputError.

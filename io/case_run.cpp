@@ -56,16 +56,18 @@ Model build_model(const CaseSpec& spec) {
   Model m;
   m.spec = spec;
   if (spec.shape == "quarter_disc") m.geometry = quarter_disc(spec.radius);
+  else if (spec.shape == "sphere_octant") m.geometry = sphere_octant(spec.radius);
   else if (spec.shape == "quarter_annulus") m.geometry = quarter_annulus(spec.inner_radius, spec.outer_radius);
   else if (spec.shape == "rectangle") m.geometry = rectangle(spec.size[0], spec.size[1]);
   else m.geometry = box(spec.size[0], spec.size[1], spec.size[2]);
 
   NurbsPatch patch = elevate_to(m.geometry.patch, spec.degree);
   for (int d = 0; d < patch.param_dim(); ++d) {
-    KnotVector target = spec.grading && spec.grading->direction == d
-                            ? KnotVector::graded(spec.degree, spec.elements[d], spec.grading->span_fraction,
-                                                 spec.grading->range_fraction, spec.grading->at_start)
-                            : KnotVector::uniform(spec.degree, spec.elements[d]);
+    const GradingSpec* g = nullptr;
+    for (const auto& gs : spec.gradings)
+      if (gs.direction == d) g = &gs;
+    KnotVector target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start)
+                          : KnotVector::uniform(spec.degree, spec.elements[d]);
     if (spec.refine > 0) target = target.subdivided(1 << spec.refine);
     patch = refine_to(patch, d, target);
   }

@@ -11,6 +11,13 @@
 //   centre).  A single quadrilateral patch of a three-cornered region needs
 //   one corner where the boundary is straight: it is D, on the symmetry line
 //   half a radius away from the contact zone; det J > 0 everywhere else.
+// sphere_octant(R): x, y >= 0, z in [-R, 0], the 3D Hertz model (paper, 4.2):
+//   the quarter disc (in the plane y = 0) revolved about the x axis.  v = 0 is
+//   the spherical contact face with the contact point (0, 0, -R) at its
+//   regular corner u = 0, w = 1.  Faces: top (z = 0, w = 0), back (y = 0,
+//   w = 1), left (x = 0: u = 0 and v = 1), and u = 1, which collapses onto the
+//   x axis (y = z = 0), far from the contact zone; coincident control points
+//   there share their unknowns (DofMap).
 // quarter_annulus(a, b): a <= r <= b, x, y >= 0; u radial, v along the angle
 //   from the x axis.  Faces: inner, outer, bottom (y = 0), left (x = 0).
 // rectangle(Lx, Ly) = [0, Lx] x [0, Ly]: left, right, bottom, top.
@@ -32,6 +39,7 @@ struct Geometry {
 };
 
 Geometry quarter_disc(double radius);
+Geometry sphere_octant(double radius);
 Geometry quarter_annulus(double inner_radius, double outer_radius);
 Geometry rectangle(double lx, double ly);
 Geometry box(double lx, double ly, double lz);
