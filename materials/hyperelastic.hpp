@@ -1,0 +1,176 @@
+// Hyperelastic material laws: the interface the total-Lagrangian assembler
+// calls at every quadrature point, the adapter that turns a law written once
+// as a template on the dimension into that interface, the registry of laws by
+// name, and a finite-difference checker of a law's stress and tangent.
+//
+// Mathematics (Holzapfel, Nonlinear Solid Mechanics, ch. 6; Wriggers,
+// Nonlinear Finite Element Methods, ch. 3).  A hyperelastic law is a strain
+// energy Psi(F) per unit reference volume; the first Piola-Kirchhoff stress
+// is P = dPsi/dF and the tangent (first elasticity tensor) is A = dP/dF,
+//   P_iJ = dPsi / dF_iJ,    A_iJkL = dP_iJ / dF_kL = d2Psi / dF_iJ dF_kL,
+// so A has the major symmetry A_iJkL = A_kLiJ.  A is stored as a
+// (dim*dim) x (dim*dim) matrix with F flattened row by row:
+//   A(i*dim + J, k*dim + L) = dP_iJ / dF_kL.
+// In 2D the model is plane strain: F = [[F_2x2, 0], [0, 1]], and the 2D
+// methods return the in-plane block of the 3D P and A (P_33 is not returned).
+//
+// Who owns what: a law owns its constants (lambda, mu) and nothing else; it
+// keeps no scratch (callers may share one law between threads).  It reports an
+// inadmissible F (det F <= 0 where the law needs J > 0, or anything not
+// finite) by returning false and leaving P and A untouched, so a Newton
+// driver can cut the load step back instead of carrying NaNs.
+//
+// Adding a law: see materials/README.md ("Adding a material law").
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>  // determinant and inverse of fixed-size F (closed form)
+#include <concepts>
+#include <limits>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "materials/linear_elastic.hpp"  // MaterialError
+
+namespace igac {
+
+// Elastic constants as given by a user (E, nu) and the Lame constants derived
+// from them (the same in plane strain and 3D).
+struct MaterialParameters {
+  double E, nu;
+  // lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).
+  double lambda() const { return E * nu / ((1 + nu) * (1 - 2 * nu)); }
+  double mu() const { return E / (2 * (1 + nu)); }
+  // Throws MaterialError unless E > 0 and -1 < nu < 0.5 (the checks and
+  // messages of LinearElastic).  make_law and adapt<Law> call it.
+  void validate() const;
+};
+
+// A second-order tensor (F, P) and a fourth-order tangent in the layout above.
+template <int dim>
+using DimMatrix = Eigen::Matrix<double, dim, dim>;
+template <int dim>
+using TangentMatrix = Eigen::Matrix<double, dim * dim, dim * dim>;
+
+class HyperelasticLaw {
+ public:
+  virtual ~HyperelasticLaw() = default;
+  virtual std::string name() const = 0;
+  // P = dPsi/dF and, when A is not null, A = dP/dF.  Returns false when F is
+  // inadmissible (det F <= 0 for a law that needs J > 0, or not finite, or a
+  // result that overflows): P and A are then untouched.
+  virtual bool evaluate(const Eigen::Matrix2d& F, Eigen::Matrix2d& P, Eigen::Matrix4d* A) const = 0;
+  virtual bool evaluate(const Eigen::Matrix3d& F, Eigen::Matrix3d& P,
+                        Eigen::Matrix<double, 9, 9>* A) const = 0;
+  // Psi(F); +inf when F is inadmissible.
+  virtual double energy(const Eigen::Matrix2d& F) const = 0;
+  virtual double energy(const Eigen::Matrix3d& F) const = 0;
+};
+
+// What a law written as a template must provide (checked at compile time):
+//   static constexpr std::string_view kName;             the registry name
+//   static constexpr bool kRequiresPositiveJ;            det F <= 0 inadmissible?
+//   explicit Law(const MaterialParameters&);
+//   template <int dim> double energy(const DimMatrix<dim>& F) const;
+//   template <int dim> void stress(const DimMatrix<dim>& F, DimMatrix<dim>& P) const;
+//   template <int dim> void tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const;
+// energy/stress/tangent are only called with an admissible F (finite, and
+// det F > 0 if kRequiresPositiveJ); the adapter does the checks.
+template <class Law>
+concept DimensionTemplatedLaw =
+    requires(const Law& law, const MaterialParameters& mp, const DimMatrix<2>& F2, DimMatrix<2>& P2,
+             TangentMatrix<2>& A2, const DimMatrix<3>& F3, DimMatrix<3>& P3, TangentMatrix<3>& A3) {
+      { Law::kName } -> std::convertible_to<std::string_view>;
+      { Law::kRequiresPositiveJ } -> std::convertible_to<bool>;
+      Law(mp);
+      { law.template energy<2>(F2) } -> std::same_as<double>;
+      { law.template energy<3>(F3) } -> std::same_as<double>;
+      law.template stress<2>(F2, P2);
+      law.template stress<3>(F3, P3);
+      law.template tangent<2>(F2, A2);
+      law.template tangent<3>(F3, A3);
+    };
+
+// Turns a DimensionTemplatedLaw into a HyperelasticLaw: admissibility checks
+// and the no-garbage guarantee live here once, not in every law.
+template <DimensionTemplatedLaw Law>
+class HyperelasticAdapter final : public HyperelasticLaw {
+ public:
+  explicit HyperelasticAdapter(const Law& law) : law_(law) {}
+  std::string name() const override { return std::string(Law::kName); }
+  bool evaluate(const Eigen::Matrix2d& F, Eigen::Matrix2d& P, Eigen::Matrix4d* A) const override {
+    return evaluate_dim<2>(F, P, A);
+  }
+  bool evaluate(const Eigen::Matrix3d& F, Eigen::Matrix3d& P,
+                Eigen::Matrix<double, 9, 9>* A) const override {
+    return evaluate_dim<3>(F, P, A);
+  }
+  double energy(const Eigen::Matrix2d& F) const override { return energy_dim<2>(F); }
+  double energy(const Eigen::Matrix3d& F) const override { return energy_dim<3>(F); }
+  const Law& law() const { return law_; }
+
+ private:
+  template <int dim>
+  bool admissible(const DimMatrix<dim>& F) const {
+    if (!F.allFinite()) return false;
+    if constexpr (Law::kRequiresPositiveJ) return F.determinant() > 0;
+    return true;
+  }
+  template <int dim>
+  bool evaluate_dim(const DimMatrix<dim>& F, DimMatrix<dim>& P, TangentMatrix<dim>* A) const {
+    if (!admissible<dim>(F)) return false;
+    // Into locals first, so an overflow (huge but finite F) leaves P and A
+    // untouched; fixed-size, on the stack.
+    DimMatrix<dim> P_local;
+    law_.template stress<dim>(F, P_local);
+    if (!P_local.allFinite()) return false;
+    if (A) {
+      TangentMatrix<dim> A_local;
+      law_.template tangent<dim>(F, A_local);
+      if (!A_local.allFinite()) return false;
+      *A = A_local;
+    }
+    P = P_local;
+    return true;
+  }
+  template <int dim>
+  double energy_dim(const DimMatrix<dim>& F) const {
+    if (!admissible<dim>(F)) return std::numeric_limits<double>::infinity();
+    return law_.template energy<dim>(F);
+  }
+
+  Law law_;
+};
+
+// Validates the parameters and wraps Law; the registry's one line per law.
+template <DimensionTemplatedLaw Law>
+std::unique_ptr<HyperelasticLaw> adapt(const MaterialParameters& parameters) {
+  parameters.validate();
+  return std::make_unique<HyperelasticAdapter<Law>>(Law(parameters));
+}
+
+// The law registered under `name`; throws MaterialError naming the unknown
+// law and listing the known ones, or when the parameters are invalid.
+std::unique_ptr<HyperelasticLaw> make_law(const std::string& name, const MaterialParameters& parameters);
+// Registered names, in registration order.
+std::vector<std::string> law_names();
+
+// Gradient checker (after Ceres' GradientChecker): compares the law's P with
+// central differences of its energy, and its A with central differences of
+// its P, at F.  Errors are max-norm differences relative to the stiffness
+// scale max(|A|_max, |P|_max) -- the stress of a unit strain -- so they mean
+// the same at F = I (where P = 0) as far from it.  ok when both are at most
+// `tolerance`; `report` is a one-line summary naming the worst entries.
+// A non-admissible F (or one whose FD stencil leaves the admissible set)
+// gives ok = false and infinite errors.
+struct TangentCheck {
+  double stress_error, tangent_error;
+  bool ok;
+  std::string report;
+};
+TangentCheck check_law(const HyperelasticLaw& law, const Eigen::Matrix2d& F, double tolerance);
+TangentCheck check_law(const HyperelasticLaw& law, const Eigen::Matrix3d& F, double tolerance);
+
+}  // namespace igac
