@@ -77,7 +77,7 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
   if (pd != dim) throw std::invalid_argument("stress recovery needs a volume mesh");
   if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
     throw std::invalid_argument("stress recovery needs the displacement as field 0");
-  const LocalRule rule = local_rule(pd, max_degree(mesh) + 3);
+  const LocalRule rule = local_rule(pd, max_degree(mesh) + 2);
   RecoveredStress out;
   out.stress.resize(mesh.num_points(), 6);
   out.von_mises.resize(mesh.num_points());
@@ -85,7 +85,7 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
   static constexpr int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
 
   Eigen::VectorXd R;
-  Eigen::MatrixXd dR, M(nl, nl), B(nl, 8);
+  Eigen::MatrixXd dR, J(dim, dim), G(dim, dim), M(nl, nl), B(nl, 8);
   Eigen::RowVectorXd f(8);
   for (int e = 0; e < mesh.num_elements(); ++e) {
     const BezierElement& el = mesh.element(e);
@@ -93,8 +93,8 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
     B.setZero();
     for (size_t q = 0; q < rule.s.size(); ++q) {
       mesh.basis(el, rule.s[q], R, &dR);
-      const Eigen::MatrixXd J = el.points.transpose() * dR;      // dX/ds
-      const Eigen::MatrixXd G = el.fields[0].transpose() * dR;   // du/ds
+      J.noalias() = el.points.transpose() * dR;     // dX/ds
+      G.noalias() = el.fields[0].transpose() * dR;  // du/ds
       Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
       grad.topLeftCorner(dim, dim) = G * J.inverse();
       const Eigen::Matrix3d sigma = law(grad);
@@ -102,10 +102,10 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
       f[6] = von_mises(sigma);
       f[7] = sigma.norm();
       const double wt = rule.w[q] * std::abs(J.determinant());
-      M.noalias() += wt * R * R.transpose();
-      B.noalias() += wt * R * f;
+      M.selfadjointView<Eigen::Lower>().rankUpdate(R, wt);
+      B.noalias() += (wt * R) * f;
     }
-    const Eigen::MatrixXd C = M.llt().solve(B);
+    const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
     out.stress.middleRows(e * nl, nl) = C.leftCols(6);
     out.von_mises.segment(e * nl, nl) = C.col(6);
     out.magnitude.segment(e * nl, nl) = C.col(7);

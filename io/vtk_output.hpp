@@ -29,13 +29,15 @@
 //       element-local L2 projection onto the element's rational Bezier basis
 //       R_i (the basis ParaView interpolates point data with):
 //           sum_j (int_e R_i R_j dX) c_j = int_e R_i f dX,
-//       Gauss rule with max(p)+3 points per direction, for f each stress
+//       Gauss rule with max(p)+2 points per direction, for f each stress
 //       component, von Mises and |sigma| separately (the last two are
 //       projected themselves, not computed from the projected tensor, because
 //       Bezier coefficients are not point values).  A stress in the span of
 //       the R_i -- in particular a constant one (patch test) -- is reproduced
 //       exactly; otherwise the projection is the element's best
-//       L2 approximation.  This runs only when output is written.
+//       L2 approximation (so the Bezier coefficients of von Mises and |sigma|,
+//       which are not point values, may dip slightly below zero next to
+//       steep gradients).  This runs only when output is written.
 //   contact_XXXX.vtu    (contact cases) the contact face Gamma_C, Bezier
 //       extracted the same way: VTK_BEZIER_CURVE cells in 2D,
 //       VTK_BEZIER_QUADRILATERAL in 3D, with

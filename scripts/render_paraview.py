@@ -24,6 +24,7 @@ offscreen context it runs under xvfb-run.
 import argparse
 import glob
 import os
+import random
 import shutil
 import subprocess
 import sys
@@ -78,10 +79,15 @@ def launch(argv):
     script = os.path.abspath(__file__)
     cmd = [pvbatch, "--force-offscreen-rendering", script] + argv
     r = subprocess.run(cmd, env=env, capture_output=True, text=True)
-    if r.returncode != 0 and shutil.which("xvfb-run"):
-        # pvbatch built for X without an offscreen (EGL / OSMesa) context.
-        r = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", pvbatch, script] + argv, env=env,
-                           capture_output=True, text=True)
+    # pvbatch built for X without an offscreen (EGL / OSMesa) context: a
+    # virtual X server, at a random display number so that concurrent runs
+    # do not race for the same one, retried a few times.
+    for attempt in range(4):
+        if r.returncode == 0 or not shutil.which("xvfb-run"):
+            break
+        n = str(random.randint(100, 30000))
+        r = subprocess.run(["xvfb-run", "-a", "-n", n, "-s", "-screen 0 1280x1024x24", pvbatch, script] + argv,
+                           env=env, capture_output=True, text=True)
     sys.stdout.write(r.stdout)
     if r.returncode != 0:
         sys.stderr.write(r.stderr[-4000:])
@@ -117,7 +123,10 @@ def render(args):
         view.ViewTime = t
     reader.UpdatePipeline(t) if t is not None else reader.UpdatePipeline()
     data = sm.Fetch(reader)
-    names = [data.GetMetaData(i).Get(data.NAME()) for i in range(data.GetNumberOfBlocks())]
+    # Several parts (body, contact face, multipliers) make a multiblock; a
+    # run without contact has the body alone.
+    names = ([data.GetMetaData(i).Get(data.NAME()) for i in range(data.GetNumberOfBlocks())]
+             if data.IsA("vtkMultiBlockDataSet") else [])
 
     def block(name):
         return ExtractBlock(Input=reader, Selectors=[f"/Root/{name}"])
@@ -147,6 +156,9 @@ def render(args):
     lut = GetColorTransferFunction(args.field)
     lut.ApplyPreset("Turbo", True) if hasattr(lut, "ApplyPreset") else None
     disp.RescaleTransferFunctionToDataRange(True, False)
+    lo, hi = lut.RGBPoints[0], lut.RGBPoints[-4]
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi), 1e-300):  # a constant field (patch test)
+        lut.RescaleTransferFunction(lo - 0.01 * abs(lo) - 1e-12, hi + 0.01 * abs(hi) + 1e-12)
     disp.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lut, view)
     bar.Title = args.field.replace("_", " ")
@@ -165,7 +177,9 @@ def render(args):
 
     cx, cy, cz = (b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2
     if three_d:
-        view.CameraPosition = [cx + 2.2 * diag, cy - 1.6 * diag, cz + 1.4 * diag]
+        # igac's 3D models are octants x, y >= 0: look at the symmetry planes
+        # x = 0 and y = 0, where the interior stress shows.
+        view.CameraPosition = [cx - 1.8 * diag, cy - 2.4 * diag, cz + 1.2 * diag]
         view.CameraViewUp = [0, 0, 1]
     else:
         view.CameraPosition = [cx, cy, cz + 3 * diag]
@@ -209,13 +223,13 @@ def render(args):
             pbar.WindowLocation = "Upper Right Corner"
             text.Text = caption + " (contact zone)"
             if three_d:
-                view.CameraFocalPoint = centre
-                view.CameraPosition = [centre[0] + 1.5 * extent, centre[1] - 1.5 * extent, centre[2] + 2.0 * extent]
+                # from outside the symmetry planes, slightly below the contact face
+                c3 = [centre[0] + 0.3 * extent, centre[1] + 0.3 * extent, centre[2] + 0.5 * extent]
+                view.CameraFocalPoint = c3
+                view.CameraPosition = [c3[0] - 2.2 * extent, c3[1] - 2.9 * extent, c3[2] - 0.6 * extent]
                 view.CameraViewUp = [0, 0, 1]
                 view.CameraParallelProjection = 0
-                view.ResetCamera()
-                view.CameraPosition = [centre[0] + 1.8 * extent, centre[1] - 1.8 * extent, centre[2] + 1.2 * extent]
-                view.CameraFocalPoint = centre
+                view.CameraViewAngle = 30
             else:
                 view.CameraFocalPoint = [centre[0] + 0.3 * extent, centre[1] + 0.7 * extent, 0]
                 view.CameraPosition = [centre[0] + 0.3 * extent, centre[1] + 0.7 * extent, 3 * diag]

@@ -104,22 +104,26 @@ void BezierMesh::basis(const BezierElement& el, const Eigen::VectorXd& s, Eigen:
     }
   }
   R.resize(num_local_);
-  Eigen::MatrixXd dB(num_local_, param_dim_);
+  if (dR) dR->resize(num_local_, param_dim_);
   for (int c = 0; c <= degree_[2]; ++c)
     for (int b = 0; b <= degree_[1]; ++b)
       for (int a = 0; a <= degree_[0]; ++a) {
         const int l = local_index(a, b, c);
         const double w = el.weights[l];
         R[l] = w * v[0][a] * v[1][b] * v[2][c];
+        if (!dR) continue;
         const double dd[3] = {dv[0][a] * v[1][b] * v[2][c], v[0][a] * dv[1][b] * v[2][c],
                               v[0][a] * v[1][b] * dv[2][c]};
-        for (int d = 0; d < param_dim_; ++d) dB(l, d) = w * dd[d];
+        for (int d = 0; d < param_dim_; ++d) (*dR)(l, d) = w * dd[d];
       }
-  // Quotient rule: R = wB / W, dR = (d(wB) - R dW) / W.
+  // Quotient rule on wB: R = wB / W, dR = (d(wB) - R dW) / W.
   const double W = R.sum();
-  const Eigen::RowVectorXd dW = dB.colwise().sum();
   R /= W;
-  if (dR) *dR = (dB - R * dW) / W;
+  if (dR) {
+    double dW[3] = {0, 0, 0};
+    for (int d = 0; d < param_dim_; ++d) dW[d] = dR->col(d).sum();
+    for (int d = 0; d < param_dim_; ++d) dR->col(d) = (dR->col(d) - dW[d] * R) / W;
+  }
 }
 
 Eigen::VectorXd BezierMesh::point(int e, const Eigen::VectorXd& s) const {
