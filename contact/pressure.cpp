@@ -105,27 +105,59 @@ PressureReport ContactPressure::report() const {
   // vanishes after the last pressed one.  For S0, fit p = c sqrt(a - r)
   // (the shape of a smooth contact edge) to the means of the last two
   // pressed elements; otherwise where the P1 pressure reaches zero.
+  // pressed: above round-off of the largest pressure (an S0 mean of 1e-12
+  // p0 is a multiplier that is active with nothing to carry)
+  constexpr double kPressedFraction = 1e-6;
   int last = -1;
   for (int e = 0; e < ne; ++e)
-    if (mean[e] > 0) last = e;
+    if (mean[e] > kPressedFraction * rep.max_pressure) last = e;
   if (last < 0) return rep;
   if (constants && last >= 1 && last + 1 < int(rb.size())) {
-    const double r0 = rb[last - 1], r1 = rb[last], r2 = rb[last + 1];
-    const double ratio = mean[last] / mean[last - 1];
-    auto sqrt_mean = [](double a, double lo, double hi) {  // mean of sqrt(a - r) on [lo, hi]
-      const double A = std::pow(std::max(a - lo, 0.0), 1.5), B = std::pow(std::max(a - hi, 0.0), 1.5);
-      return (2.0 / 3.0) * (A - B) / (hi - lo);
+    // The two elements' means of sqrt(a - r) (the shape of a smooth contact
+    // edge), integrated over the whole face element (in 3D r varies across
+    // the row too), must stand in the ratio of the multipliers; solve for a
+    // by bisection.
+    std::vector<int> idx;
+    std::vector<double> val;
+    auto element_of = [&](int e) {
+      cf_.space.basis(line(0.5 * (b[e] + b[e + 1])), idx, val);
+      return idx.front();  // S0: multiplier K lives on face element K
     };
-    auto f = [&](double a) { return sqrt_mean(a, r1, r2) / sqrt_mean(a, r0, r1) - ratio; };
-    double lo = r1 + 1e-12 * (r2 - r1), hi = r2 + (r2 - r1);
-    if (f(lo) < 0 && f(hi) > 0) {
+    const PatchQuadrature fine = cf_.quadrature(10);
+    ElementData ed;
+    std::array<std::vector<std::pair<double, double>>, 2> rw;  // (r, weight) at the points
+    const std::array<int, 2> elems{element_of(last - 1), element_of(last)};
+    for (int k = 0; k < 2; ++k) {
+      fine.evaluate(elems[k], ed, false);
+      for (int q = 0; q < ed.JxW.size(); ++q) rw[k].push_back({r_of(ed.X.row(q).transpose()), ed.JxW[q]});
+    }
+    auto sqrt_mean = [&](int k, double a) {
+      double m = 0, w = 0;
+      for (const auto& [r, wq] : rw[k]) {
+        m += std::sqrt(std::max(a - r, 0.0)) * wq;
+        w += wq;
+      }
+      return m / w;
+    };
+    const double ratio = -lambda_[elems[1]] / -lambda_[elems[0]];
+    auto f = [&](double a) { return sqrt_mean(1, a) / sqrt_mean(0, a) - ratio; };
+    const double r1 = rb[last], r2 = rb[last + 1];
+    double lo = r1, hi = r2;
+    for (const auto& [r, w] : rw[1]) lo = std::min(lo, r);
+    lo += 1e-12 * (r2 - r1);
+    if (f(lo) >= 0) {
+      rep.half_width = r1;  // the last element barely carries: the edge is at its start
+    } else if (f(hi) <= 0) {
+      // the last pressed element is pressed throughout: the edge lies in the
+      // next (discretely free) element
+      const double r3 = last + 2 < int(rb.size()) ? rb[last + 2] : r2;
+      rep.half_width = 0.5 * (r2 + r3);
+    } else {
       for (int it = 0; it < 100; ++it) {
         const double mid = 0.5 * (lo + hi);
         (f(mid) < 0 ? lo : hi) = mid;
       }
       rep.half_width = 0.5 * (lo + hi);
-    } else {
-      rep.half_width = 0.5 * (r1 + r2);
     }
   } else {
     size_t j = 0;

@@ -112,7 +112,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    fmt::print(stderr, "igac: error: {} (see igac --help)\n", e.what());
+    return 2;
   }
   try {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output);

@@ -158,7 +158,12 @@ RefinedPatch elevate_degree(const NurbsPatch& patch, int direction, int by,
   if (by == 0) return {patch, fields};
   const KnotVector& kv = patch.knots(direction);
   const KnotVector up = kv.elevated(by);
-  const auto g = up.greville();
+  auto g = up.greville();
+  // At a knot of full multiplicity (a discontinuity) the last function on
+  // its left and the first on its right share a Greville abscissa; move the
+  // left one inside its support, which keeps Schoenberg-Whitney.
+  for (size_t i = 1; i + 1 < g.size(); ++i)
+    if (g[i] == g[i + 1]) g[i] = 0.5 * (g[i - 1] + g[i]);
   const Eigen::SparseMatrix<double> A_old = collocation(kv, g);
   Eigen::SparseMatrix<double> C = collocation(up, g);
   C.makeCompressed();
