@@ -14,7 +14,11 @@ RigidPlane::RigidPlane(Eigen::VectorXd point, Eigen::VectorXd normal) : point_(s
   normal_ /= n;
 }
 
-ObstacleProbe RigidPlane::probe(const Eigen::VectorXd& x) const { return {(x - point_).dot(normal_), normal_}; }
+ObstacleProbe RigidPlane::probe(const Eigen::VectorXd& x, bool with_derivative) const {
+  ObstacleProbe p{(x - point_).dot(normal_), normal_, {}};
+  if (with_derivative) p.normal_derivative = Eigen::MatrixXd::Zero(x.size(), x.size());
+  return p;
+}
 
 std::string RigidPlane::describe() const {
   return fmt::format("rigid plane through ({}) with normal ({})",
@@ -26,11 +30,14 @@ RigidSphere::RigidSphere(Eigen::VectorXd centre, double radius) : centre_(std::m
   if (!(radius > 0)) throw std::invalid_argument(fmt::format("obstacle radius {} must be positive", radius));
 }
 
-ObstacleProbe RigidSphere::probe(const Eigen::VectorXd& x) const {
+ObstacleProbe RigidSphere::probe(const Eigen::VectorXd& x, bool with_derivative) const {
   const Eigen::VectorXd d = x - centre_;
   const double r = d.norm();
   if (!(r > 0)) throw std::runtime_error("a point sits at the centre of the rigid sphere: no normal there");
-  return {r - radius_, d / r};
+  ObstacleProbe p{r - radius_, d / r, {}};
+  if (with_derivative)
+    p.normal_derivative = (Eigen::MatrixXd::Identity(x.size(), x.size()) - p.normal * p.normal.transpose()) / r;
+  return p;
 }
 
 std::string RigidSphere::describe() const {

@@ -15,12 +15,16 @@ namespace igac {
 struct ObstacleProbe {
   double gap = 0;
   Eigen::VectorXd normal;
+  // dn/dx, the change of the normal with the point (large deformation
+  // linearises the gap with it): zero for a plane, (I - n n^T)/|x - c| for
+  // a sphere.  Filled only when asked for.
+  Eigen::MatrixXd normal_derivative;
 };
 
 class Obstacle {
  public:
   virtual ~Obstacle() = default;
-  virtual ObstacleProbe probe(const Eigen::VectorXd& x) const = 0;
+  virtual ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const = 0;
   // For a point on the obstacle's surface, its tangent directions are those
   // orthogonal to the normal there: the "horizontal" distance used for r.
   virtual std::string describe() const = 0;
@@ -30,7 +34,7 @@ class RigidPlane final : public Obstacle {
  public:
   // Throws std::invalid_argument for a zero normal or mismatched sizes.
   RigidPlane(Eigen::VectorXd point, Eigen::VectorXd normal);
-  ObstacleProbe probe(const Eigen::VectorXd& x) const override;
+  ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override;
   std::string describe() const override;
 
  private:
@@ -40,7 +44,7 @@ class RigidPlane final : public Obstacle {
 class RigidSphere final : public Obstacle {
  public:
   RigidSphere(Eigen::VectorXd centre, double radius);
-  ObstacleProbe probe(const Eigen::VectorXd& x) const override;
+  ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override;
   std::string describe() const override;
 
  private:

@@ -6,6 +6,9 @@
 #include <fmt/ranges.h>
 #include <set>
 #include <toml++/toml.h>
+#include <algorithm>
+
+#include "materials/hyperelastic.hpp"
 #include <unistd.h>
 
 namespace igac {
@@ -150,7 +153,7 @@ CaseSpec read_case(const std::string& path) {
   c.path = path;
   const Section top(path, "top level", root,
                     {"name", "description", "geometry", "mesh", "material", "dirichlet", "pressure", "body_force",
-                     "contact", "reference", "output"});
+                     "contact", "reference", "output", "loading"});
   c.name = top.string("name", std::filesystem::path(path).stem().string());
   c.description = top.string("description", "");
 
@@ -215,8 +218,14 @@ CaseSpec read_case(const std::string& path) {
 
   const Section mat(path, "material", top.sub("material"), {"model", "E", "nu"});
   c.model = mat.string("model", "linear_elastic");
-  if (c.model != "linear_elastic")
-    mat.fail("model", fmt::format("unknown material model '{}' (available: linear_elastic)", c.model));
+  {
+    // linear_elastic: small deformation, one linear solve; any registered
+    // hyperelastic law: total Lagrangian, load steps and Newton.
+    const auto laws = law_names();
+    if (c.model != "linear_elastic" && std::find(laws.begin(), laws.end(), c.model) == laws.end())
+      mat.fail("model", fmt::format("unknown material model '{}' (available: linear_elastic (small deformation), {})",
+                                    c.model, fmt::join(laws, ", ")));
+  }
   c.E = mat.number("E");
   c.nu = mat.number("nu");
   if (!(c.E > 0)) mat.fail("E", fmt::format("E = {} must be positive (Young's modulus)", c.E));
@@ -265,6 +274,26 @@ CaseSpec read_case(const std::string& path) {
       s.fail("solution", "hertz needs a quarter_disc or sphere_octant with [contact]");
     if (c.reference == "lame" && c.shape != "quarter_annulus")
       s.fail("solution", "lame needs shape = \"quarter_annulus\"");
+  }
+  if (root.contains("loading")) {
+    const Section s(path, "loading", top.sub("loading"),
+                    {"steps", "first_increment", "min_increment", "max_newton_iterations", "line_search", "pressure"});
+    if (!c.finite_strain())
+      s.fail("steps", "[loading] drives the large-deformation models; linear_elastic is solved in one linear step");
+    LoadingSpec& l = c.loading;
+    l.steps = s.integer("steps", 10);
+    if (l.steps < 1 || l.steps > 100000) s.fail("steps", "must lie in 1..100000");
+    l.first_increment = s.number("first_increment", 0.0);
+    if (s.has("first_increment") && !(l.first_increment > 0 && l.first_increment <= 1))
+      s.fail("first_increment", "must lie in (0, 1]");
+    l.min_increment = s.number("min_increment", 1e-4);
+    if (!(l.min_increment > 0 && l.min_increment < 1)) s.fail("min_increment", "must lie in (0, 1)");
+    l.max_newton_iterations = s.integer("max_newton_iterations", 30);
+    if (l.max_newton_iterations < 1 || l.max_newton_iterations > 1000) s.fail("max_newton_iterations", "must lie in 1..1000");
+    l.line_search = s.boolean("line_search", true);
+    const std::string pk = s.string("pressure", "follower");
+    if (pk != "follower" && pk != "dead") s.fail("pressure", "must be \"follower\" or \"dead\"");
+    l.follower_pressure = pk == "follower";
   }
   if (root.contains("output")) {
     const Section s(path, "output", top.sub("output"), {"vtk"});

@@ -45,6 +45,16 @@ struct ContactSpec {
   ObstacleSpec obstacle;
 };
 
+// Large deformation (hyperelastic models): how the load is applied.
+struct LoadingSpec {
+  int steps = 10;
+  double first_increment = 0;  // > 0: overrides steps
+  double min_increment = 1e-4;
+  int max_newton_iterations = 30;
+  bool line_search = true;
+  bool follower_pressure = true;  // false: dead load (reference normal)
+};
+
 struct CaseSpec {
   std::string path, name, description;
   // geometry
@@ -57,8 +67,9 @@ struct CaseSpec {
   int refine = 0;
   std::vector<GradingSpec> gradings;  // at most one per direction
   // material
-  std::string model = "linear_elastic";
+  std::string model = "linear_elastic";  // or a hyperelastic law: large deformation
   double E = 1, nu = 0.3;
+  LoadingSpec loading;
   // conditions and loads
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;
@@ -67,6 +78,7 @@ struct CaseSpec {
   std::string reference = "none";  // hertz | lame | none
   bool write_vtk = true;
 
+  bool finite_strain() const { return model != "linear_elastic"; }
   int dim() const { return shape == "box" || shape == "sphere_octant" ? 3 : 2; }
 };
 

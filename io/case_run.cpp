@@ -80,6 +80,7 @@ Model build_model(const CaseSpec& spec) {
   for (const auto& p : spec.pressure) resolve_faces(spec, m.geometry, p.faces, "pressure");
   m.dofs = std::make_unique<DofMap>(patch, dc);
   m.material = LinearElastic(spec.E, spec.nu);
+  if (spec.finite_strain()) m.law = make_law(spec.model, MaterialParameters{spec.E, spec.nu});
 
   if (spec.contact) {
     const auto faces = find_faces(m.geometry, spec.contact->face);
@@ -124,7 +125,29 @@ std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec) {
   };
 }
 
-RunResult solve_model(const Model& m) {
+double pressure_resultant(const Model& m) {
+  const NurbsPatch& patch = m.geometry.patch;
+  const int dim = patch.space_dim();
+  double total = 0;
+  for (const auto& p : m.spec.pressure)  // |int P n dGamma| per pressure load, on the reference faces
+    for (const auto& n : p.faces) {
+      const std::vector<Face> faces = *find_faces(m.geometry, n);
+      for (const Face& f : faces) {
+        const PatchQuadrature q = face_quadrature(patch, f, gauss_points_for(patch.degree(0)));
+        ElementData ed;
+        Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);
+        for (int e = 0; e < q.num_elements(); ++e) {
+          q.evaluate(e, ed, false);
+          for (int k = 0; k < ed.JxW.size(); ++k) res += p.value * ed.normal.row(k).transpose() * ed.JxW[k];
+        }
+        total += res.norm();
+      }
+    }
+  return total;
+}
+
+RunResult solve_model(const Model& m, const StepObserver& on_step) {
+  if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
   const auto t_start = Clock::now();
   const NurbsPatch& patch = m.geometry.patch;
@@ -144,20 +167,7 @@ RunResult solve_model(const Model& m) {
   }
   r.timing.assembly = since(t0);
   const RigidModes modes = free_rigid_modes(patch, *m.dofs);
-  for (const auto& p : m.spec.pressure)  // resultant |int P n dGamma| of the pressure loads
-    for (const auto& n : p.faces) {
-      const std::vector<Face> faces = *find_faces(m.geometry, n);
-      for (const Face& f : faces) {
-        const PatchQuadrature q = face_quadrature(patch, f, gauss_points_for(patch.degree(0)));
-        ElementData ed;
-        Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);
-        for (int e = 0; e < q.num_elements(); ++e) {
-          q.evaluate(e, ed, false);
-          for (int k = 0; k < ed.JxW.size(); ++k) res += p.value * ed.normal.row(k).transpose() * ed.JxW[k];
-        }
-        r.applied_force += res.norm();
-      }
-    }
+  r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
   if (!m.obstacle) {
     if (modes.modes.cols() > 0)

@@ -4,10 +4,13 @@
 // stress recovery unless the case needs them.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 
 #include "contact/pressure.hpp"
+#include "engine/load_stepping.hpp"
+#include "materials/hyperelastic.hpp"
 #include "contact/small_strain_contact.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/error_norms.hpp"
@@ -20,9 +23,11 @@ struct Model {
   Geometry geometry;  // geometry.patch is the refined patch
   std::unique_ptr<DofMap> dofs;
   LinearElastic material{1.0, 0.0};
+  std::unique_ptr<HyperelasticLaw> law;  // large deformation only
   std::unique_ptr<Obstacle> obstacle;
   std::unique_ptr<ContactFace> contact_face;
   double mesh_size = 0;  // largest element diameter
+  bool quiet = false;    // no progress lines
 };
 
 struct ContactResult {
@@ -37,6 +42,13 @@ struct Timing {
   double setup = 0, assembly = 0, factorization = 0, linear_solve = 0, contact = 0, postprocess = 0, total = 0;
 };
 
+// One point of the load curve of a large-deformation run.
+struct LoadCurvePoint {
+  double load_factor = 0;
+  double contact_force = 0;    // sum_K -lambda_K K_K (modelled part)
+  double face_displacement = 0;  // mean displacement of the loaded face along the last axis
+};
+
 struct RunResult {
   std::string status = "converged";
   Eigen::MatrixXd u;  // n_cp x dim
@@ -45,12 +57,21 @@ struct RunResult {
   std::optional<ErrorNorms> displacement_errors;           // against a closed form
   std::optional<std::pair<double, double>> pressure_error;  // against Hertz: (error, norm)
   double applied_force = 0;                                 // resultant of the pressure loads (modelled part)
+  std::optional<LoadSteppingSummary> load_steps;            // large deformation only
+  std::vector<LoadCurvePoint> load_curve;
+  double half_width_deformed = 0, max_pressure_cauchy = 0;  // large deformation contact
   Timing timing;
 };
 
 Model build_model(const CaseSpec& spec);
-RunResult solve_model(const Model& model);
+// `on_step` (large deformation) sees the state after each converged load step.
+using StepObserver = std::function<void(const RunResult&, double load_factor)>;
+RunResult solve_model(const Model& model, const StepObserver& on_step = {});
+// The large-deformation path (io/finite_strain_run.cpp).
+RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 
+// |int P n dGamma| summed over the pressure loads (the modelled part).
+double pressure_resultant(const Model& model);
 // Closed-form displacement of the case's reference solution, if it has one.
 std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec);
 

@@ -33,22 +33,45 @@ Json run_summary(const Model& m, const RunResult& r) {
   j["multipliers"] = m.contact_face ? m.contact_face->space.size() : 0;
   j["mesh_size"] = m.mesh_size;
   j["status"] = r.status;
-  Json step;
-  step["load_factor"] = 1.0;
-  step["newton_iterations"] = 0;  // small deformation: no Newton loop
-  step["residual_norms"] = Json::array();
-  step["active_set_sizes"] = r.contact ? Json(r.contact->solution.active_set_sizes) : Json::array();
-  step["cut_backs"] = 0;
-  j["load_steps"] = Json::array({step});
+  if (r.load_steps) {
+    Json steps = Json::array();
+    for (const auto& st : r.load_steps->steps) {
+      Json step;
+      step["load_factor"] = finite_or_null(st.load_factor);
+      step["newton_iterations"] = st.newton_iterations;
+      Json norms = Json::array();
+      for (double v : st.residual_norms) norms.push_back(finite_or_null(v));
+      step["residual_norms"] = norms;
+      step["active_set_sizes"] = st.active_set_sizes;
+      step["cut_backs"] = st.cut_backs;
+      steps.push_back(step);
+    }
+    j["load_steps"] = steps;
+  } else {
+    Json step;
+    step["load_factor"] = 1.0;
+    step["newton_iterations"] = 0;  // small deformation: no Newton loop
+    step["residual_norms"] = Json::array();
+    step["active_set_sizes"] = r.contact ? Json(r.contact->solution.active_set_sizes) : Json::array();
+    step["cut_backs"] = 0;
+    j["load_steps"] = Json::array({step});
+  }
   if (r.contact) {
     const auto& rep = r.contact->report;
     Json c;
     c["active"] = rep.active;
-    c["half_width"] = finite_or_null(rep.half_width);
-    c["max_pressure"] = finite_or_null(rep.max_pressure);
+    if (r.load_steps) {  // large deformation: deformed extent, nominal and Cauchy pressure
+      c["half_width"] = finite_or_null(r.half_width_deformed);
+      c["half_width_reference"] = finite_or_null(rep.half_width);
+      c["max_pressure"] = finite_or_null(rep.max_pressure);
+      c["max_pressure_cauchy"] = finite_or_null(r.max_pressure_cauchy);
+    } else {
+      c["half_width"] = finite_or_null(rep.half_width);
+      c["max_pressure"] = finite_or_null(rep.max_pressure);
+    }
     c["total_force"] = finite_or_null(rep.total_force);
     c["applied_force"] = finite_or_null(r.applied_force);
-    c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
+    if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
     c["model_part"] = patch.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
                                              : "modelled part (symmetry)";
     c["obstacle"] = m.obstacle->describe();
@@ -68,10 +91,18 @@ Json run_summary(const Model& m, const RunResult& r) {
     e["pressure_l2_rel"] = finite_or_null(r.pressure_error->first / r.pressure_error->second);
   }
   if (!e.empty()) j["errors"] = e;
+  if (r.load_steps) j["newton_seconds"] = r.load_steps->newton_seconds;
   j["timing_s"] = {{"assembly", r.timing.assembly},         {"factorization", r.timing.factorization},
                    {"linear_solve", r.timing.linear_solve}, {"contact", r.timing.contact},
                    {"postprocess", r.timing.postprocess},   {"total", r.timing.total}};
   return j;
+}
+
+std::string load_curve_csv(const RunResult& r) {
+  std::string s = "load_factor,contact_force,face_displacement\n";
+  for (const auto& p : r.load_curve)
+    s += fmt::format("{:.10g},{:.10g},{:.10g}\n", p.load_factor, p.contact_force, p.face_displacement);
+  return s;
 }
 
 std::string pressure_csv(const RunResult& r) {

@@ -22,5 +22,7 @@ Json run_summary(const Model& model, const RunResult& result);
 // Per multiplier and P1 re-interpolation: kind, r, pressure (and r/a,
 // p/p0, Hertz when the case has Hertz as reference).
 std::string pressure_csv(const RunResult& result);
+// Large deformation: load factor, contact force, loaded-face displacement.
+std::string load_curve_csv(const RunResult& result);
 
 }  // namespace igac

@@ -26,7 +26,14 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
   fmt::print("igac: {} — {}D, degree {}, {} elements, {} dofs, {} multipliers\n", m.spec.name, p.space_dim(),
              p.degree(0), p.num_elements(), m.dofs->num_free(), m.contact_face ? m.contact_face->space.size() : 0);
   std::string status = r.status;
-  if (r.contact) {
+  if (r.load_steps) {
+    int newton = 0, cuts = 0;
+    for (const auto& st : r.load_steps->steps) {
+      newton += st.newton_iterations;
+      cuts += st.cut_backs;
+    }
+    status += fmt::format(" ({} load steps, {} Newton iterations, {} cut-backs)", r.load_steps->steps.size(), newton, cuts);
+  } else if (r.contact) {
     std::string sizes;
     for (int s : r.contact->solution.active_set_sizes) sizes += (sizes.empty() ? "" : " -> ") + std::to_string(s);
     status += fmt::format(" (active set sizes per iteration: {})", sizes);
@@ -34,14 +41,21 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
   fmt::print("  status        {}\n", status);
   if (r.contact) {
     const auto& rep = r.contact->report;
+    if (r.load_steps) {
+      fmt::print("  half width    {:.6g} deformed, {:.6g} on the reference face\n", r.half_width_deformed, rep.half_width);
+      fmt::print("  max pressure  {:.6g} nominal, {:.6g} Cauchy\n", rep.max_pressure, r.max_pressure_cauchy);
+    }
     if (r.hertz) {
       fmt::print("  half width    {:.6g}  (Hertz {:.6g}, {})\n", rep.half_width, r.hertz->a, percent(rep.half_width, r.hertz->a));
       fmt::print("  max pressure  {:.6g}  (Hertz {:.6g}, {})\n", rep.max_pressure, r.hertz->p0, percent(rep.max_pressure, r.hertz->p0));
-    } else {
+    } else if (!r.load_steps) {
       fmt::print("  half width    {:.6g}\n  max pressure  {:.6g}\n", rep.half_width, rep.max_pressure);
     }
-    fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force, r.applied_force,
-               std::abs(rep.total_force - r.applied_force) / std::max(r.applied_force, 1e-300));
+    if (r.applied_force > 0)
+      fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force,
+                 r.applied_force, std::abs(rep.total_force - r.applied_force) / r.applied_force);
+    else
+      fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
   }
   if (r.pressure_error)
     fmt::print("  pressure L2   {:.4e}  (relative {:.4e}, against Hertz)\n", r.pressure_error->first,
@@ -50,8 +64,11 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
     fmt::print("  displacement  L2 error {:.4e}, H1 error {:.4e} (relative {:.3e}, {:.3e})\n", r.displacement_errors->l2,
                r.displacement_errors->h1, r.displacement_errors->l2 / r.displacement_errors->ref_l2,
                r.displacement_errors->h1 / r.displacement_errors->ref_h1);
-  fmt::print("  time          {:.3f} s (assembly {:.3f}, factorisation {:.3f}, solve {:.3f}, contact {:.3f})\n",
-             r.timing.total, r.timing.assembly, r.timing.factorization, r.timing.linear_solve, r.timing.contact);
+  if (r.load_steps)
+    fmt::print("  time          {:.3f} s (Newton and load steps {:.3f})\n", r.timing.total, r.load_steps->newton_seconds);
+  else
+    fmt::print("  time          {:.3f} s (assembly {:.3f}, factorisation {:.3f}, solve {:.3f}, contact {:.3f})\n",
+               r.timing.total, r.timing.assembly, r.timing.factorization, r.timing.linear_solve, r.timing.contact);
   if (!out.empty()) fmt::print("  output        {}/summary.json\n", out);
 }
 
@@ -61,24 +78,37 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   apply_overrides(spec, degree, refine);
   if (no_output) out.clear();
   else if (out.empty()) out = "out/" + spec.name;
-  const Model model = build_model(spec);
-  RunResult r = solve_model(model);
+  Model model = build_model(spec);
+  model.quiet = quiet;
+  const bool vtk = !out.empty() && spec.write_vtk;
+  if (!out.empty()) std::filesystem::create_directories(out);
+  VtkSeries series(out);
+  // Large deformation: one ParaView step per converged load step.
+  StepObserver observer;
+  if (vtk && spec.finite_strain())
+    observer = [&](const RunResult& step, double t) {
+      if (step.u.allFinite()) series.write_step(model, step, t);
+    };
+  RunResult r = solve_model(model, observer);
   Json summary = run_summary(model, r);
-  const bool finite = summary.dump().find("null") == std::string::npos || r.status != "converged";
-  if (!finite) {
+  const bool finite = summary.dump().find("null") == std::string::npos && r.u.allFinite();
+  if (!finite && r.status == "converged") {
     r.status = "failed: a result is not finite";
     summary["status"] = r.status;
   }
   if (!out.empty()) {
-    std::filesystem::create_directories(out);
     if (r.contact) {
       write_file_atomically(out + "/pressure.csv", pressure_csv(r));
-      if (model.geometry.patch.space_dim() == 2)
-        draw_plot("plot_pressure.py", fmt::format("'{}/pressure.csv' '{}/pressure.png' '{}'", out, out, spec.name), quiet);
+      draw_plot("plot_pressure.py", fmt::format("'{}/pressure.csv' '{}/pressure.png' '{}'", out, out, spec.name), quiet);
+    }
+    if (!r.load_curve.empty()) {
+      write_file_atomically(out + "/load_curve.csv", load_curve_csv(r));
+      draw_plot("plot_load_curve.py", fmt::format("'{}/load_curve.csv' '{}/load_curve.png' '{}'", out, out, spec.name),
+                quiet);
     }
     write_file_atomically(out + "/summary.json", summary.dump(2) + "\n");
     // ParaView files (and the stress recovery they need) only when asked for.
-    if (spec.write_vtk && finite && r.u.allFinite()) VtkSeries(out).write_step(model, r, 1.0);
+    if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);
   }
   if (!quiet) print_summary(model, r, out);
   return r.status == "converged" ? 0 : 1;

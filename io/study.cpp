@@ -19,6 +19,7 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
   for (int l = 0; l < opt.levels; ++l) {
     apply_overrides(spec, {}, r0 + l);
     models.push_back(build_model(spec));
+    models.back().quiet = opt.quiet;
     results.push_back(solve_model(models.back()));
     if (!opt.quiet)
       fmt::print(stderr, "level {}: h = {:.4g}, {} dofs, {:.2f} s, {}\n", l, models.back().mesh_size,

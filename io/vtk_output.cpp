@@ -236,7 +236,18 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
                                          r.u.rows(), r.u.cols(), patch.num_control_points(), patch.space_dim()));
   const BezierMesh mesh(patch, {r.u});
   auto grid = bezier_grid(mesh);
-  const RecoveredStress s = recover_stress(mesh, linear_elastic_stress(model.material.lambda(), model.material.mu()));
+  // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
+  // (plane strain in 2D is the 3D law with F_33 = 1).
+  const StressLaw law =
+      model.law ? StressLaw([&](const Eigen::Matrix3d& grad_u) {
+        const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
+        Eigen::Matrix3d P;
+        if (!model.law->evaluate(F, P, nullptr))
+          return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()).eval();
+        return Eigen::Matrix3d(P * F.transpose() / F.determinant());
+      })
+                : linear_elastic_stress(model.material.lambda(), model.material.mu());
+  const RecoveredStress s = recover_stress(mesh, law);
   const vtkIdType np = mesh.num_points();
   auto stress = make_array("stress", 6, np);
   const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};

@@ -1,0 +1,219 @@
+#include "engine/load_stepping.hpp"
+
+#include <Eigen/UmfPackSupport>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+namespace igac {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Everything one KINSOL solve (one load-step attempt) works with.
+struct Attempt {
+  NonlinearProblem& problem;
+  double t = 0;
+  double scale = 1;  // force scale: residuals are relative to it
+  Eigen::SparseMatrix<double>& J;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>>& lu;
+  bool& analyzed;
+  LoadStepRecord record;
+  std::vector<std::vector<char>> active_history;
+  std::string failure;
+};
+
+Eigen::Map<Eigen::VectorXd> view(N_Vector v) { return {N_VGetArrayPointer(v), N_VGetLength(v)}; }
+
+int residual_fn(N_Vector u, N_Vector f, void* data) {
+  auto& a = *static_cast<Attempt*>(data);
+  Eigen::VectorXd x = view(u), r;
+  if (!a.problem.residual(a.t, x, r) || !r.allFinite()) {
+    a.failure = "inadmissible state (det F <= 0 or a non-finite residual)";
+    return 1;  // recoverable: the line search shortens the step
+  }
+  view(f) = r;
+  return 0;
+}
+
+int jacobian_fn(N_Vector u, N_Vector fu, SUNMatrix, void* data, N_Vector, N_Vector) {
+  auto& a = *static_cast<Attempt*>(data);
+  const Eigen::VectorXd x = view(u);
+  a.record.residual_norms.push_back(view(fu).cwiseAbs().maxCoeff() / a.scale);
+  a.record.active_set_sizes.push_back(a.problem.active_set_size(x));
+  // Active-set cycling: the same set seen again after a different one, with
+  // no progress in between, is a loop Newton will not leave.
+  const auto set = a.problem.active_set(x);
+  if (!set.empty()) {
+    const auto& h = a.active_history;
+    if (h.size() >= 3 && set == h[h.size() - 2] && h.back() != set && h[h.size() - 3] == h.back()) {
+      a.failure = "active set cycling";
+      return -1;
+    }
+    a.active_history.push_back(set);
+  }
+  if (!a.problem.jacobian(a.t, x, a.J)) {
+    a.failure = "inadmissible state in the Jacobian";
+    return -1;
+  }
+  return 0;
+}
+
+// A direct linear solver for KINSOL: UMFPACK on the Jacobian the problem
+// assembled (the SUNMatrix handed around is an empty placeholder).
+int ls_setup(SUNLinearSolver S, SUNMatrix) {
+  auto& a = *static_cast<Attempt*>(S->content);
+  if (!a.analyzed) {
+    a.lu.analyzePattern(a.J);
+    a.analyzed = true;
+  }
+  a.lu.factorize(a.J);
+  if (a.lu.info() != Eigen::Success) {
+    a.failure = "singular Newton matrix";
+    return -1;
+  }
+  return 0;
+}
+
+int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
+  auto& a = *static_cast<Attempt*>(S->content);
+  const Eigen::VectorXd rhs = view(b);
+  const Eigen::VectorXd sol = a.lu.solve(rhs);
+  if (!sol.allFinite()) {
+    a.failure = "singular Newton matrix";
+    return -1;
+  }
+  view(x) = sol;
+  return 0;
+}
+
+void silent(int, const char*, const char*, char*, void*) {}
+
+// One load-step attempt from x at load factor t; x is updated on success.
+bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppingOptions& opt) {
+  const int n = int(x.size());
+  N_Vector u = N_VNew_Serial(n, ctx), us = N_VNew_Serial(n, ctx), fs = N_VNew_Serial(n, ctx);
+  view(u) = x;
+  N_VConst(1.0, us);
+  a.scale = std::max(a.problem.force_scale(a.t, x), 1e-300);
+  N_VConst(1.0 / a.scale, fs);
+  void* kin = KINCreate(ctx);
+  KINInit(kin, residual_fn, u);
+  KINSetUserData(kin, &a);
+  KINSetErrHandlerFn(kin, silent, nullptr);
+  SUNMatrix A = SUNMatNewEmpty(ctx);
+  A->ops->getid = [](SUNMatrix) { return SUNMATRIX_CUSTOM; };
+  A->ops->zero = [](SUNMatrix) { return 0; };
+  A->ops->destroy = [](SUNMatrix M) { SUNMatFreeEmpty(M); };
+  SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
+  LS->content = &a;
+  LS->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
+  LS->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
+  LS->ops->setup = ls_setup;
+  LS->ops->solve = ls_solve;
+  LS->ops->free = [](SUNLinearSolver S) {
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return 0;
+  };
+  KINSetLinearSolver(kin, LS, A);
+  KINSetJacFn(kin, jacobian_fn);
+  KINSetMaxSetupCalls(kin, 1);  // a fresh Jacobian at every iteration: Newton, not chord
+  KINSetNumMaxIters(kin, opt.max_newton_iterations);
+  KINSetFuncNormTol(kin, opt.tolerance);
+  KINSetScaledStepTol(kin, 1e-15);
+  const int flag = KINSol(kin, u, opt.line_search ? KIN_LINESEARCH : KIN_NONE, us, fs);
+  long iterations = 0;
+  KINGetNumNonlinSolvIters(kin, &iterations);
+  double fnorm = NAN;
+  KINGetFuncNorm(kin, &fnorm);
+  const Eigen::VectorXd x_new = view(u);
+  KINFree(&kin);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(u);
+  N_VDestroy(us);
+  N_VDestroy(fs);
+  a.record.newton_iterations = int(iterations);
+  const bool ok = flag >= 0 && std::isfinite(fnorm) && fnorm <= 10 * opt.tolerance && x_new.allFinite();
+  if (!ok && a.failure.empty())
+    a.failure = flag == KIN_MAXITER_REACHED ? fmt::format("no convergence in {} Newton iterations", opt.max_newton_iterations)
+                : flag == KIN_LINESEARCH_NONCONV ? "the line search found no decrease"
+                                                 : fmt::format("KINSOL stopped (flag {}, |R| = {:.3g})", flag, fnorm);
+  if (ok) {
+    a.record.residual_norms.push_back(fnorm);
+    a.record.active_set_sizes.push_back(a.problem.active_set_size(x_new));
+    x = x_new;
+  }
+  return ok;
+}
+
+}  // namespace
+
+LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& opt,
+                                   const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
+  LoadSteppingSummary summary;
+  const auto t_start = Clock::now();
+  SUNContext ctx;
+  SUNContext_Create(nullptr, &ctx);
+  Eigen::SparseMatrix<double> J;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  bool analyzed = false;
+
+  double t = 0;
+  double dt = opt.first_increment > 0 ? opt.first_increment : 1.0 / std::max(opt.steps, 1);
+  Eigen::VectorXd x_old = x;
+  double dt_old = 0;
+  int cut_backs = 0;
+  while (t < 1.0 - 1e-12) {
+    dt = std::min({dt, 1.0 - t, opt.max_increment});
+    bool done = false;
+    std::string why;
+    // First try with the step extrapolated from the last increment, then
+    // from the last converged state as it is.
+    for (int attempt = 0; attempt < 2 && !done; ++attempt) {
+      if (attempt == 1 && dt_old == 0) break;
+      Eigen::VectorXd x_try = x;
+      if (attempt == 0 && dt_old > 0) x_try += (x - x_old) * (dt / dt_old);
+      Attempt a{problem, t + dt, 1.0, J, lu, analyzed, {}, {}, {}};
+      a.record.load_factor = t + dt;
+      if (solve_step(a, x_try, ctx, opt)) {
+        a.record.cut_backs = cut_backs;
+        x_old = x;
+        x = x_try;
+        dt_old = dt;
+        t += dt;
+        summary.steps.push_back(a.record);
+        if (!opt.quiet)
+          fmt::print(stderr, "step {:3d}: load factor {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}\n",
+                     summary.steps.size(), t, dt, a.record.newton_iterations, a.record.residual_norms.back(),
+                     a.record.active_set_sizes.back(), cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
+        if (on_step) on_step(summary.steps.back(), x);
+        if (a.record.newton_iterations <= opt.fast_iterations) dt *= opt.growth;
+        cut_backs = 0;
+        done = true;
+      } else {
+        why = a.failure;
+      }
+    }
+    if (done) continue;
+    ++cut_backs;
+    dt *= 0.5;
+    if (!opt.quiet) fmt::print(stderr, "         load factor {:.4f} failed ({}): cut back to increment {:.3g}\n", t + 2 * dt, why, dt);
+    if (dt < opt.min_increment) {
+      summary.status = fmt::format("stopped at load factor {:.6g}: {} even with an increment below {:.3g}", t, why,
+                                   opt.min_increment);
+      break;
+    }
+  }
+  SUNContext_Free(&ctx);
+  summary.newton_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  return summary;
+}
+
+}  // namespace igac

@@ -1,0 +1,77 @@
+// Load stepping with Newton's method driven by SUNDIALS KINSOL.
+//
+// The driver knows a nonlinear problem only through NonlinearProblem: the
+// residual R(x; t) at load factor t and its Jacobian (same sparsity pattern on
+// every call).  Contact enters through that interface (its multipliers are
+// part of x and its active set is decided inside the residual: a semismooth
+// Newton method), so engine/ never includes contact/.
+//
+// KINSOL runs Newton (with or without its line search) through a direct
+// linear solver that wraps UMFPACK (the saddle-point Jacobian of contact is
+// indefinite and, with the active-set rows, unsymmetric); the symbolic
+// analysis is done once and reused for every iteration and load step.
+//
+// Steps: the case gives a number of steps (or a first increment).  A step
+// that fails — no convergence within the iteration limit, an inadmissible
+// state (det F <= 0) in the residual, an active set that cycles — is cut
+// back (increment halved) and retried from the last converged state; a step
+// that converged in few iterations lets the next one grow; below the minimum
+// increment the run ends with a clear status.  Nothing non-finite is kept.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace igac {
+
+class NonlinearProblem {
+ public:
+  virtual ~NonlinearProblem() = default;
+  virtual int size() const = 0;
+  // R(x; t).  Return false for an inadmissible state (recoverable).
+  virtual bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) = 0;
+  // dR/dx at (x; t), always with the same pattern.  False: inadmissible.
+  virtual bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) = 0;
+  // Size of the contact active set at x (0 without contact), for reports.
+  virtual int active_set_size(const Eigen::VectorXd& x) const { return 0; }
+  // A fingerprint of the active set at x, to detect cycling.
+  virtual std::vector<char> active_set(const Eigen::VectorXd& x) const { return {}; }
+  // Force scale at (x; t) for the relative residual (e.g. |f_ext| + |f_int|).
+  virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
+};
+
+struct LoadSteppingOptions {
+  int steps = 10;                  // initial increment 1/steps ...
+  double first_increment = 0;      // ... unless this is > 0
+  double min_increment = 1e-6;
+  double max_increment = 1.0;
+  int max_newton_iterations = 30;
+  int fast_iterations = 5;         // a step this fast lets the next grow
+  double growth = 1.5;
+  double tolerance = 1e-9;         // on |R|_inf / force scale
+  bool line_search = true;         // KINSOL's KIN_LINESEARCH, else KIN_NONE
+  bool quiet = false;
+};
+
+struct LoadStepRecord {
+  double load_factor = 0;
+  int newton_iterations = 0;
+  std::vector<double> residual_norms;  // relative, per Newton iteration, last = converged
+  std::vector<int> active_set_sizes;   // per Newton iteration
+  int cut_backs = 0;                   // failed attempts before this step converged
+};
+
+struct LoadSteppingSummary {
+  std::string status = "converged";
+  std::vector<LoadStepRecord> steps;
+  double newton_seconds = 0;
+};
+
+// Runs from x (the state at t = 0) to t = 1; x holds the last converged
+// state on return.  `on_step` is called after each converged step.
+LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& options,
+                                   const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step);
+
+}  // namespace igac

@@ -1,0 +1,193 @@
+// The large-deformation path of `igac run`: a FiniteStrainProblem driven by
+// the load-stepping Newton driver, with the contact report in the reference
+// and the deformed configuration and a load curve per step.
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "contact/finite_strain_problem.hpp"
+#include "engine/follower_pressure.hpp"
+#include "engine/linear_static.hpp"
+#include "io/case_run.hpp"
+
+namespace igac {
+namespace {
+using Clock = std::chrono::steady_clock;
+
+std::vector<Face> faces_named(const Model& m, const std::vector<std::string>& names) {
+  std::vector<Face> out;
+  for (const auto& n : names) {
+    const auto f = *find_faces(m.geometry, n);
+    out.insert(out.end(), f.begin(), f.end());
+  }
+  return out;
+}
+
+// Mean of the last displacement component over faces (reference measure).
+double mean_face_displacement(const NurbsPatch& patch, const std::vector<Face>& faces, const Eigen::MatrixXd& u) {
+  const int dim = patch.space_dim();
+  double s = 0, area = 0;
+  for (const Face& f : faces) {
+    const PatchQuadrature q = face_quadrature(patch, f, gauss_points_for(patch.degree(0)));
+    ElementData ed;
+    for (int e = 0; e < q.num_elements(); ++e) {
+      q.evaluate(e, ed, false);
+      for (int k = 0; k < ed.JxW.size(); ++k) {
+        double v = 0;
+        for (size_t a = 0; a < ed.cps.size(); ++a) v += ed.N(k, a) * u(ed.cps[a], dim - 1);
+        s += v * ed.JxW[k];
+        area += ed.JxW[k];
+      }
+    }
+  }
+  return area > 0 ? s / area : 0.0;
+}
+
+// Contact report of state x at load factor t.
+void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const Eigen::VectorXd& x, RunResult& r) {
+  const NurbsPatch& patch = m.geometry.patch;
+  const ContactFace& cf = *m.contact_face;
+  Eigen::VectorXd res;
+  problem.residual(t, x, res);  // refreshes the active set at x
+  auto c = std::make_unique<ContactResult>();
+  const int n = problem.num_displacements(), mm = problem.num_multipliers();
+  c->solution.u = x.head(n);
+  c->solution.lambda = x.tail(mm);
+  c->solution.active = problem.active_set(x);
+  c->solution.weighted_gap = problem.weighted_gaps(t, x);
+  c->solution.converged = true;
+  c->op.weights = problem.multiplier_weights();
+  std::tie(c->X0, c->normal) = initial_contact_point(patch, cf, *m.obstacle);
+  c->pressure = std::make_unique<ContactPressure>(patch, cf, c->solution.lambda, c->op.weights, c->solution.active,
+                                                  c->X0, c->normal);
+  c->report = c->pressure->report();
+  // Deformed extent: the face point at the reference half width, displaced.
+  const PatchQuadrature q = cf.quadrature(10);
+  ElementData ed;
+  double best = std::numeric_limits<double>::infinity();
+  int K_max = 0;
+  for (int K = 0; K < mm; ++K)
+    if (-c->solution.lambda[K] > -c->solution.lambda[K_max]) K_max = K;
+  for (int e = 0; e < q.num_elements(); ++e) {
+    q.evaluate(e, ed, false);
+    for (int k = 0; k < ed.JxW.size(); ++k) {
+      const Eigen::VectorXd X = ed.X.row(k).transpose();
+      const double d = std::abs(c->pressure->r_of(X) - c->report.half_width);
+      if (d < best) {
+        best = d;
+        Eigen::VectorXd xk = X;
+        for (size_t a = 0; a < ed.cps.size(); ++a) xk += ed.N(k, a) * r.u.row(ed.cps[a]).transpose();
+        r.half_width_deformed = c->pressure->r_of(xk);
+      }
+    }
+  }
+  // Cauchy pressure at the most pressed multiplier: nominal / surface stretch.
+  {
+    const Eigen::VectorXd xi = cf.space.anchor(K_max);
+    Eigen::MatrixXd uf(cf.face_cps.size(), patch.space_dim());
+    for (size_t a = 0; a < cf.face_cps.size(); ++a) uf.row(a) = r.u.row(cf.face_cps[a]);
+    Eigen::MatrixXd dudxi;
+    cf.face_patch.field(uf, xi, &dudxi);
+    const Eigen::MatrixXd T0 = cf.face_patch.jacobian(xi), T = T0 + dudxi;
+    const double stretch = face_area_vector(cf.face, T).norm() / face_area_vector(cf.face, T0).norm();
+    r.max_pressure_cauchy = c->report.max_pressure / stretch;
+  }
+  r.contact = std::move(c);
+}
+
+}  // namespace
+
+RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
+  RunResult r;
+  const auto t_start = Clock::now();
+  const NurbsPatch& patch = m.geometry.patch;
+  FiniteStrainSetup setup;
+  setup.patch = &patch;
+  setup.dofs = m.dofs.get();
+  setup.law = m.law.get();
+  for (const auto& p : m.spec.pressure) setup.pressures.push_back({faces_named(m, p.faces), p.value});
+  setup.follower_pressure = m.spec.loading.follower_pressure;
+  setup.contact_face = m.contact_face.get();
+  setup.obstacle = m.obstacle.get();
+  setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+  FiniteStrainProblem problem(setup);
+
+  const RigidModes modes = free_rigid_modes(patch, *m.dofs);
+  if (modes.modes.cols() > 0 && !m.obstacle)
+    throw std::runtime_error(fmt::format(
+        "the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
+        modes.modes.cols()));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
+  problem.activate_nearest(x, int(modes.modes.cols()));
+  r.applied_force = pressure_resultant(m);
+
+  // the face whose displacement the load curve follows
+  std::vector<Face> loaded;
+  for (const auto& p : m.spec.pressure) {
+    const auto f = faces_named(m, p.faces);
+    loaded.insert(loaded.end(), f.begin(), f.end());
+  }
+  if (loaded.empty())
+    for (const auto& d : m.spec.dirichlet)
+      if (d.value != 0) {
+        const auto f = faces_named(m, d.faces);
+        loaded.insert(loaded.end(), f.begin(), f.end());
+      }
+
+  LoadSteppingOptions opt;
+  opt.steps = m.spec.loading.steps;
+  opt.first_increment = m.spec.loading.first_increment;
+  opt.min_increment = m.spec.loading.min_increment;
+  opt.max_newton_iterations = m.spec.loading.max_newton_iterations;
+  opt.line_search = m.spec.loading.line_search;
+  opt.quiet = m.quiet;
+  auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
+    out.u = problem.displacement(t, xs);
+    if (m.contact_face) fill_contact(m, problem, t, xs, out);
+    LoadCurvePoint p;
+    p.load_factor = t;
+    p.contact_force = out.contact ? out.contact->report.total_force : 0.0;
+    p.face_displacement = mean_face_displacement(patch, loaded, out.u);
+    return p;
+  };
+  const LoadSteppingSummary summary =
+      run_load_steps(problem, x, opt, [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
+        RunResult step;
+        r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
+        if (on_step) on_step(step, rec.load_factor);
+      });
+  r.load_steps = summary;
+  r.status = summary.status;
+  r.timing.contact = summary.newton_seconds;
+  const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
+  snapshot(t_final, x, r);
+  if (r.contact && setup.follower_pressure && !setup.pressures.empty()) {
+    // the follower load's resultant along the obstacle normal, on the deformed faces
+    Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());
+    for (const auto& p : setup.pressures)
+      add_follower_pressure(patch, *m.dofs, p.faces, t_final * p.value, r.u, f_ext, nullptr);
+    const int dim = patch.space_dim();
+    std::vector<int> component(problem.num_displacements(), 0);
+    for (int i = 0; i < m.dofs->num_dofs(); ++i)
+      if (m.dofs->equation(i) >= 0) component[m.dofs->equation(i)] = i % dim;
+    Eigen::VectorXd resultant = Eigen::VectorXd::Zero(dim);
+    for (int e = 0; e < f_ext.size(); ++e) resultant[component[e]] += f_ext[e];
+    r.applied_force = std::abs(resultant.dot(r.contact->normal));
+  }
+  if (r.contact && m.spec.reference == "hertz") {
+    double P = 0;
+    for (const auto& p : m.spec.pressure) P += p.value;
+    const int dim = patch.space_dim();
+    r.hertz = dim == 2 ? hertz_cylinder(m.spec.radius, P, m.spec.E, m.spec.nu)
+                       : hertz_sphere(m.spec.radius, P, m.spec.E, m.spec.nu);
+    const HertzSolution h = *r.hertz;
+    const ContactPressure& cp = *r.contact->pressure;
+    r.pressure_error = cp.l2_error(*m.contact_face,
+                                   [&](const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
+                                   std::max(10, patch.degree(0) + 1));
+  }
+  r.timing.total = std::chrono::duration<double>(Clock::now() - t_start).count();
+  return r;
+}
+
+}  // namespace igac

@@ -1,0 +1,191 @@
+// Large deformation: the full Newton tangent (total Lagrangian + follower
+// pressure + contact with a curved obstacle) against central differences of
+// the residual, quadratic convergence once the active set settles, the
+// small-load limit (Neo-Hookean reproduces linear Hertz), the shipped cases,
+// and the load-stepping driver's failure path (clear status, no NaN).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "contact/finite_strain_problem.hpp"
+#include "engine/linear_static.hpp"
+#include "io/case_run.hpp"
+
+using namespace igac;
+
+namespace {
+
+const std::string kSource = IGAC_SOURCE_DIR;
+
+Model model_of(const std::string& path, int refine = 0) {
+  CaseSpec spec = read_case(path);
+  apply_overrides(spec, {}, refine);
+  Model m = build_model(spec);
+  m.quiet = true;
+  return m;
+}
+
+FiniteStrainSetup setup_of(const Model& m) {
+  FiniteStrainSetup s;
+  s.patch = &m.geometry.patch;
+  s.dofs = m.dofs.get();
+  s.law = m.law.get();
+  for (const auto& p : m.spec.pressure) {
+    PressureLoad pl;
+    for (const auto& n : p.faces) {
+      const auto f = *find_faces(m.geometry, n);
+      pl.faces.insert(pl.faces.end(), f.begin(), f.end());
+    }
+    pl.value = p.value;
+    s.pressures.push_back(pl);
+  }
+  s.follower_pressure = m.spec.loading.follower_pressure;
+  s.contact_face = m.contact_face.get();
+  s.obstacle = m.obstacle.get();
+  s.complementarity_scale = m.spec.E / m.mesh_size;
+  return s;
+}
+
+}  // namespace
+
+TEST(FiniteStrainTangent, MatchesCentralDifferencesWithActiveCurvedContact) {
+  // Central differences of a smooth residual: error ~ h^2 |R'''| plus
+  // round-off |R| eps / h; h = 1e-6 relative gives ~1e-8 of the column.
+  constexpr double kStep = 1e-6;
+  constexpr double kTolerance = 1e-5;  // relative to the column's largest entry
+  const Model m = model_of(kSource + "/tests/data/finite_strain_curved_obstacle.toml");
+  FiniteStrainProblem problem(setup_of(m));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
+  problem.activate_nearest(x, 1);
+  LoadSteppingOptions opt;
+  opt.steps = 4;
+  opt.quiet = true;
+  opt.max_increment = 0.25;
+  const auto summary = run_load_steps(problem, x, opt, {});
+  ASSERT_EQ(summary.status, "converged");
+  const double t = summary.steps.back().load_factor;
+  Eigen::SparseMatrix<double> J;
+  ASSERT_TRUE(problem.jacobian(t, x, J));
+  Eigen::VectorXd r0;
+  ASSERT_TRUE(problem.residual(t, x, r0));
+  const auto active = problem.active_set(x);
+  ASSERT_GE(std::count(active.begin(), active.end(), 1), 3) << "the contact zone must be active";
+  const Eigen::MatrixXd Jd = Eigen::MatrixXd(J);
+  // every multiplier column and displacement columns near the contact face
+  std::vector<int> columns;
+  for (int j = 0; j < problem.size(); j += (j < problem.num_displacements() ? 7 : 1)) columns.push_back(j);
+  int checked = 0;
+  for (int j : columns) {
+    const double h = kStep * std::max(1.0, std::abs(x[j]));
+    Eigen::VectorXd xp = x, xm = x, rp, rm;
+    xp[j] += h;
+    xm[j] -= h;
+    ASSERT_TRUE(problem.residual(t, xp, rp));
+    const auto ap = problem.active_set(xp);
+    ASSERT_TRUE(problem.residual(t, xm, rm));
+    const auto am = problem.active_set(xm);
+    if (ap != active || am != active) continue;  // across the semismooth kink: no derivative to compare
+    const Eigen::VectorXd fd = (rp - rm) / (2 * h);
+    const double scale = std::max(Jd.col(j).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((fd - Jd.col(j)).cwiseAbs().maxCoeff() / scale, kTolerance) << "column " << j;
+    ++checked;
+  }
+  EXPECT_GT(checked, int(columns.size()) * 9 / 10);
+}
+
+TEST(FiniteStrainTangent, ChecksCanFail) {
+  // The same comparison with the curvature term of the gap dropped (a plane's
+  // zero dn/dx given to a curved obstacle) must fail: the check has teeth.
+  const Model m = model_of(kSource + "/tests/data/finite_strain_curved_obstacle.toml");
+  FiniteStrainSetup wrong = setup_of(m);
+  const RigidPlane tangent_plane(Eigen::Vector2d(0, -1), Eigen::Vector2d(0, 1));
+  FiniteStrainProblem right_problem(setup_of(m));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(right_problem.size());
+  right_problem.activate_nearest(x, 1);
+  LoadSteppingOptions opt;
+  opt.quiet = true;
+  opt.steps = 4;
+  ASSERT_EQ(run_load_steps(right_problem, x, opt, {}).status, "converged");
+  Eigen::SparseMatrix<double> J_right, J_plane;
+  ASSERT_TRUE(right_problem.jacobian(1.0, x, J_right));
+  wrong.obstacle = &tangent_plane;
+  FiniteStrainProblem plane_problem(wrong);
+  ASSERT_TRUE(plane_problem.jacobian(1.0, x, J_plane));
+  // the displacement block differs by the curvature term of the sphere
+  const double diff = (Eigen::MatrixXd(J_right) - Eigen::MatrixXd(J_plane)).topLeftCorner(right_problem.num_displacements(), right_problem.num_displacements()).cwiseAbs().maxCoeff();
+  EXPECT_GT(diff, 1e-6);
+}
+
+TEST(FiniteStrainNewton, ConvergesQuadraticallyOnceTheActiveSetSettles) {
+  // r_{k+1} ~ C r_k^2: log r_{k+1} / log r_k >= 1.8 on the last pair of each
+  // step whose residuals lie between 1e-1 (asymptotic) and 1e-11 (above the
+  // round-off floor of |R|/F ~ 1e-13).
+  constexpr double kMinOrder = 1.8;
+  Model m = model_of(kSource + "/cases/hertz2d_neohookean_pressure_study.toml", 1);
+  const RunResult r = solve_model(m);
+  ASSERT_EQ(r.status, "converged");
+  int pairs = 0;
+  for (const auto& st : r.load_steps->steps) {
+    const auto& n = st.residual_norms;
+    for (int k = int(n.size()) - 1; k >= 1; --k) {
+      if (n[k] < 1e-11 || n[k - 1] > 1e-1 || n[k - 1] < 1e-11) continue;
+      EXPECT_GE(std::log(n[k]) / std::log(n[k - 1]), kMinOrder)
+          << "step at t = " << st.load_factor << ": " << n[k - 1] << " -> " << n[k];
+      ++pairs;
+      break;
+    }
+  }
+  EXPECT_GE(pairs, int(r.load_steps->steps.size()) / 2);
+}
+
+TEST(FiniteStrainHertz, NeoHookeanAtSmallLoadReproducesLinearHertz) {
+  // At P = 0.003 strains are ~1e-2: Neo-Hookean and linear elasticity agree
+  // to that order; DESIGN asks for a and p0 within 1 % of the linear values.
+  constexpr double kTolerance = 0.01;
+  CaseSpec lin = read_case(kSource + "/cases/hertz2d.toml");
+  CaseSpec nh = lin;
+  nh.model = "neo_hookean";
+  nh.loading.steps = 2;
+  nh.loading.follower_pressure = false;  // the linear case's load is dead
+  Model ml = build_model(lin), mn = build_model(nh);
+  mn.quiet = true;
+  const RunResult rl = solve_model(ml), rn = solve_model(mn);
+  ASSERT_EQ(rn.status, "converged");
+  EXPECT_NEAR(rn.contact->report.max_pressure / rl.contact->report.max_pressure, 1.0, kTolerance);
+  EXPECT_NEAR(rn.contact->report.half_width / rl.contact->report.half_width, 1.0, kTolerance);
+  // and both against Hertz (linear values within their own tolerances)
+  EXPECT_NEAR(rn.contact->report.max_pressure / 0.045812, 1.0, 0.02);
+}
+
+TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
+  // total contact force = the follower load's resultant, to the Newton tolerance
+  constexpr double kForceTolerance = 1e-7;
+  for (const char* name : {"hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement"}) {
+    Model m = model_of(kSource + "/cases/" + name + ".toml");
+    const RunResult r = solve_model(m);
+    EXPECT_EQ(r.status, "converged") << name;
+    ASSERT_TRUE(r.contact) << name;
+    EXPECT_TRUE(r.u.allFinite()) << name;
+    EXPECT_GT(r.contact->report.active, 10) << name;
+    if (r.applied_force > 0)
+      EXPECT_NEAR(r.contact->report.total_force / r.applied_force, 1.0, kForceTolerance) << name;
+    for (const auto& st : r.load_steps->steps) EXPECT_LE(st.newton_iterations, m.spec.loading.max_newton_iterations);
+    EXPECT_EQ(r.load_curve.size(), r.load_steps->steps.size());
+  }
+}
+
+TEST(FiniteStrainDriver, GivesUpWithAClearStatusAndNoNaN) {
+  // One Newton iteration per step cannot converge the contact problem: the
+  // driver must cut back down to the minimum increment and stop cleanly.
+  CaseSpec spec = read_case(kSource + "/cases/hertz2d_neohookean_pressure_study.toml");
+  spec.loading.max_newton_iterations = 1;
+  spec.loading.min_increment = 0.02;
+  Model m = build_model(spec);
+  m.quiet = true;
+  const RunResult r = solve_model(m);
+  EXPECT_NE(r.status, "converged");
+  EXPECT_NE(r.status.find("stopped at load factor"), std::string::npos) << r.status;
+  EXPECT_TRUE(r.u.allFinite());
+}
