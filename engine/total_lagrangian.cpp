@@ -1,0 +1,439 @@
+#include "engine/total_lagrangian.hpp"
+
+#include "engine/quadrature.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <fmt/format.h>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+namespace igac {
+
+namespace {
+
+int max_degree(const NurbsPatch& patch) {
+  int p = 0;
+  for (int d = 0; d < patch.param_dim(); ++d) p = std::max(p, patch.degree(d));
+  return p;
+}
+
+// Sparsity pattern (free numbering, values zero): equations couple when their
+// control points share an element.  Built per node rather than per element
+// pair, so the temporary memory stays at the size of the result: a node is a
+// control point with its free equations, coincident control points of a
+// collapsed face (same equations) being one node, keyed by its first free
+// equation.  Symmetric, so column r's rows are row r's columns.
+Eigen::SparseMatrix<double> coupling_pattern(const PatchQuadrature& quad, const DofMap& dofs) {
+  const int dim = dofs.dim(), n_free = dofs.num_free();
+  const int n_cp = dofs.num_dofs() / dim, n_el = quad.num_elements(), nl = quad.num_local();
+
+  // element -> control points, and control point -> elements (CSR)
+  std::vector<int> el_cps(size_t(n_el) * nl), cps;
+  std::vector<int> cp_start(n_cp + 1, 0);
+  for (int e = 0; e < n_el; ++e) {
+    quad.control_points(e, cps);
+    std::copy(cps.begin(), cps.end(), el_cps.begin() + size_t(e) * nl);
+    for (int a : cps) ++cp_start[a + 1];
+  }
+  for (int a = 0; a < n_cp; ++a) cp_start[a + 1] += cp_start[a];
+  std::vector<int> cp_els(cp_start[n_cp]), fill(cp_start.begin(), cp_start.end() - 1);
+  for (int e = 0; e < n_el; ++e)
+    for (int k = 0; k < nl; ++k) cp_els[fill[el_cps[size_t(e) * nl + k]]++] = e;
+
+  // node (first free equation) -> its control points
+  auto first_free = [&](int a) {
+    for (int i = 0; i < dim; ++i)
+      if (dofs.equation(a * dim + i) >= 0) return dofs.equation(a * dim + i);
+    return -1;
+  };
+  std::vector<std::vector<int>> node_cps(n_free);
+  for (int a = 0; a < n_cp; ++a)
+    if (const int r = first_free(a); r >= 0) node_cps[r].push_back(a);
+
+  // per node: the sorted free equations of every control point it meets
+  std::vector<std::vector<int>> cols(n_free);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int r = 0; r < n_free; ++r) {
+    auto& v = cols[r];
+    for (int a : node_cps[r])
+      for (int k = cp_start[a]; k < cp_start[a + 1]; ++k) {
+        const int* c = el_cps.data() + size_t(cp_els[k]) * nl;
+        for (int b = 0; b < nl; ++b)
+          for (int j = 0; j < dim; ++j)
+            if (const int q = dofs.equation(c[b] * dim + j); q >= 0) v.push_back(q);
+      }
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+
+  // every free equation of a node has the node's columns
+  std::vector<int> node_of(n_free, -1);
+  for (int r = 0; r < n_free; ++r)
+    for (int a : node_cps[r])
+      for (int i = 0; i < dim; ++i)
+        if (const int q = dofs.equation(a * dim + i); q >= 0) node_of[q] = r;
+  Eigen::SparseMatrix<double> K(n_free, n_free);
+  std::vector<Eigen::Index> outer(n_free + 1, 0);
+  for (int q = 0; q < n_free; ++q) outer[q + 1] = outer[q] + Eigen::Index(cols[node_of[q]].size());
+  K.resizeNonZeros(outer[n_free]);
+  for (int q = 0; q <= n_free; ++q) K.outerIndexPtr()[q] = int(outer[q]);
+  for (int q = 0; q < n_free; ++q) std::copy(cols[node_of[q]].begin(), cols[node_of[q]].end(), K.innerIndexPtr() + outer[q]);
+  std::fill(K.valuePtr(), K.valuePtr() + outer[n_free], 0.0);
+  return K;
+}
+
+// Elements in colours such that no two elements of one colour write to the
+// same free equation (greedy colouring of the element graph; coincident
+// control points of a collapsed face write to one equation, so conflicts are
+// counted in equations, not control points).  Threads then add straight into
+// K and f_int, colour by colour: no per-thread copies of the matrix (whose
+// memory would grow with the thread count) and no reduction.  A tensor
+// mesh of degree p needs (p+1)^dim colours.
+std::vector<std::vector<int>> colour_elements(const PatchQuadrature& quad, const DofMap& dofs) {
+  const int dim = dofs.dim(), n_free = dofs.num_free(), n_el = quad.num_elements();
+  // element -> the equations it writes (one per node: its first free one)
+  std::vector<int> start(n_el + 1, 0), keys, cps;
+  for (int e = 0; e < n_el; ++e) {
+    quad.control_points(e, cps);
+    const size_t first = keys.size();
+    for (int a : cps)
+      for (int i = 0; i < dim; ++i)
+        if (const int q = dofs.equation(a * dim + i); q >= 0) {
+          keys.push_back(q);
+          break;
+        }
+    std::sort(keys.begin() + first, keys.end());
+    keys.erase(std::unique(keys.begin() + first, keys.end()), keys.end());
+    start[e + 1] = int(keys.size());
+  }
+  // equation -> elements (CSR)
+  std::vector<int> key_start(n_free + 1, 0);
+  for (int k : keys) ++key_start[k + 1];
+  for (int q = 0; q < n_free; ++q) key_start[q + 1] += key_start[q];
+  std::vector<int> key_els(keys.size()), fill(key_start.begin(), key_start.end() - 1);
+  for (int e = 0; e < n_el; ++e)
+    for (int k = start[e]; k < start[e + 1]; ++k) key_els[fill[keys[k]]++] = e;
+  std::vector<int> colour(n_el, -1), stamp;  // stamp[c] == e: colour c taken by a neighbour of e
+  std::vector<std::vector<int>> out;
+  for (int e = 0; e < n_el; ++e) {
+    for (int k = start[e]; k < start[e + 1]; ++k)
+      for (int j = key_start[keys[k]]; j < key_start[keys[k] + 1]; ++j)
+        if (const int c = colour[key_els[j]]; c >= 0) stamp[c] = e;
+    int c = 0;
+    while (c < int(stamp.size()) && stamp[c] == e) ++c;
+    if (c == int(stamp.size())) {
+      stamp.push_back(-1);
+      out.emplace_back();
+    }
+    colour[e] = c;
+    out[c].push_back(e);
+  }
+  return out;
+}
+
+bool has_structure(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& pattern) {
+  if (K.rows() != pattern.rows() || K.cols() != pattern.cols() || !K.isCompressed() ||
+      K.nonZeros() != pattern.nonZeros())
+    return false;
+  return std::equal(pattern.outerIndexPtr(), pattern.outerIndexPtr() + pattern.outerSize() + 1, K.outerIndexPtr()) &&
+         std::equal(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros(), K.innerIndexPtr());
+}
+
+// Element values of a volume patch with fixed-size Jacobians (the kernel of
+// PatchQuadrature::evaluate, same element and control-point order): per
+// Gauss point the physical gradients dN_a/dX = J^{-T} dR_a/dxi and
+// JxW = det J * w.  It runs in every Newton iteration, so nothing here
+// allocates once the buffers have their size, and 2D works with 2x2 matrices.
+template <int dim>
+struct ElementGeometry {
+  std::vector<int> cps;         // control points
+  std::vector<double> dN;       // [(q * n_loc + a) * dim + J] = dN_a / dX_J at point q
+  std::vector<double> JxW;      // per point
+  double min_det_J = 0;
+  // scratch
+  std::vector<double> w, B, dB;  // weights; B_a, dB_a/dxi_d ([a * dim + d]) per point
+  std::vector<Eigen::Matrix<double, dim, 1>> X;  // control points
+};
+
+template <int dim>
+void evaluate_element(const NurbsPatch& patch, const std::array<UnivariateTable, 3>& t, int e,
+                      ElementGeometry<dim>& g) {
+  std::array<int, dim> np, nq, ne, ei;
+  int nl = 1, n_pts = 1;
+  for (int d = 0; d < dim; ++d) {
+    np[d] = t[d].degree + 1;
+    nq[d] = t[d].n_points;
+    ne[d] = int(t[d].span.size());
+    nl *= np[d];
+    n_pts *= nq[d];
+  }
+  for (int d = 0, r = e; d < dim; ++d) {  // e = e0 + n0 (e1 + n1 e2), as PatchQuadrature
+    ei[d] = r % ne[d];
+    r /= ne[d];
+  }
+  g.cps.resize(nl);
+  g.dN.resize(size_t(n_pts) * nl * dim);
+  g.JxW.resize(n_pts);
+  g.w.resize(nl);
+  g.B.resize(nl);
+  g.dB.resize(nl * dim);
+  g.X.resize(nl);
+  for (int a = 0; a < nl; ++a) {
+    std::array<int, 3> gi{0, 0, 0};
+    for (int d = 0, r = a; d < dim; ++d) {
+      gi[d] = t[d].span[ei[d]] - t[d].degree + r % np[d];
+      r /= np[d];
+    }
+    const int cp = patch.index(gi);
+    g.cps[a] = cp;
+    g.w[a] = patch.weights()[cp];
+    g.X[a] = patch.points().row(cp).transpose();
+  }
+  g.min_det_J = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < n_pts; ++q) {
+    std::array<int, dim> row;
+    double wq = 1;
+    for (int d = 0, r = q; d < dim; ++d) {
+      row[d] = ei[d] * nq[d] + r % nq[d];
+      r /= nq[d];
+      wq *= t[d].weight[row[d]];
+    }
+    // B_a = w_a prod_d N_d, dB_a/dxi_d with N_d replaced by its derivative
+    double W = 0;
+    Eigen::Matrix<double, dim, 1> dW = Eigen::Matrix<double, dim, 1>::Zero();
+    for (int a = 0; a < nl; ++a) {
+      std::array<double, dim> v, dv;
+      for (int d = 0, r = a; d < dim; ++d) {
+        const int k = row[d] * np[d] + r % np[d];
+        r /= np[d];
+        v[d] = t[d].value[k];
+        dv[d] = t[d].deriv[k];
+      }
+      double b = g.w[a];
+      for (int d = 0; d < dim; ++d) b *= v[d];
+      g.B[a] = b;
+      W += b;
+      for (int d = 0; d < dim; ++d) {
+        double db = g.w[a];
+        for (int c = 0; c < dim; ++c) db *= c == d ? dv[c] : v[c];
+        g.dB[a * dim + d] = db;
+        dW[d] += db;
+      }
+    }
+    // rational derivatives dR_a/dxi (stored in dB) and J = dX/dxi
+    const double iW = 1.0 / W;
+    Eigen::Matrix<double, dim, dim> J = Eigen::Matrix<double, dim, dim>::Zero();
+    for (int a = 0; a < nl; ++a) {
+      const double R = g.B[a] * iW;
+      for (int d = 0; d < dim; ++d) {
+        const double dR = (g.dB[a * dim + d] - R * dW[d]) * iW;
+        g.dB[a * dim + d] = dR;
+        J.col(d) += dR * g.X[a];
+      }
+    }
+    const double det = J.determinant();
+    g.min_det_J = std::min(g.min_det_J, det);
+    g.JxW[q] = det * wq;
+    const Eigen::Matrix<double, dim, dim> Jinv = J.inverse();  // closed form for 2x2, 3x3
+    double* dN = g.dN.data() + size_t(q) * nl * dim;
+    for (int a = 0; a < nl; ++a)
+      for (int c = 0; c < dim; ++c) {  // dN_a/dX_c = sum_d dR_a/dxi_d (J^{-1})_dc
+        double s = 0;
+        for (int d = 0; d < dim; ++d) s += g.dB[a * dim + d] * Jinv(d, c);
+        dN[a * dim + c] = s;
+      }
+  }
+}
+
+// Per-thread scratch of the element kernel: sized on the first element,
+// reused afterwards (every element of a patch has the same size).
+template <int dim>
+struct Workspace {
+  ElementGeometry<dim> geo;
+  Eigen::Matrix<double, Eigen::Dynamic, dim> ue;      // local displacements, n_loc x dim
+  Eigen::VectorXd fe;                                 // element internal force
+  Eigen::MatrixXd Ke;                                 // element tangent
+  Eigen::Matrix<double, Eigen::Dynamic, dim * dim> G; // (a*dim+i, k*dim+L): w sum_J dN_aJ A_iJkL
+  std::vector<int> eq;                                // free equation per local dof, or -1
+};
+
+// Element internal force and (when `tangent`) the tangent at the Gauss
+// points of ws.geo; false when F is inadmissible at a point.
+template <int dim>
+bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
+  const ElementGeometry<dim>& geo = ws.geo;
+  const int nl = int(geo.cps.size()), nq = int(geo.JxW.size()), nd = nl * dim;
+  ws.ue.resize(nl, dim);
+  for (int a = 0; a < nl; ++a) ws.ue.row(a) = u.row(geo.cps[a]);
+  ws.fe.setZero(nd);
+  if (tangent) {
+    ws.Ke.setZero(nd, nd);
+    ws.G.resize(nd, dim * dim);
+  }
+  DimMatrix<dim> F, P;
+  TangentMatrix<dim> A;
+  for (int q = 0; q < nq; ++q) {
+    const double* dN = geo.dN.data() + size_t(q) * nl * dim;  // dN[a*dim+J] = dN_a/dX_J
+    F.setIdentity();
+    for (int a = 0; a < nl; ++a)
+      for (int J = 0; J < dim; ++J)
+        for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
+    if (!F.allFinite() || !(F.determinant() > 0)) return false;
+    if (!law.evaluate(F, P, tangent ? &A : nullptr)) return false;
+    const double w = geo.JxW[q];
+    const DimMatrix<dim> Pw = w * P;
+    for (int a = 0; a < nl; ++a)
+      for (int i = 0; i < dim; ++i) {
+        double s = 0;
+        for (int J = 0; J < dim; ++J) s += Pw(i, J) * dN[a * dim + J];
+        ws.fe[a * dim + i] += s;
+      }
+    if (!tangent) continue;
+    const TangentMatrix<dim> Aw = w * A;
+    for (int a = 0; a < nl; ++a)
+      for (int i = 0; i < dim; ++i)
+        for (int kL = 0; kL < dim * dim; ++kL) {
+          double s = 0;
+          for (int J = 0; J < dim; ++J) s += dN[a * dim + J] * Aw(i * dim + J, kL);
+          ws.G(a * dim + i, kL) = s;
+        }
+    // upper block triangle (b >= a, whole diagonal blocks; K is symmetric):
+    // column (b, k) += sum_L G(:, k*dim+L) dN_bL, contiguous in the rows
+    for (int b = 0; b < nl; ++b)
+      for (int k = 0; k < dim; ++k) {
+        double* col = ws.Ke.col(b * dim + k).data();
+        const int rows = (b + 1) * dim;
+        std::array<const double*, dim> g;
+        std::array<double, dim> s;
+        for (int L = 0; L < dim; ++L) {
+          g[L] = ws.G.col(k * dim + L).data();
+          s[L] = dN[b * dim + L];
+        }
+        for (int r = 0; r < rows; ++r) {
+          double v = col[r];
+          for (int L = 0; L < dim; ++L) v += g[L][r] * s[L];
+          col[r] = v;
+        }
+      }
+  }
+  if (tangent)
+    for (int c = 0; c < nd; ++c)
+      for (int r = (c / dim + 1) * dim; r < nd; ++r) ws.Ke(r, c) = ws.Ke(c, r);
+  return true;
+}
+
+template <int dim>
+bool assemble_dim(const NurbsPatch& patch, const std::array<UnivariateTable, 3>& tables, const DofMap& dofs, const HyperelasticLaw& law,
+                  const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
+                  const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
+  const bool tangent = K != nullptr;
+  f_int.setZero(dofs.num_free());
+  if (tangent && !has_structure(*K, pattern)) *K = pattern;
+  const int* outer = pattern.outerIndexPtr();
+  const int* inner = pattern.innerIndexPtr();
+  double* val = tangent ? K->valuePtr() : nullptr;
+  const Eigen::Index nnz = pattern.nonZeros();
+  double* f = f_int.data();
+  std::atomic<bool> failed{false};
+
+#pragma omp parallel
+  {
+    if (tangent) {
+#pragma omp for schedule(static)
+      for (Eigen::Index k = 0; k < nnz; ++k) val[k] = 0.0;
+    }
+    Workspace<dim> ws;
+    for (const std::vector<int>& colour : colours) {
+      const int n = int(colour.size());
+      // no two elements of a colour share an equation: plain adds, no races
+#pragma omp for schedule(dynamic, 16)
+      for (int j = 0; j < n; ++j) {
+        if (failed.load(std::memory_order_relaxed)) continue;
+        evaluate_element<dim>(patch, tables, colour[j], ws.geo);
+        if (!element_kernel<dim>(law, u, tangent, ws)) {
+          failed.store(true, std::memory_order_relaxed);
+          continue;
+        }
+        const int nl = int(ws.geo.cps.size()), nd = nl * dim;
+        ws.eq.resize(nd);
+        for (int a = 0; a < nl; ++a)
+          for (int i = 0; i < dim; ++i) ws.eq[a * dim + i] = dofs.equation(ws.geo.cps[a] * dim + i);
+        for (int r = 0; r < nd; ++r)
+          if (ws.eq[r] >= 0) f[ws.eq[r]] += ws.fe[r];
+        if (!tangent) continue;
+        for (int c = 0; c < nd; ++c) {
+          if (ws.eq[c] < 0) continue;
+          const int* first = inner + outer[ws.eq[c]];
+          const int* past = inner + outer[ws.eq[c] + 1];
+          const double* col = ws.Ke.col(c).data();
+          const int* pos = past;
+          for (int r = 0; r < nd; ++r) {
+            const int row = ws.eq[r];
+            if (row < 0) continue;
+            // the components of a control point are usually consecutive
+            // equations, hence consecutive entries of the column
+            if (pos + 1 < past && pos[1] == row)
+              ++pos;
+            else
+              pos = std::lower_bound(first, past, row);
+            val[pos - inner] += col[r];
+          }
+        }
+      }
+    }
+  }
+  return !failed.load();
+}
+
+}  // namespace
+
+TotalLagrangianAssembler::TotalLagrangianAssembler(const NurbsPatch& patch, const DofMap& dofs,
+                                                   const HyperelasticLaw& law)
+    : quad_(patch, gauss_points_for(max_degree(patch))), dofs_(dofs), law_(&law) {
+  const int dim = patch.space_dim();
+  if ((dim != 2 && dim != 3) || patch.param_dim() != dim)
+    throw std::invalid_argument(fmt::format(
+        "total-Lagrangian assembly needs a 2D or 3D volume patch, got {} parametric directions in R^{}",
+        patch.param_dim(), dim));
+  if (dofs.dim() != dim || dofs.num_dofs() != patch.num_control_points() * dim)
+    throw std::invalid_argument(fmt::format("the dof map ({} dofs in {}D) does not belong to this patch ({} control points in {}D)",
+                                            dofs.num_dofs(), dofs.dim(), patch.num_control_points(), dim));
+  pattern_ = coupling_pattern(quad_, dofs_);
+  colours_ = colour_elements(quad_, dofs_);
+  const GaussRule rule = gauss_legendre(gauss_points_for(max_degree(patch)));
+  for (int d = 0; d < dim; ++d) tables_[d] = tabulate(patch.knots(d), rule);
+  double min_det = std::numeric_limits<double>::infinity();
+#pragma omp parallel
+  {
+    ElementGeometry<2> g2;
+    ElementGeometry<3> g3;
+#pragma omp for schedule(dynamic, 64) reduction(min : min_det)
+    for (int e = 0; e < quad_.num_elements(); ++e) {
+      if (dim == 2) {
+        evaluate_element<2>(quad_.patch(), tables_, e, g2);
+        min_det = std::min(min_det, g2.min_det_J);
+      } else {
+        evaluate_element<3>(quad_.patch(), tables_, e, g3);
+        min_det = std::min(min_det, g3.min_det_J);
+      }
+    }
+  }
+  min_det_J_ = min_det;
+  if (!(min_det_J_ > 0))
+    throw std::runtime_error(fmt::format("the geometry map folds: det J = {:.3g} at a Gauss point", min_det_J_));
+}
+
+bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int,
+                                        Eigen::SparseMatrix<double>* K) const {
+  const int dim = dofs_.dim();
+  if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
+    throw std::invalid_argument(fmt::format("displacement is {} x {}, the patch needs {} x {}", u.rows(), u.cols(),
+                                            dofs_.num_dofs() / dim, dim));
+  return dim == 2 ? assemble_dim<2>(quad_.patch(), tables_, dofs_, *law_, colours_, pattern_, u, f_int, K)
+                  : assemble_dim<3>(quad_.patch(), tables_, dofs_, *law_, colours_, pattern_, u, f_int, K);
+}
+
+}  // namespace igac

@@ -1,0 +1,85 @@
+// Total-Lagrangian kinematics of a hyperelastic body on one NURBS patch: the
+// internal force and its consistent tangent, integrated over the reference
+// configuration (Holzapfel, Nonlinear Solid Mechanics, ch. 8; Wriggers,
+// Nonlinear Finite Element Methods, ch. 4).
+//
+//   x = X + u,   F = I + Grad u = I + sum_A u_A (x) dN_A/dX,
+//   f_int_(A,i)      = int_Omega0 P_iJ(F) dN_A/dX_J dX,
+//   K_(A,i)(B,k)     = d f_int_(A,i) / d u_(B,k)
+//                    = int_Omega0 dN_A/dX_J A_iJkL(F) dN_B/dX_L dX,
+// with P the first Piola-Kirchhoff stress and A = dP/dF the law's first
+// elasticity tensor.  A contains both the material and the geometric
+// (initial-stress) stiffness, so the assembler needs nothing but P and A.
+// A hyperelastic A has the major symmetry A_iJkL = A_kLiJ, hence K is
+// symmetric; the kernel computes one triangle of each element matrix.
+//
+// Discretisation: (p+1)^dim Gauss points per element (as the linear
+// assembler).  The dimension is a compile-time parameter of the kernel and of
+// its element values (2D pays nothing for 3D; nothing is allocated per
+// element).  Elements are threaded with OpenMP colour by colour: elements of
+// one colour share no equation, so threads add straight into K and f_int
+// (memory independent of the thread count, no reduction pass).  The sparsity
+// pattern (free x free: two equations couple when their control points share
+// an element) is built once in the constructor and every tangent has exactly
+// that pattern, so a driver can analyse it once and refactorise numerically.
+//
+// Failure is reported, never carried: assemble returns false when det F <= 0
+// (or F is not finite) at a Gauss point or the law refuses F, so a Newton
+// driver can cut the load step back.  A geometry map that folds (det J <= 0)
+// is an input error: the constructor throws.
+//
+// Owner: engine/ (kinematics).  The KINSOL driver and the large-deformation
+// contact call it; the follower pressure (follower_pressure.hpp) adds its
+// load stiffness into the same pattern.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <array>
+#include <vector>
+
+#include "engine/assembly.hpp"
+#include "engine/discretisation.hpp"
+#include "materials/hyperelastic.hpp"
+
+namespace igac {
+
+class TotalLagrangianAssembler {
+ public:
+  // Copies what it needs of the patch (its quadrature) and the dof map; keeps
+  // a pointer to `law`, which must outlive the assembler (a law keeps no
+  // scratch, so it may be shared).  Throws std::invalid_argument unless the
+  // patch is a 2D or 3D volume patch matching the dof map, and
+  // std::runtime_error when the geometry map folds.
+  TotalLagrangianAssembler(const NurbsPatch& patch, const DofMap& dofs, const HyperelasticLaw& law);
+
+  // u: displacement per control point (n_cp x dim), prescribed values
+  // included (e.g. DofMap::expand of the free values).  Fills f_int (free
+  // numbering, resized) and, when K is not null, the tangent K (free x free,
+  // the pattern() structure; K is reset to it unless it has it already, so
+  // reusing one K across calls allocates nothing).  Rows and columns of
+  // prescribed dofs are skipped: the driver works with the full u.
+  // Returns false, leaving f_int and K unspecified, when det F <= 0 or F is
+  // not finite at a Gauss point, or the law refuses F.  Throws
+  // std::invalid_argument when u has the wrong shape.
+  bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) const;
+
+  // Zero-valued matrix with the tangent's pattern (compressed, column major,
+  // sorted; contains every coupling of control points that share an element,
+  // so face loads and contact on the patch's faces fit in it too).
+  const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
+  const DofMap& dofs() const { return dofs_; }
+  int dim() const { return dofs_.dim(); }
+  // Smallest det J of the geometry map met at a Gauss point.
+  double min_det_J() const { return min_det_J_; }
+
+ private:
+  PatchQuadrature quad_;                   // the patch, element numbering, control points
+  std::array<UnivariateTable, 3> tables_;  // Gauss-point B-spline values per direction
+  DofMap dofs_;
+  const HyperelasticLaw* law_;
+  Eigen::SparseMatrix<double> pattern_;
+  std::vector<std::vector<int>> colours_;  // elements by colour: one colour shares no equation
+  double min_det_J_ = 0;
+};
+
+}  // namespace igac
