@@ -325,6 +325,8 @@ bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool t
   return true;
 }
 
+constexpr int kElementsPerColourForThreads = 64;
+
 template <int dim>
 bool assemble_dim(const NurbsPatch& patch, const std::array<UnivariateTable, 3>& tables, const DofMap& dofs, const HyperelasticLaw& law,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
@@ -338,8 +340,15 @@ bool assemble_dim(const NurbsPatch& patch, const std::array<UnivariateTable, 3>&
   const Eigen::Index nnz = pattern.nonZeros();
   double* f = f_int.data();
   std::atomic<bool> failed{false};
+  // Threads meet at a barrier after every colour: worth it only when a colour
+  // gives each thread real work.  Small meshes (tests, finite differences)
+  // run on one thread, which also keeps them fast on a busy machine where a
+  // descheduled thread would stall every barrier.
+  int n_el = 0;
+  for (const auto& c : colours) n_el += int(c.size());
+  const bool threaded = n_el >= kElementsPerColourForThreads * int(colours.size());
 
-#pragma omp parallel
+#pragma omp parallel if (threaded)
   {
     if (tangent) {
 #pragma omp for schedule(static)
