@@ -163,6 +163,11 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   SUNContext_Create(nullptr, &ctx);
   Eigen::SparseMatrix<double> J;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  // The Newton matrix has a symmetric pattern (K_T and the contact blocks
+  // G, G^T): order A + A^T by nested dissection, as for a Cholesky factor,
+  // instead of UMFPACK's column ordering of A^T A, which fills badly in 3D.
+  lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
   bool analyzed = false;
 
   double t = 0;
