@@ -138,7 +138,8 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
 bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) {
   const Eigen::MatrixXd u = displacement(t, x);
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
-  Eigen::SparseMatrix<double> K = tl_->pattern();
+  Eigen::SparseMatrix<double>& K = tangent_;
+  if (K.nonZeros() == 0) K = tl_->pattern();  // filled in place from the second call on
   if (!tl_->assemble(u, f_int, &K)) return false;
   if (s_.follower_pressure)
     for (const auto& p : s_.pressures) add_follower_pressure(*s_.patch, *s_.dofs, p.faces, t * p.value, u, f_ext, &K);

@@ -143,10 +143,19 @@ void PatchQuadrature::evaluate(int e, ElementData& out, bool gradients) const {
       out.normal.row(q) = nA.transpose() / dA;
       out.JxW[q] = dA * wq;
     } else {
-      const double det = J.determinant();
+      // fixed-size determinant and inverse: no factorisation, no allocation
+      double det;
+      if (sd == 2) {
+        const Eigen::Matrix2d J2 = J;
+        det = J2.determinant();
+        if (gradients) out.dN[q].noalias() = dR * J2.inverse();
+      } else {
+        const Eigen::Matrix3d J3 = J;
+        det = J3.determinant();
+        if (gradients) out.dN[q].noalias() = dR * J3.inverse();
+      }
       out.min_det_J = std::min(out.min_det_J, det);
       out.JxW[q] = det * wq;
-      if (gradients) out.dN[q].noalias() = dR * J.inverse();
     }
   }
 }

@@ -169,8 +169,9 @@ TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
     ASSERT_TRUE(r.contact) << name;
     EXPECT_TRUE(r.u.allFinite()) << name;
     EXPECT_GT(r.contact->report.active, 10) << name;
-    if (r.applied_force > 0)
+    if (r.applied_force > 0) {
       EXPECT_NEAR(r.contact->report.total_force / r.applied_force, 1.0, kForceTolerance) << name;
+    }
     for (const auto& st : r.load_steps->steps) EXPECT_LE(st.newton_iterations, m.spec.loading.max_newton_iterations);
     EXPECT_EQ(r.load_curve.size(), r.load_steps->steps.size());
   }
