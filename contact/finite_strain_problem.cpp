@@ -29,18 +29,8 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
       trip.emplace_back(n_ + g.row(), g.col(), 0.0);
     }
     for (int K = 0; K < m_; ++K) trip.emplace_back(n_ + K, n_ + K, 0.0);
-    // K_K on the reference face
-    const PatchQuadrature quad = s_.contact_face->quadrature(contact_points(*s_.patch));
-    ElementData ed;
-    std::vector<int> kidx;
-    std::vector<double> kval;
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q) {
-        s_.contact_face->space.basis(ed.xi.row(q).transpose(), kidx, kval);
-        for (size_t k = 0; k < kidx.size(); ++k) weights_[kidx[k]] += kval[k] * ed.JxW[q];
-      }
-    }
+    // K_K on the reference face: the small-deformation operator's weights
+    weights_ = assemble_weighted_gaps(*s_.patch, *s_.dofs, *s_.contact_face, *s_.obstacle).weights;
   }
   J_.resize(n_ + m_, n_ + m_);
   J_.setFromTriplets(trip.begin(), trip.end());
