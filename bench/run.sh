@@ -5,13 +5,20 @@
 #   measured in one process, for 2D Hertz from ~34k to ~530k dofs and the
 #   default 3D Hertz case (~32k dofs).  --quick stops at ~133k dofs in 2D.  Timings are the best of --repeat runs; the
 # machine's other load shows in them, the ratio much less.
+#   stress_tests.csv / .md: bench/stress_test.py, numerical stability under
+#   stress (loads, degrees, grading, nu, load steps, initial gaps).
+#   work_precision.csv / *.png: bench/work_precision.py, error against time
+#   and time against dofs for 2D and 3D Hertz.
+# --quick is passed to all three; it finishes within 10 minutes on 2 cores.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 "$here/scripts/bootstrap.sh"
 out="$here/bench/results"
 mkdir -p "$out"
 refines=(2 3 4)
-[ "${1:-}" = "--quick" ] && refines=(2 3)
+quick=()
+[ "${1:-}" = "--quick" ] && refines=(2 3) && quick=(--quick)
+SECONDS=0
 "$here/build/bench/contact_vs_cholesky" "$here/cases/hertz2d.toml" "${refines[@]}" --repeat 2 \
   --csv "$out/contact_vs_cholesky_2d.csv"
 "$here/build/bench/contact_vs_cholesky" "$here/cases/hertz3d.toml" 0 --repeat 2 \
@@ -19,3 +26,15 @@ refines=(2 3 4)
 { cat "$out/contact_vs_cholesky_2d.csv"; tail -n +2 "$out/contact_vs_cholesky_3d.csv"; } > "$out/contact_vs_cholesky.csv"
 rm -f "$out/contact_vs_cholesky_2d.csv" "$out/contact_vs_cholesky_3d.csv"
 echo "wrote $out/contact_vs_cholesky.csv"
+echo "contact_vs_cholesky: ${SECONDS} s"
+
+# Python benchmarks: Debian's interpreter has matplotlib.
+rc=0
+t0=$SECONDS
+/usr/bin/python3 "$here/bench/stress_test.py" "${quick[@]}" --igac "$here/build/igac" || rc=1
+echo "stress_test: $((SECONDS - t0)) s"
+t0=$SECONDS
+/usr/bin/python3 "$here/bench/work_precision.py" "${quick[@]}" --igac "$here/build/igac" || rc=1
+echo "work_precision: $((SECONDS - t0)) s"
+echo "bench/run.sh ${quick[*]}: ${SECONDS} s in all"
+exit $rc
