@@ -277,7 +277,8 @@ CaseSpec read_case(const std::string& path) {
   }
   if (root.contains("loading")) {
     const Section s(path, "loading", top.sub("loading"),
-                    {"steps", "first_increment", "min_increment", "max_newton_iterations", "line_search", "pressure"});
+                    {"steps", "first_increment", "min_increment", "max_increment", "max_newton_iterations", "line_search",
+                     "pressure"});
     if (!c.finite_strain())
       s.fail("steps", "[loading] drives the large-deformation models; linear_elastic is solved in one linear step");
     LoadingSpec& l = c.loading;
@@ -288,6 +289,9 @@ CaseSpec read_case(const std::string& path) {
       s.fail("first_increment", "must lie in (0, 1]");
     l.min_increment = s.number("min_increment", 1e-4);
     if (!(l.min_increment > 0 && l.min_increment < 1)) s.fail("min_increment", "must lie in (0, 1)");
+    l.max_increment = s.number("max_increment", 1.0);
+    if (!(l.max_increment >= l.min_increment && l.max_increment <= 1))
+      s.fail("max_increment", "must lie in [min_increment, 1]");
     l.max_newton_iterations = s.integer("max_newton_iterations", 30);
     if (l.max_newton_iterations < 1 || l.max_newton_iterations > 1000) s.fail("max_newton_iterations", "must lie in 1..1000");
     l.line_search = s.boolean("line_search", true);

@@ -50,6 +50,7 @@ struct LoadingSpec {
   int steps = 10;
   double first_increment = 0;  // > 0: overrides steps
   double min_increment = 1e-4;
+  double max_increment = 1.0;  // caps the growth after fast steps
   int max_newton_iterations = 30;
   bool line_search = true;
   bool follower_pressure = true;  // false: dead load (reference normal)

@@ -138,6 +138,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.steps = m.spec.loading.steps;
   opt.first_increment = m.spec.loading.first_increment;
   opt.min_increment = m.spec.loading.min_increment;
+  opt.max_increment = m.spec.loading.max_increment;
   opt.max_newton_iterations = m.spec.loading.max_newton_iterations;
   opt.line_search = m.spec.loading.line_search;
   opt.quiet = m.quiet;

@@ -108,7 +108,8 @@ std::string load_curve_csv(const RunResult& r) {
 std::string pressure_csv(const RunResult& r) {
   std::string s = "kind,r,pressure,r_over_a,p_over_p0,hertz_p_over_p0\n";
   const auto& rep = r.contact->report;
-  auto row = [&](const char* kind, const PressureSample& p) {
+  auto row = [&](const char* kind, PressureSample p) {
+    p.pressure += 0.0;  // an inactive multiplier's -0 prints as 0
     if (r.hertz)
       s += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", kind, p.r, p.pressure, p.r / r.hertz->a,
                        p.pressure / r.hertz->p0, r.hertz->pressure(p.r) / r.hertz->p0);

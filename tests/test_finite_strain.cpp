@@ -190,3 +190,17 @@ TEST(FiniteStrainDriver, GivesUpWithAClearStatusAndNoNaN) {
   EXPECT_NE(r.status.find("stopped at load factor"), std::string::npos) << r.status;
   EXPECT_TRUE(r.u.allFinite());
 }
+
+TEST(FiniteStrainDriver, MaxIncrementCapsTheGrowthOfFastSteps) {
+  // Fast steps grow the increment by 1.5; [loading] max_increment caps it,
+  // so steps = 20 with max_increment = 0.05 takes exactly 20 steps.
+  CaseSpec spec = read_case(kSource + "/cases/hertz2d_neohookean_pressure_study.toml");
+  spec.loading.steps = 20;
+  spec.loading.max_increment = 0.05;
+  Model m = build_model(spec);
+  m.quiet = true;
+  const RunResult r = solve_model(m);
+  ASSERT_EQ(r.status, "converged");
+  EXPECT_EQ(r.load_steps->steps.size(), 20u);
+  for (const auto& st : r.load_steps->steps) EXPECT_EQ(st.cut_backs, 0);
+}
