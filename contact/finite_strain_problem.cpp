@@ -21,6 +21,8 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     for (Eigen::SparseMatrix<double>::InnerIterator it(P, c); it; ++it) trip.emplace_back(it.row(), it.col(), 0.0);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
+    // tabulated once: every residual and Jacobian walks the same face points
+    face_quadrature_ = std::make_unique<PatchQuadrature>(s_.contact_face->quadrature(contact_points(*s_.patch)));
     ContactEval ce;
     evaluate_contact(Eigen::MatrixXd::Zero(s_.patch->num_control_points(), s_.patch->space_dim()),
                      Eigen::VectorXd::Zero(m_), false, ce);
@@ -61,7 +63,7 @@ void FiniteStrainProblem::evaluate_contact(const Eigen::MatrixXd& u, const Eigen
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
   out.curvature.clear();
-  const PatchQuadrature quad = s_.contact_face->quadrature(contact_points(*s_.patch));
+  const PatchQuadrature& quad = *face_quadrature_;
   ElementData ed;
   std::vector<int> kidx;
   std::vector<double> kval;

@@ -78,6 +78,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd weights_;          // K_K
   Eigen::SparseMatrix<double> J_;    // fixed pattern of the Newton matrix
   Eigen::SparseMatrix<double> tangent_;  // K_T, reused across calls
+  std::unique_ptr<PatchQuadrature> face_quadrature_;  // contact face, tabulated once
   std::vector<int> kt_to_j_;         // value index of K_T entry k in J_
   mutable std::vector<char> last_active_;
 };
