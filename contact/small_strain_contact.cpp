@@ -53,7 +53,7 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
   // The trailing block is the face (plus what the ordering could not keep
   // apart); when it stays small, S comes whole from it.
   const int face_block_limit = 4 * int(face_eqs.size()) + 4000;
-  if (chol.trailing_size() <= face_block_limit) {
+  if (opt.schur_from_factor && chol.trailing_size() <= face_block_limit) {
     const Eigen::SparseMatrix<double> Gt = Eigen::SparseMatrix<double>(Gp.transpose());
     const Eigen::MatrixXd Y = chol.half_solve_trailing(Gt);
     S.noalias() = Y.transpose() * Y;

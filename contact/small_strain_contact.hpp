@@ -37,6 +37,10 @@ struct ContactSolverOptions {
   double complementarity_scale = 1.0;
   // Initial active set: weighted initial gap <= this (the paper's 1e-9).
   double initial_gap_tolerance = 1e-9;
+  // Schur complement from the factor's trailing block (false: one sparse
+  // solve per multiplier that becomes active, the fallback used when the
+  // ordering cannot keep the face apart).
+  bool schur_from_factor = true;
 };
 
 struct ContactSolution {

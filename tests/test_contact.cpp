@@ -558,5 +558,30 @@ TEST(ContactHertzEquilibrium, ShiftedObstacleGivesTheSamePressure) {
   }
 }
 
+TEST(ContactHertzEquilibrium, SchurFromTheFactorEqualsColumnBySolves) {
+  // The two ways of forming S = G K^-1 G^T (dense trailing block of the
+  // factor, or one sparse solve per active multiplier) solve the same
+  // problem: same active set, multipliers equal to round-off.
+  constexpr double kRoundOff = 1e-10;  // relative to p0; both paths are direct
+  const HertzRun run = run_hertz2d();
+  const NurbsPatch& patch = run.model.geometry.patch;
+  const double P = 0.003;
+  LinearSystem sys = assemble_linear_elasticity(patch, *run.model.dofs, run.model.material, Eigen::VectorXd::Zero(2));
+  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model.geometry, "top"), P, sys.f);
+  const RigidModes modes = free_rigid_modes(patch, *run.model.dofs);
+  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contact_face, *run.model.obstacle);
+  ContactSolverOptions opt;
+  opt.complementarity_scale = 1.0 / run.model.mesh_size;
+  SparseCholesky c1, c2;
+  const ContactSolution a = solve_small_strain_contact(sys.K, sys.f, op, modes, c1, opt);
+  opt.schur_from_factor = false;
+  const ContactSolution b = solve_small_strain_contact(sys.K, sys.f, op, modes, c2, opt);
+  ASSERT_TRUE(a.converged && b.converged);
+  EXPECT_EQ(a.schur_columns, 0);
+  EXPECT_GT(b.schur_columns, 0);
+  EXPECT_TRUE(a.active == b.active);
+  EXPECT_LT((a.lambda - b.lambda).cwiseAbs().maxCoeff(), kRoundOff * hertz_cylinder(1.0, P, 1.0, 0.3).p0);
+}
+
 }  // namespace
 }  // namespace igac
