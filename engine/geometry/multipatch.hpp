@@ -1,0 +1,47 @@
+// Multi-patch geometry as it is described (before any refinement): the
+// patches, the sides they share, and the sides on the boundary.  This is the
+// contract between the geometry file reader/writer (io/gismo_xml) and the
+// engine, which joins the patches C0 across conforming interfaces.
+//
+// Sides follow G+Smo's numbering (gsBoundary.h): 1 west u = 0, 2 east u = 1,
+// 3 south v = 0, 4 north v = 1, 5 front w = 0, 6 back w = 1; igac's Face is
+// (direction, at_end), so side s is Face{(s - 1) / 2, (s - 1) % 2 == 1}.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/spline/nurbs_patch.hpp"
+
+namespace igac {
+
+// One side (face) of one patch.
+struct PatchSide {
+  int patch = 0;
+  Face face;
+  bool operator==(const PatchSide& o) const { return patch == o.patch && face == o.face; }
+};
+
+// Two patch sides that coincide.  The orientation is not stored: the engine
+// matches the sides' control points geometrically after refinement, which
+// also covers flipped and permuted parametrisations.
+struct PatchInterface {
+  PatchSide first, second;
+};
+
+struct MultiPatch {
+  std::vector<NurbsPatch> patches;
+  std::vector<PatchInterface> interfaces;
+  std::vector<PatchSide> boundary;  // may be empty (then: every side not in an interface)
+};
+
+// G+Smo side number (1..6) <-> Face.
+inline Face face_of_gismo_side(int side) { return Face{(side - 1) / 2, (side - 1) % 2 == 1}; }
+inline int gismo_side_of(const Face& f) { return 2 * f.direction + (f.at_end ? 2 : 1); }
+// "west", "east", "south", "north", "front", "back" for sides 1..6.
+inline const char* gismo_side_name(int side) {
+  static const char* names[] = {"west", "east", "south", "north", "front", "back"};
+  return side >= 1 && side <= 6 ? names[side - 1] : "?";
+}
+
+}  // namespace igac
