@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -92,19 +93,43 @@ std::pair<NurbsPatch, NurbsPatch> halves(const NurbsPatch& p, int d) {
   return {normalised(a), normalised(b)};
 }
 
+// The Hertz quarter disc (radius 1, the region of shapes.cpp quarter_disc)
+// cut along its 45 degree radius OM into two biquadratic patches, each an
+// eighth of the disc: south (v = 0) the exact 45 degree arc (rational
+// quadratic, middle weight cos 22.5 deg, Piegl & Tiller 7.5), the radius OM
+// as patch 0's east and patch 1's west side (the same three control points,
+// both running from M to O).  A three-sided region needs one straight corner
+// per patch, kept away from the contact point as in quarter_disc: patch 0
+// (A at u = v = 0, the contact point) has it at D = (0, -1/2) between west
+// (A to D) and north (D to O) on x = 0; patch 1 at E = (1/2, 0) between east
+// (B to E) and north (O to E) on y = 0.  Interior control points: the mean of
+// the four edge-middle ones.
+MultiPatch quarter_disc_two_sectors() {
+  const double s = std::sqrt(0.5), t = std::sqrt(2.0) - 1, c = std::cos(M_PI / 8);
+  const Eigen::Vector2d O(0, 0), A(0, -1), M(s, -s), B(1, 0), D(0, -0.5), E(0.5, 0);
+  auto patch = [&](std::array<Eigen::Vector2d, 9> P) {
+    P[4] = (P[1] + P[3] + P[5] + P[7]) / 4;
+    Eigen::MatrixXd X(9, 2);
+    for (int i = 0; i < 9; ++i) X.row(i) = P[i].transpose();
+    Eigen::VectorXd w = Eigen::VectorXd::Ones(9);
+    w[1] = c;
+    return NurbsPatch({KnotVector::uniform(2, 1), KnotVector::uniform(2, 1)}, X, w);
+  };
+  const Eigen::Vector2d Z(0, 0);  // placeholder for the interior point
+  MultiPatch body;
+  body.patches = {patch({A, Eigen::Vector2d(t, -1), M, (A + D) / 2, Z, (M + O) / 2, D, (D + O) / 2, O}),
+                  patch({M, Eigen::Vector2d(1, -t), B, (M + O) / 2, Z, (B + E) / 2, O, (O + E) / 2, E})};
+  body.interfaces = {{side(0, 2), side(1, 1)}};
+  body.boundary = {side(0, 1), side(0, 3), side(0, 4), side(1, 2), side(1, 3), side(1, 4)};
+  return body;
+}
+
 std::map<std::string, MultiPatch> make_bodies() {
   std::map<std::string, MultiPatch> out;
   const NurbsPatch disc = quarter_disc(1.0).patch;
   out["tests/data/quarter_disc.xml"] = single_patch_body(disc);
 
-  // Cut at u = 1/2, the 45 degree point of the arc: patch 0 holds the
-  // contact point (u = 0 on the arc), patch 1 the top edge (its east side).
-  MultiPatch two;
-  auto [d0, d1] = halves(disc, 0);
-  two.patches = {d0, d1};
-  two.interfaces = {{side(0, 2), side(1, 1)}};
-  two.boundary = {side(0, 1), side(0, 3), side(0, 4), side(1, 2), side(1, 3), side(1, 4)};
-  out["tests/data/quarter_disc_two_patches.xml"] = two;
+  out["tests/data/quarter_disc_two_patches.xml"] = quarter_disc_two_sectors();
 
   // Lame's annulus 1 <= r <= 2 cut at the middle radius and at 45 degrees:
   // patch 0 (inner, bottom), 1 (outer, bottom), 2 (inner, top), 3 (outer, top);
@@ -211,9 +236,9 @@ TEST(GismoXml, MultiPatchBodiesRoundTripWithGismoInterfaceFlags) {
 }
 
 TEST(GismoXml, FlippedInterfaceGetsItsOrientation) {
-  // Patch 1 is the right half of the quarter disc with u reversed: its east
-  // side meets patch 0's east side, running the other way along v?  No: the
-  // v direction keeps its sense; the normal directions oppose (east on east).
+  // Patch 1 is the right half of the quarter disc with u reversed, so its
+  // east side meets patch 0's east side: the normal directions oppose (flag
+  // 0), v keeps its sense (flag 1).
   auto [left, right] = halves(quarter_disc(1.0).patch, 0);
   const int n0 = right.num_basis(0), n1 = right.num_basis(1);
   Eigen::MatrixXd P(right.num_control_points(), 2);
@@ -249,7 +274,8 @@ TEST(GismoXml, ReadsAFileInGismoLayout) {
   EXPECT_TRUE(body.interfaces[0].second == side(1, 1));
   ASSERT_EQ(body.boundary.size(), 6u);
   EXPECT_TRUE(body.boundary[3] == side(1, 2));
-  // Patch 1 at (u, v): x = 1 + (2 u (1-u) * 2 * 0.5 + u^2) / (1 - 2u(1-u) + 4u(1-u)) ... evaluated directly:
+  // Patch 1: x(u) is the rational quadratic with control abscissae 1, 1.5, 2
+  // and weights 1, 2, 1; y = v.
   for (double u : {0.0, 0.25, 0.5, 0.9}) {
     const double b0 = (1 - u) * (1 - u), b1 = 2 * u * (1 - u), b2 = u * u;
     const double x = (b0 * 1 + b1 * 2 * 1.5 + b2 * 2) / (b0 + 2 * b1 + b2);
@@ -396,11 +422,39 @@ TEST(GismoXml, MissingFileAndWrongRoot) {
 
 // ---------------------------------------------------------------- test data
 
+TEST(GismoXmlData, TwoSectorsAreTheQuarterDisc) {
+  const MultiPatch body = quarter_disc_two_sectors();
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k <= 8; ++k) {
+      Eigen::VectorXd xi(2);
+      xi << k / 8.0, 0.0;  // the arc: on the unit circle, x >= 0, y <= 0
+      const Eigen::VectorXd x = body.patches[i].point(xi);
+      EXPECT_NEAR(x.norm(), 1.0, kRoundTrip * 10) << "patch " << i;
+      EXPECT_GE(x[0], -kRoundTrip);
+      EXPECT_LE(x[1], kRoundTrip);
+    }
+  // The arc halves meet at M, at 45 degrees, and the contact point is patch 0's (0, 0).
+  Eigen::VectorXd a(2), b(2);
+  a << 1.0, 0.0;
+  b << 0.0, 0.0;
+  EXPECT_LE((body.patches[0].point(a) - body.patches[1].point(b)).norm(), kSplitTolerance);
+  EXPECT_LE((body.patches[0].point(b) - Eigen::Vector2d(0, -1)).norm(), kSplitTolerance);
+}
+
 TEST(GismoXmlData, CheckedInFilesAreTheGeneratedBodies) {
   const bool regenerate = std::getenv("IGAC_REGENERATE_XML") != nullptr;
   for (const auto& [name, body] : make_bodies()) {
     if (regenerate) write_gismo_xml(body, source(name));
     expect_same_body(read_gismo_xml(source(name)), body, kRoundTrip, name);
+    // Every patch is a valid map: det J > 0 at interior sample points.
+    for (size_t i = 0; i < body.patches.size(); ++i) {
+      const NurbsPatch& p = body.patches[i];
+      for (int k = 0; k < 125; ++k) {
+        Eigen::VectorXd xi(p.param_dim());
+        for (int d = 0; d < p.param_dim(); ++d) xi[d] = 0.1 + 0.2 * ((k / (d == 0 ? 1 : d == 1 ? 5 : 25)) % 5);
+        EXPECT_GT(p.jacobian(xi).determinant(), 0) << name << " patch " << i;
+      }
+    }
     // Conforming interfaces: the two sides carry the same control points.
     for (const auto& pi : body.interfaces) {
       const NurbsPatch fa = body.patches[pi.first.patch].face_patch(pi.first.face);
