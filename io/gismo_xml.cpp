@@ -422,8 +422,8 @@ std::vector<int> tangential(int dim, int normal) {
 // dir_map[i] of the second, in the same sense when flag[i] = 1.  Found by
 // matching the sides' corner control points (open knot vectors interpolate
 // there).
-std::pair<std::vector<int>, std::vector<int>> interface_map(const MultiPatch& body, const PatchInterface& pi, int index,
-                                                            double tol) {
+std::pair<std::vector<int>, std::vector<int>> interface_map(const std::string& path, const MultiPatch& body,
+                                                            const PatchInterface& pi, int index, double tol) {
   const NurbsPatch& a = body.patches[pi.first.patch];
   const NurbsPatch& b = body.patches[pi.second.patch];
   const int dim = a.param_dim();
@@ -439,8 +439,8 @@ std::pair<std::vector<int>, std::vector<int>> interface_map(const MultiPatch& bo
     const Eigen::VectorXd x = side_corner(a, fa, bits_a);
     for (int c = 0; c < n_corners; ++c)
       if ((side_corner(b, fb, bits_of(c)) - x).norm() <= tol) return bits_of(c);
-    throw InputError(fmt::format("interface {}: side {} of patch {} and side {} of patch {} do not meet at their "
-                                 "corners", index, gismo_side_of(fa), pi.first.patch, gismo_side_of(fb), pi.second.patch));
+    throw InputError(fmt::format("{}: interface {}: side {} of patch {} and side {} of patch {} do not meet at "
+                                 "their corners", path, index, gismo_side_of(fa), pi.first.patch, gismo_side_of(fb), pi.second.patch));
   };
   std::vector<int> dir_map(dim), flag(dim);
   dir_map[fa.direction] = fb.direction;
@@ -454,8 +454,8 @@ std::pair<std::vector<int>, std::vector<int>> interface_map(const MultiPatch& bo
     for (int j = 0; j < nt; ++j)
       if (m[j] != ref[j]) moved = moved == -1 ? j : -2;
     if (moved < 0)
-      throw InputError(fmt::format("interface {}: side {} of patch {} is degenerate (its corners coincide), so its "
-                                   "orientation is undefined", index, gismo_side_of(fa), pi.first.patch));
+      throw InputError(fmt::format("{}: interface {}: side {} of patch {} is degenerate (its corners coincide), so "
+                                   "its orientation is undefined", path, index, gismo_side_of(fa), pi.first.patch));
     dir_map[ta[k]] = tb[moved];
     flag[ta[k]] = ref[moved] == 0;
   }
@@ -481,6 +481,19 @@ void write_gismo_xml(const MultiPatch& body, const std::string& path) {
       if (s.patch < 0 || s.patch >= n) throw InputError(fmt::format("{}: an interface names patch {} of {}", path, s.patch, n));
   for (const PatchSide& s : body.boundary)
     if (s.patch < 0 || s.patch >= n) throw InputError(fmt::format("{}: the boundary names patch {} of {}", path, s.patch, n));
+  {  // each side at most once: the reader rejects a file that lists one twice
+    std::set<std::pair<int, int>> seen;
+    auto once = [&](const PatchSide& s) {
+      if (!seen.insert({s.patch, gismo_side_of(s.face)}).second)
+        throw InputError(fmt::format("{}: side {} of patch {} is listed twice in the interfaces and boundary", path,
+                                     gismo_side_of(s.face), s.patch));
+    };
+    for (const auto& pi : body.interfaces) {
+      once(pi.first);
+      once(pi.second);
+    }
+    for (const PatchSide& s : body.boundary) once(s);
+  }
 
   pugi::xml_document doc;
   pugi::xml_node decl = doc.append_child(pugi::node_declaration);
@@ -537,7 +550,7 @@ void write_gismo_xml(const MultiPatch& body, const std::string& path) {
     std::string text = "\n";
     for (size_t k = 0; k < body.interfaces.size(); ++k) {
       const PatchInterface& pi = body.interfaces[k];
-      const auto [dir_map, flag] = interface_map(body, pi, int(k), tol);
+      const auto [dir_map, flag] = interface_map(path, body, pi, int(k), tol);
       text += fmt::format("{} {} {} {} {} {}\n", pi.first.patch, gismo_side_of(pi.first.face), pi.second.patch,
                           gismo_side_of(pi.second.face), fmt::join(dir_map, " "), fmt::join(flag, " "));
       in_interface.insert({pi.first.patch, gismo_side_of(pi.first.face)});

@@ -262,6 +262,46 @@ TEST(GismoXml, FlippedInterfaceGetsItsOrientation) {
   fs::remove_all(dir);
 }
 
+TEST(GismoXml, PermutedInterfaceIn3DGetsItsDirectionMap) {
+  // Patch 1 is the block's right half with v and w swapped: patch 0's v (y)
+  // runs along patch 1's w and its w (z) along patch 1's v.
+  auto [left, right] = halves(box(2.0, 2.0, 1.0).patch, 0);
+  const int n0 = right.num_basis(0), n1 = right.num_basis(1), n2 = right.num_basis(2);
+  Eigen::MatrixXd P(right.num_control_points(), 3);
+  for (int k = 0; k < n1; ++k)      // new w = old v
+    for (int j = 0; j < n2; ++j)    // new v = old w
+      for (int i = 0; i < n0; ++i) P.row(i + n0 * (j + n2 * k)) = right.points().row(right.index({i, k, j}));
+  MultiPatch body;
+  body.patches = {left, NurbsPatch({right.knots(0), right.knots(2), right.knots(1)}, P, right.weights())};
+  body.interfaces = {{side(0, 2), side(1, 1)}};
+  const fs::path dir = temp_dir("permuted");
+  const std::string path = (dir / "permuted.xml").string();
+  write_gismo_xml(body, path);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("0 2 1 1 0 2 1 1 1 1"), std::string::npos) << text;
+  EXPECT_EQ(read_gismo_xml(path).interfaces.size(), 1u);
+  fs::remove_all(dir);
+}
+
+TEST(GismoXml, WriterRejectsSidesThatDoNotMeet) {
+  auto [left, right] = halves(quarter_disc(1.0).patch, 0);
+  MultiPatch body;
+  body.patches = {left, right};
+  body.interfaces = {{side(0, 1), side(1, 2)}};  // west of the left half is not on east of the right half
+  const fs::path dir = temp_dir("apart");
+  const std::string path = (dir / "apart.xml").string();
+  try {
+    write_gismo_xml(body, path);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": interface 0: side 1 of patch 0 and side 2 of patch 1 do not meet"),
+              std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_empty(dir)) << "nothing is written";
+  fs::remove_all(dir);
+}
+
 // ---------------------------------------------------------------- a G+Smo-layout file
 
 TEST(GismoXml, ReadsAFileInGismoLayout) {
