@@ -16,7 +16,30 @@
 namespace igac {
 namespace {
 
+// Corners of two sides that meet agree to round-off relative to the body's size.
+constexpr double kCornerTolerance = 1e-10;
+
 // ---------------------------------------------------------------- reading
+
+// Corner control point of side `f` of patch `p`; `bits[k]` picks the end of
+// the k-th tangential direction (ascending order).
+Eigen::VectorXd side_corner(const NurbsPatch& p, const Face& f, const std::vector<int>& bits) {
+  std::array<int, 3> idx{0, 0, 0};
+  int k = 0;
+  for (int d = 0; d < p.param_dim(); ++d) {
+    if (d == f.direction) idx[d] = f.at_end ? p.num_basis(d) - 1 : 0;
+    else idx[d] = bits[k++] ? p.num_basis(d) - 1 : 0;
+  }
+  return p.points().row(p.index(idx)).transpose();
+}
+
+std::vector<int> tangential(int dim, int normal) {
+  std::vector<int> t;
+  for (int d = 0; d < dim; ++d)
+    if (d != normal) t.push_back(d);
+  return t;
+}
+
 
 // Where a node sits in the file (for messages), and the one-line errors.
 class Source {
@@ -225,6 +248,37 @@ NurbsPatch read_geometry(const Source& src, pugi::xml_node g, const std::string&
   }
 }
 
+// The corners of two sides of an interface coincide (open knot vectors
+// interpolate there), to round-off of the body's size.  The engine matches
+// the sides' control points after refinement; this catches a wrong patch or
+// side number at once, with the file's line.
+void check_sides_meet(const Source& src, pugi::xml_node node, const std::string& element, const MultiPatch& body,
+                      const PatchInterface& pi, const std::string& what) {
+  const NurbsPatch& a = body.patches[pi.first.patch];
+  const NurbsPatch& b = body.patches[pi.second.patch];
+  double extent = 0;
+  for (const NurbsPatch* p : {&a, &b})
+    extent = std::max(extent, (p->points().colwise().maxCoeff() - p->points().colwise().minCoeff()).norm());
+  const int nt = a.param_dim() - 1;
+  for (int ca = 0; ca < (1 << nt); ++ca) {
+    std::vector<int> bits_a(nt);
+    for (int k = 0; k < nt; ++k) bits_a[k] = (ca >> k) & 1;
+    const Eigen::VectorXd x = side_corner(a, pi.first.face, bits_a);
+    bool found = false;
+    for (int cb = 0; cb < (1 << nt) && !found; ++cb) {
+      std::vector<int> bits_b(nt);
+      for (int k = 0; k < nt; ++k) bits_b[k] = (cb >> k) & 1;
+      found = (side_corner(b, pi.second.face, bits_b) - x).norm() <= kCornerTolerance * extent;
+    }
+    if (!found)
+      src.fail(node, element,
+               fmt::format("{}: side {} ({}) of patch {} and side {} ({}) of patch {} do not meet: the corner ({:.6g}) "
+                           "of the first is no corner of the second", what, gismo_side_of(pi.first.face),
+                           gismo_side_name(gismo_side_of(pi.first.face)), pi.first.patch, gismo_side_of(pi.second.face),
+                           gismo_side_name(gismo_side_of(pi.second.face)), pi.second.patch, fmt::join(x, ", ")));
+  }
+}
+
 // Reads the <MultiPatch> topology into `body` (whose patches are already read
 // in the order of `ids`).
 void read_topology(const Source& src, pugi::xml_node mp, const std::map<long, int>& index_of_id, int dim,
@@ -285,6 +339,7 @@ void read_topology(const Source& src, pugi::xml_node mp, const std::map<long, in
                  fmt::format("{}: the direction map sends the normal direction {} of side {} to {}, not to the normal "
                              "direction {} of side {}", what, pi.first.face.direction, v[g + 1],
                              v[g + 4 + pi.first.face.direction], pi.second.face.direction, v[g + 3]));
+      check_sides_meet(src, node, element, body, pi, what);
       body.interfaces.push_back(pi);
     }
   }
@@ -396,25 +451,6 @@ std::string join_numbers(const std::vector<double>& v) {
   std::string s;
   for (size_t i = 0; i < v.size(); ++i) s += fmt::format("{}{}", i ? " " : "", v[i]);
   return s;
-}
-
-// Corner control point of side `f` of patch `p`; `bits[k]` picks the end of
-// the k-th tangential direction (ascending order).
-Eigen::VectorXd side_corner(const NurbsPatch& p, const Face& f, const std::vector<int>& bits) {
-  std::array<int, 3> idx{0, 0, 0};
-  int k = 0;
-  for (int d = 0; d < p.param_dim(); ++d) {
-    if (d == f.direction) idx[d] = f.at_end ? p.num_basis(d) - 1 : 0;
-    else idx[d] = bits[k++] ? p.num_basis(d) - 1 : 0;
-  }
-  return p.points().row(p.index(idx)).transpose();
-}
-
-std::vector<int> tangential(int dim, int normal) {
-  std::vector<int> t;
-  for (int d = 0; d < dim; ++d)
-    if (d != normal) t.push_back(d);
-  return t;
 }
 
 // G+Smo's direction map and orientation flags of an interface (gsBoundary.h
@@ -544,7 +580,7 @@ void write_gismo_xml(const MultiPatch& body, const std::string& path) {
   pugi::xml_node patches = mp.append_child("patches");
   patches.append_attribute("type") = "id_range";
   patches.text() = fmt::format("0 {}", n - 1).c_str();
-  const double tol = 1e-10 * std::max(extent, 1e-300);  // corners meet to round-off of the body's size
+  const double tol = kCornerTolerance * std::max(extent, 1e-300);
   std::set<std::pair<int, int>> in_interface;
   if (!body.interfaces.empty()) {
     std::string text = "\n";

@@ -431,6 +431,8 @@ INSTANTIATE_TEST_SUITE_P(
                 {"<MultiPatch> <boundary>", "side 5 is not a side of a 2D patch (1..4)"}},
         BadFile{"interface_side_out_of_range", "<interfaces>0 2 1 1", "<interfaces>0 2 1 0", "<interfaces>",
                 {"<MultiPatch> <interfaces>", "side 0 is not a side"}},
+        BadFile{"interface_sides_apart", "<interfaces>0 2 1 1", "<interfaces>0 1 1 2", "<interfaces>",
+                {"<MultiPatch> <interfaces>", "side 1 (west) of patch 0 and side 2 (east) of patch 1 do not meet"}},
         BadFile{"interface_integer_count", "0 2 1 1 0 1 1 1</interfaces>", "0 2 1 1 0 1 1</interfaces>", "<interfaces>",
                 {"<MultiPatch> <interfaces>", "7 integers do not make whole interfaces of 8"}},
         BadFile{"interface_direction_map", "0 2 1 1 0 1 1 1</interfaces>", "0 2 1 1 1 0 1 1</interfaces>", "<interfaces>",
