@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "engine/geometry/shapes.hpp"
+#include "engine/spline/refinement.hpp"
 #include "engine/spline/split.hpp"
 #include "io/case_file.hpp"
 #include "io/gismo_xml.hpp"
@@ -192,9 +193,16 @@ TEST(SplitPatch, HalvesReproduceTheOriginal) {
 TEST(SplitPatch, AtAnExistingKnotAndOutsideTheRange) {
   const NurbsPatch p = normalised(split_patch(quarter_disc(1.0).patch, 0, 0.5).first);
   EXPECT_DOUBLE_EQ(p.knots(0).last(), 1.0);
-  // Refine so that 0.5 is already a knot (of multiplicity 1).
-  const auto [a, b] = split_patch(quarter_annulus(1.0, 2.0).patch, 1, 0.5);
-  const auto [a1, a2] = split_patch(a, 1, 0.25);  // 0.25 inside [0, 0.5]
+  // 0.5 already a knot (multiplicity 1): the halves are those of the plain patch.
+  const NurbsPatch disc = quarter_disc(1.0).patch;
+  const NurbsPatch refined = insert_knots(disc, 0, {0.25, 0.5}).patch;
+  const auto [r0, r1] = split_patch(refined, 0, 0.5);
+  const auto [d0, d1] = split_patch(disc, 0, 0.5);
+  EXPECT_EQ(r0.num_basis(0), 4);  // knots 0 0 0 0.25 0.5 0.5 0.5
+  EXPECT_EQ(r1.num_basis(0), 3);
+  expect_same_patch(r1, d1, kSplitTolerance, "right half");
+  // A half keeps its range: splitting it again inside that range works.
+  const auto [a1, a2] = split_patch(d0, 1, 0.25);
   EXPECT_EQ(a1.num_basis(1), 3);
   EXPECT_THROW(split_patch(p, 0, 1.0), SplineError);
   EXPECT_THROW(split_patch(p, 0, -0.1), SplineError);
