@@ -1,6 +1,7 @@
 // igac — command line.
 //   igac run CASE.toml [--out DIR] [--refine N] [--degree P] [--quiet] [--no-output]
 //   igac study CASE.toml --levels N [--degree P] [--out DIR] [--quiet]
+//   igac geometry CASE.toml --out BODY.xml
 // Exit codes: 0 converged, 1 the solve failed (summary.json says why),
 // 2 bad input (one line on stderr naming file, key and reason).
 #include <CLI/CLI.hpp>
@@ -9,7 +10,9 @@
 #include <fmt/format.h>
 
 #include "engine/spline/knot_vector.hpp"
+#include "io/case_body.hpp"
 #include "io/case_run.hpp"
+#include "io/gismo_xml.hpp"
 #include "io/json_out.hpp"
 #include "io/plots.hpp"
 #include "io/study.hpp"
@@ -139,6 +142,10 @@ int main(int argc, char** argv) {
   study->add_option("--out", out, "output folder for study.json, study.csv, study.png");
   study->add_flag("--quiet", quiet, "print only the table");
 
+  auto* geometry = app.add_subcommand("geometry", "write the case's body (before refinement) as a G+Smo XML file");
+  geometry->add_option("case", case_path, "case file (TOML)")->required();
+  geometry->add_option("--out", out, "the XML file to write")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -148,6 +155,10 @@ int main(int argc, char** argv) {
   }
   try {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output);
+    if (geometry->parsed()) {
+      write_gismo_xml(case_body(read_case(case_path)), out);
+      return 0;
+    }
     CaseSpec spec = read_case(case_path);
     apply_overrides(spec, degree, {});
     return run_study(spec, StudyOptions{levels, out, quiet});

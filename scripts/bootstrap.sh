@@ -8,7 +8,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 packages=(cmake g++ make pkg-config
           libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
           libfmt-dev libtomlplusplus-dev libcli11-dev libgtest-dev
-          nlohmann-json3-dev libopenblas0-pthread libopenblas-dev
+          nlohmann-json3-dev libpugixml-dev libopenblas0-pthread libopenblas-dev
           python3 python3-matplotlib)
 
 missing=()
