@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
+#include <limits>
 #include <numbers>
 
 namespace igac {
@@ -12,14 +14,14 @@ double HertzSolution::pressure(double r) const { return r < a ? p0 * std::sqrt(1
 HertzSolution hertz_cylinder(double R, double P, double E, double nu) {
   HertzSolution h;
   h.a = std::sqrt(8 * R * R * P * (1 - nu * nu) / (std::numbers::pi * E));
-  h.p0 = 4 * R * P / (std::numbers::pi * h.a);
+  h.p0 = h.a > 0 ? 4 * R * P / (std::numbers::pi * h.a) : 0.0;  // no load: no contact zone, no pressure
   return h;
 }
 
 HertzSolution hertz_sphere(double R, double P, double E, double nu) {
   HertzSolution h;
   h.a = std::cbrt(3 * std::numbers::pi * R * R * R * P * (1 - nu * nu) / (4 * E));
-  h.p0 = 3 * R * R * P / (2 * h.a * h.a);
+  h.p0 = h.a > 0 ? 3 * R * R * P / (2 * h.a * h.a) : 0.0;
   return h;
 }
 
@@ -187,33 +189,66 @@ std::pair<double, double> ContactPressure::l2_error(
   return {std::sqrt(e2), std::sqrt(n2)};
 }
 
-std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
-                                                                  const Obstacle& obstacle) {
+namespace {
+
+// Visits the face's corner control points (normal unknown: empty) and its
+// Gauss points (with the face's outward unit normal).
+template <class Visit>
+void for_each_face_sample(const NurbsPatch& patch, const ContactFace& cf, Visit&& visit) {
+  const Eigen::VectorXd no_normal;
+  for (int i = 0; i < cf.face_patch.num_control_points(); ++i) {
+    const auto mi = cf.face_patch.multi_index(i);
+    bool corner = true;
+    for (int d = 0; d < cf.face_patch.param_dim(); ++d)
+      corner = corner && (mi[d] == 0 || mi[d] == cf.face_patch.num_basis(d) - 1);
+    if (corner) visit(cf.face_patch.points().row(i).transpose().eval(), no_normal);
+  }
   const PatchQuadrature quad = cf.quadrature(gauss_points_for(patch.degree(0)));
   ElementData ed;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) visit(ed.X.row(q).transpose().eval(), ed.normal.row(q).transpose().eval());
+  }
+}
+
+}  // namespace
+
+std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
+                                                                  const Obstacle& obstacle) {
   double best = std::numeric_limits<double>::infinity();
   Eigen::VectorXd X0, n0;
-  auto consider = [&](const Eigen::VectorXd& X) {
+  for_each_face_sample(patch, cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd&) {
     const ObstacleProbe pr = obstacle.probe(X);
     if (pr.gap < best) {
       best = pr.gap;
       X0 = X;
       n0 = pr.normal;
     }
-  };
-  // face corners/breakpoints, then Gauss points
-  for (int i = 0; i < cf.face_patch.num_control_points(); ++i) {
-    const auto mi = cf.face_patch.multi_index(i);
-    bool corner = true;
-    for (int d = 0; d < cf.face_patch.param_dim(); ++d)
-      corner = corner && (mi[d] == 0 || mi[d] == cf.face_patch.num_basis(d) - 1);
-    if (corner) consider(cf.face_patch.points().row(i).transpose());
-  }
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.JxW.size(); ++q) consider(ed.X.row(q).transpose());
-  }
+  });
   return {X0, n0};
+}
+
+std::optional<std::string> contact_cannot_happen(const NurbsPatch& patch, const ContactFace& cf,
+                                                 const Obstacle& obstacle) {
+  // Judged where the face is nearest the obstacle's surface (smallest |g_n|):
+  // there a face that can press on the obstacle has its outward normal
+  // against the obstacle's (n_face . n_obstacle < 0).  An initial
+  // penetration is allowed: the solve pushes the body out.
+  double nearest = std::numeric_limits<double>::infinity(), facing = -1;
+  for_each_face_sample(patch, cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd& n_face) {
+    if (n_face.size() == 0) return;  // corners carry no normal
+    const ObstacleProbe pr = obstacle.probe(X);
+    if (std::abs(pr.gap) < nearest) {
+      nearest = std::abs(pr.gap);
+      facing = n_face.dot(pr.normal);
+    }
+  });
+  if (facing > 1e-6)
+    return fmt::format("the contact face faces away from the obstacle (its outward normal makes {:.0f} degrees with "
+                       "the obstacle's outward normal where they are nearest, contact needs more than 90): is the "
+                       "obstacle's normal reversed, or the face the wrong one?",
+                       std::acos(std::clamp(facing, -1.0, 1.0)) * 180 / std::numbers::pi);
+  return std::nullopt;
 }
 
 }  // namespace igac

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "contact/weighted_gap.hpp"
@@ -65,5 +67,11 @@ class ContactPressure {
 // obstacle normal there (sampled at the face's Gauss points and anchors).
 std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
                                                                   const Obstacle& obstacle);
+
+// Why the face can never press on the obstacle, judged from the reference
+// geometry: it lies inside it everywhere (an obstacle normal that points away
+// from the body), or it faces away from it.  nullopt when contact can happen.
+std::optional<std::string> contact_cannot_happen(const NurbsPatch& patch, const ContactFace& cf,
+                                                 const Obstacle& obstacle);
 
 }  // namespace igac

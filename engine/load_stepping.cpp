@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
+#include <memory>
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -30,8 +31,52 @@ struct Attempt {
 
 Eigen::Map<Eigen::VectorXd> view(N_Vector v) { return {N_VGetArrayPointer(v), N_VGetLength(v)}; }
 
+// KINSOL calls back through C frames, which an exception must not cross:
+// every callback runs its body through this barrier, which turns an
+// exception into KINSOL's unrecoverable return code and keeps the reason.
+template <class Body>
+int guarded(Attempt& a, Body&& body) noexcept {
+  try {
+    return body();
+  } catch (const std::bad_alloc&) {
+    a.failure = "out of memory in the Newton iteration";
+  } catch (const std::exception& e) {
+    a.failure = e.what();
+  } catch (...) {
+    a.failure = "unknown error in the Newton iteration";
+  }
+  return -1;
+}
+
+// RAII owners of the SUNDIALS objects of one solve.
+struct NVectorDeleter {
+  void operator()(_generic_N_Vector* v) const { N_VDestroy(v); }
+};
+using NVectorPtr = std::unique_ptr<_generic_N_Vector, NVectorDeleter>;
+struct KinsolDeleter {
+  void operator()(void* kin) const { KINFree(&kin); }
+};
+using KinsolPtr = std::unique_ptr<void, KinsolDeleter>;
+struct LinearSolverDeleter {
+  void operator()(_generic_SUNLinearSolver* s) const { SUNLinSolFree(s); }
+};
+using LinearSolverPtr = std::unique_ptr<_generic_SUNLinearSolver, LinearSolverDeleter>;
+struct MatrixDeleter {
+  void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
+};
+using MatrixPtr = std::unique_ptr<_generic_SUNMatrix, MatrixDeleter>;
+
+int residual_body(Attempt& a, N_Vector u, N_Vector f);
+int jacobian_body(Attempt& a, N_Vector u, N_Vector fu);
+int ls_setup_body(Attempt& a);
+int ls_solve_body(Attempt& a, N_Vector x, N_Vector b);
+
 int residual_fn(N_Vector u, N_Vector f, void* data) {
   auto& a = *static_cast<Attempt*>(data);
+  return guarded(a, [&] { return residual_body(a, u, f); });
+}
+
+int residual_body(Attempt& a, N_Vector u, N_Vector f) {
   Eigen::VectorXd x = view(u), r;
   if (!a.problem.residual(a.t, x, r) || !r.allFinite()) {
     a.failure = "inadmissible state (det F <= 0 or a non-finite residual)";
@@ -43,6 +88,10 @@ int residual_fn(N_Vector u, N_Vector f, void* data) {
 
 int jacobian_fn(N_Vector u, N_Vector fu, SUNMatrix, void* data, N_Vector, N_Vector) {
   auto& a = *static_cast<Attempt*>(data);
+  return guarded(a, [&] { return jacobian_body(a, u, fu); });
+}
+
+int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
   const Eigen::VectorXd x = view(u);
   a.record.residual_norms.push_back(view(fu).cwiseAbs().maxCoeff() / a.scale);
   a.record.active_set_sizes.push_back(a.problem.active_set_size(x));
@@ -68,6 +117,10 @@ int jacobian_fn(N_Vector u, N_Vector fu, SUNMatrix, void* data, N_Vector, N_Vect
 // assembled (the SUNMatrix handed around is an empty placeholder).
 int ls_setup(SUNLinearSolver S, SUNMatrix) {
   auto& a = *static_cast<Attempt*>(S->content);
+  return guarded(a, [&] { return ls_setup_body(a); });
+}
+
+int ls_setup_body(Attempt& a) {
   if (!a.analyzed) {
     a.lu.analyzePattern(a.J);
     a.analyzed = true;
@@ -82,6 +135,10 @@ int ls_setup(SUNLinearSolver S, SUNMatrix) {
 
 int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
   auto& a = *static_cast<Attempt*>(S->content);
+  return guarded(a, [&] { return ls_solve_body(a, x, b); });
+}
+
+int ls_solve_body(Attempt& a, N_Vector x, N_Vector b) {
   const Eigen::VectorXd rhs = view(b);
   const Eigen::VectorXd sol = a.lu.solve(rhs);
   if (!sol.allFinite()) {
@@ -97,20 +154,19 @@ void silent(int, const char*, const char*, char*, void*) {}
 // One load-step attempt from x at load factor t; x is updated on success.
 bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppingOptions& opt) {
   const int n = int(x.size());
-  N_Vector u = N_VNew_Serial(n, ctx), us = N_VNew_Serial(n, ctx), fs = N_VNew_Serial(n, ctx);
+  const NVectorPtr u_owner(N_VNew_Serial(n, ctx)), us_owner(N_VNew_Serial(n, ctx)), fs_owner(N_VNew_Serial(n, ctx));
+  N_Vector u = u_owner.get(), us = us_owner.get(), fs = fs_owner.get();
   view(u) = x;
   N_VConst(1.0, us);
   a.scale = std::max(a.problem.force_scale(a.t, x), 1e-300);
   N_VConst(1.0 / a.scale, fs);
-  void* kin = KINCreate(ctx);
-  KINInit(kin, residual_fn, u);
-  KINSetUserData(kin, &a);
-  KINSetErrHandlerFn(kin, silent, nullptr);
-  SUNMatrix A = SUNMatNewEmpty(ctx);
+  // The matrix and the linear solver are declared before the KINSOL memory
+  // so that KINFree runs first, while they still exist.
+  const MatrixPtr A(SUNMatNewEmpty(ctx));
   A->ops->getid = [](SUNMatrix) { return SUNMATRIX_CUSTOM; };
   A->ops->zero = [](SUNMatrix) { return 0; };
   A->ops->destroy = [](SUNMatrix M) { SUNMatFreeEmpty(M); };
-  SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
+  const LinearSolverPtr LS(SUNLinSolNewEmpty(ctx));
   LS->content = &a;
   LS->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; };
   LS->ops->getid = [](SUNLinearSolver) { return SUNLINEARSOLVER_CUSTOM; };
@@ -121,7 +177,12 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
     SUNLinSolFreeEmpty(S);
     return 0;
   };
-  KINSetLinearSolver(kin, LS, A);
+  const KinsolPtr kin_owner(KINCreate(ctx));
+  void* kin = kin_owner.get();
+  KINInit(kin, residual_fn, u);
+  KINSetUserData(kin, &a);
+  KINSetErrHandlerFn(kin, silent, nullptr);
+  KINSetLinearSolver(kin, LS.get(), A.get());
   KINSetJacFn(kin, jacobian_fn);
   KINSetMaxSetupCalls(kin, 1);  // a fresh Jacobian at every iteration: Newton, not chord
   KINSetNumMaxIters(kin, opt.max_newton_iterations);
@@ -133,12 +194,6 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
   double fnorm = NAN;
   KINGetFuncNorm(kin, &fnorm);
   const Eigen::VectorXd x_new = view(u);
-  KINFree(&kin);
-  SUNLinSolFree(LS);
-  SUNMatDestroy(A);
-  N_VDestroy(u);
-  N_VDestroy(us);
-  N_VDestroy(fs);
   a.record.newton_iterations = int(iterations);
   const bool ok = flag >= 0 && std::isfinite(fnorm) && fnorm <= 10 * opt.tolerance && x_new.allFinite();
   if (!ok && a.failure.empty())

@@ -155,6 +155,13 @@ CaseSpec read_case(const std::string& path) {
                     {"name", "description", "geometry", "mesh", "material", "dirichlet", "pressure", "body_force",
                      "contact", "reference", "output", "loading"});
   c.name = top.string("name", std::filesystem::path(path).stem().string());
+  // The name becomes a folder under out/: a plain file name, nothing that
+  // climbs out of it or that a shell or a file system would read otherwise.
+  const bool plain = !c.name.empty() && c.name != "." && c.name != ".." && c.name.size() <= 200 &&
+                     std::none_of(c.name.begin(), c.name.end(), [](unsigned char ch) { return ch == '/' || ch == '\\' || ch < 32 || ch == 127; });
+  if (!plain)
+    top.fail("name", fmt::format("'{}' is not a plain file name (it names the output folder out/<name>: "
+                                 "no '/', not empty, not '.' or '..')", c.name));
   c.description = top.string("description", "");
 
   const Section geo(path, "geometry", top.sub("geometry"),

@@ -95,6 +95,8 @@ Model build_model(const CaseSpec& spec) {
     if (o.type == "plane") m.obstacle = std::make_unique<RigidPlane>(vec(o.point), vec(o.normal));
     else m.obstacle = std::make_unique<RigidSphere>(vec(o.centre), o.radius);
     m.contact_face = std::make_unique<ContactFace>(patch, faces->front());
+    if (auto why = contact_cannot_happen(patch, *m.contact_face, *m.obstacle))
+      throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, spec.contact->face, *why));
   }
   return m;
 }
@@ -200,6 +202,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
     c->pressure = std::make_unique<ContactPressure>(patch, *m.contact_face, c->solution.lambda, c->op.weights,
                                                     c->solution.active, c->X0, c->normal);
     c->report = c->pressure->report();
+    // A rigid obstacle can only push: a net pull on the body (tensile
+    // multipliers) is a wrong result, never a converged one.
+    if (r.status == "converged" && c->report.total_force < -1e-9 * std::max(r.applied_force, 1e-300))
+      r.status = fmt::format("failed: the obstacle pulls on the body (total contact force {:.3g} < 0)",
+                             c->report.total_force);
     if (m.spec.reference == "hertz") {
       double P = 0;
       for (const auto& p : m.spec.pressure) P += p.value;

@@ -22,6 +22,14 @@ void write_file_atomically(const std::string& path, const std::string& text) {
 
 Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+bool has_null_value(const Json& j) {
+  if (j.is_null()) return true;
+  if (j.is_structured())
+    for (const auto& v : j)
+      if (has_null_value(v)) return true;
+  return false;
+}
+
 Json run_summary(const Model& m, const RunResult& r) {
   const NurbsPatch& patch = m.geometry.patch;
   Json j;
@@ -83,12 +91,14 @@ Json run_summary(const Model& m, const RunResult& r) {
     const auto& d = *r.displacement_errors;
     e["displacement_l2"] = finite_or_null(d.l2);
     e["displacement_h1"] = finite_or_null(d.h1);
-    e["displacement_l2_rel"] = finite_or_null(d.l2 / d.ref_l2);
-    e["displacement_h1_rel"] = finite_or_null(d.h1 / d.ref_h1);
+    // A relative error against a zero reference (a zero load) is absent, not NaN.
+    if (d.ref_l2 > 0) e["displacement_l2_rel"] = finite_or_null(d.l2 / d.ref_l2);
+    if (d.ref_h1 > 0) e["displacement_h1_rel"] = finite_or_null(d.h1 / d.ref_h1);
   }
   if (r.pressure_error) {
     e["pressure_l2"] = finite_or_null(r.pressure_error->first);
-    e["pressure_l2_rel"] = finite_or_null(r.pressure_error->first / r.pressure_error->second);
+    if (r.pressure_error->second > 0)
+      e["pressure_l2_rel"] = finite_or_null(r.pressure_error->first / r.pressure_error->second);
   }
   if (!e.empty()) j["errors"] = e;
   if (r.load_steps) j["newton_seconds"] = r.load_steps->newton_seconds;
@@ -110,7 +120,7 @@ std::string pressure_csv(const RunResult& r) {
   const auto& rep = r.contact->report;
   auto row = [&](const char* kind, PressureSample p) {
     p.pressure += 0.0;  // an inactive multiplier's -0 prints as 0
-    if (r.hertz)
+    if (r.hertz && r.hertz->a > 0 && r.hertz->p0 > 0)  // a zero load has no Hertz scale
       s += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", kind, p.r, p.pressure, p.r / r.hertz->a,
                        p.pressure / r.hertz->p0, r.hertz->pressure(p.r) / r.hertz->p0);
     else

@@ -17,6 +17,8 @@ using Json = nlohmann::ordered_json;
 void write_file_atomically(const std::string& path, const std::string& text);
 // A number, or null when it is not finite.
 Json finite_or_null(double v);
+// True when some value in the tree is null (a non-finite number was stored).
+bool has_null_value(const Json& j);
 
 Json run_summary(const Model& model, const RunResult& result);
 // Per multiplier and P1 re-interpolation: kind, r, pressure (and r/a,

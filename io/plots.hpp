@@ -4,11 +4,19 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace igac {
 
-// Runs scripts/<script> with the arguments; returns false (and prints a
-// warning unless quiet) when the plot could not be drawn.
-bool draw_plot(const std::string& script, const std::string& args, bool quiet);
+// Runs a program with this argument vector (argv[0] looked up in PATH), no
+// shell in between, its output discarded; its exit code, or -1 when it could
+// not be started or did not exit normally.
+int run_program(const std::vector<std::string>& argv);
+
+// Runs scripts/<script> CSV PNG TITLE; the picture replaces PNG only when it
+// was drawn completely.  Returns false (and prints a warning unless quiet)
+// when the plot could not be drawn.
+bool draw_plot(const std::string& script, const std::string& csv, const std::string& png, const std::string& title,
+               bool quiet);
 
 }  // namespace igac

@@ -117,7 +117,7 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     std::filesystem::create_directories(opt.out);
     write_file_atomically(opt.out + "/study.csv", csv);
     write_file_atomically(opt.out + "/study.json", j.dump(2) + "\n");
-    draw_plot("plot_study.py", fmt::format("'{}/study.csv' '{}/study.png' '{}'", opt.out, opt.out, spec.name), opt.quiet);
+    draw_plot("plot_study.py", opt.out + "/study.csv", opt.out + "/study.png", spec.name, opt.quiet);
   }
   return 0;
 }

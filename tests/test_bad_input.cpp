@@ -20,66 +20,20 @@
 #include "engine/spline/knot_vector.hpp"
 #include "engine/spline/nurbs_patch.hpp"
 #include "engine/geometry/shapes.hpp"
+#include "tests/igac_process.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using igac_test::Outcome;
+using igac_test::quote;
+using igac_test::run_igac;
+using igac_test::TempDir;
 
 // Exit code of igac for bad input (io/main.cpp, DESIGN.md).
 constexpr int kBadInputExit = 2;
 
 std::string data_file(const std::string& name) { return std::string(IGAC_SOURCE_DIR) + "/tests/data/" + name; }
-
-// A fresh empty folder for one test, removed at the end.
-class TempDir {
- public:
-  explicit TempDir(const std::string& tag) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-    for (char& c : name)
-      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    path_ = fs::temp_directory_path() / ("igac_test_" + tag + "_" + name + "_" + std::to_string(getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  bool empty() const { return fs::is_empty(path_); }
-
- private:
-  fs::path path_;
-};
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-// Runs `igac ARGS` with the working directory `cwd`, capturing 2>&1.
-Outcome run_igac(const std::string& args, const fs::path& cwd) {
-  const std::string cmd = "cd " + quote(cwd.string()) + " && " + quote(IGAC_BINARY) + " " + args + " 2>&1";
-  Outcome o;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) {
-    ADD_FAILURE() << "popen failed for " << cmd;
-    return o;
-  }
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) o.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
 
 // The 1-based line of the first line of `file` containing `text`.
 int line_of(const std::string& file, const std::string& text) {

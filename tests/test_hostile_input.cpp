@@ -1,0 +1,164 @@
+// Regression tests for what a hostile or clumsy user found (issue 12): each
+// of these failed before its fix.  Shell injection through the case name or
+// --out, names that climb out of out/, a converged run called failed because
+// its name contains "null", zero and tiny loads, obstacles the body can never
+// touch, and exceptions thrown inside KINSOL's callbacks.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "engine/load_stepping.hpp"
+#include "tests/igac_process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using igac_test::Outcome;
+using igac_test::quote;
+using igac_test::run_igac;
+using igac_test::TempDir;
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// cases/NAME.toml with `from` replaced by `to` (which must occur), written to dir/file.
+fs::path edited_case(const std::string& name, const std::string& from, const std::string& to, const fs::path& dir,
+                     const std::string& file = "case.toml") {
+  std::string text = read(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  const fs::path path = dir / file;
+  std::ofstream(path) << text;
+  return path;
+}
+
+nlohmann::json summary(const fs::path& out) {
+  std::ifstream in(out / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+TEST(HostileInput, ShellMetacharactersInNameAndOutRunNothing) {
+  TempDir tmp("inject");
+  const fs::path c = edited_case("hertz2d", "name = \"hertz2d\"", "name = \"x'; touch PWNED; echo '\"", tmp.path());
+  const fs::path out = tmp.path() / "o'; touch PWNED2; echo '";
+  const Outcome o = run_igac("run " + quote(c.string()) + " --quiet --out " + quote(out.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "PWNED")) << "the case name was run by a shell";
+  EXPECT_FALSE(fs::exists(tmp.path() / "PWNED2")) << "--out was run by a shell";
+  EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "left over: " << e.path();
+}
+
+TEST(HostileInput, NameThatIsNotAPlainFileNameIsRefused) {
+  for (const std::string bad : {"../../escaped", "", "..", ".", "a/b"}) {
+    TempDir tmp("name");
+    const fs::path c = edited_case("hertz2d", "name = \"hertz2d\"", "name = \"" + bad + "\"", tmp.path());
+    const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+    EXPECT_EQ(o.exit_code, 2) << bad << ": " << o.output;
+    EXPECT_NE(o.output.find("[top level] name"), std::string::npos) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+    EXPECT_FALSE(fs::exists(tmp.path() / "out")) << bad;
+    EXPECT_FALSE(fs::exists(tmp.path().parent_path().parent_path() / "escaped"));
+  }
+}
+
+TEST(HostileInput, CaseNamedNullConverges) {
+  TempDir tmp("null");
+  const fs::path c = edited_case("hertz2d", "name = \"hertz2d\"", "name = \"nullcase\"", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --quiet --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(summary(tmp.path() / "out").value("status", ""), "converged");
+}
+
+TEST(HostileInput, ZeroLoadGivesZeroDisplacementAndNoNaN) {
+  TempDir tmp("zero");
+  const fs::path c = edited_case("hertz2d", "value = 0.003", "value = 0.0", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output.find("nan"), std::string::npos) << o.output;
+  const nlohmann::json j = summary(tmp.path() / "out");
+  EXPECT_EQ(j.value("status", ""), "converged");
+  EXPECT_EQ(j["contact"].value("total_force", 1.0), 0.0);
+  EXPECT_FALSE(j["errors"].contains("pressure_l2_rel")) << "a relative error against zero is absent";
+  const std::string csv = read(tmp.path() / "out" / "pressure.csv");
+  EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("inf"), std::string::npos) << csv;
+}
+
+TEST(HostileInput, TinyLoadConverges) {
+  TempDir tmp("tiny");
+  const fs::path c = edited_case("hertz2d", "value = 0.003", "value = 1e-20", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --quiet --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = summary(tmp.path() / "out");
+  EXPECT_NEAR(j["contact"].value("total_force", 0.0), 1e-20, 1e-30);
+}
+
+TEST(HostileInput, ObstacleNormalPointingAwayIsAnInputError) {
+  TempDir tmp("away");
+  const fs::path c = edited_case("hertz2d", "normal = [0.0, 1.0]", "normal = [0.0, -1.0]", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("faces away from the obstacle"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+TEST(HostileInput, ContactFaceThatCannotTouchTheObstacleIsAnInputError) {
+  TempDir tmp("top");
+  const fs::path c = edited_case("hertz3d", "face = \"curved\"", "face = \"top\"", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("[contact] face 'top'"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+// A problem whose residual throws on its second call: the exception must not
+// cross KINSOL's C frames; the step fails with the reason, the driver cuts
+// back and finally ends with a status naming it.
+class ThrowingProblem final : public igac::NonlinearProblem {
+ public:
+  int size() const override { return 1; }
+  bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
+    if (++calls_ >= 2) throw std::runtime_error("material law blew up");
+    r.resize(1);
+    r[0] = x[0] - t;
+    return true;
+  }
+  bool jacobian(double, const Eigen::VectorXd&, Eigen::SparseMatrix<double>& J) override {
+    J.resize(1, 1);
+    J.coeffRef(0, 0) = 1;
+    J.makeCompressed();
+    return true;
+  }
+  double force_scale(double, const Eigen::VectorXd&) override { return 1; }
+
+ private:
+  int calls_ = 0;
+};
+
+TEST(HostileInput, ExceptionInsideKinsolCallbackEndsTheRunCleanly) {
+  ThrowingProblem problem;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  igac::LoadSteppingOptions opt;
+  opt.quiet = true;
+  opt.min_increment = 0.2;
+  igac::LoadSteppingSummary s;
+  ASSERT_NO_THROW(s = igac::run_load_steps(problem, x, opt, {}));
+  EXPECT_NE(s.status, "converged");
+  EXPECT_NE(s.status.find("material law blew up"), std::string::npos) << s.status;
+  EXPECT_TRUE(x.allFinite());
+}
+
+}  // namespace
