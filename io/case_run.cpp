@@ -173,9 +173,9 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
   SparseCholesky chol;
   if (!m.obstacle) {
     if (modes.modes.cols() > 0)
-      throw std::runtime_error(fmt::format(
-          "the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
-          modes.modes.cols()));
+      throw InputError(fmt::format(
+          "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
+          m.spec.path, modes.modes.cols()));
     t0 = Clock::now();
     chol.factorize(sys.K);
     r.timing.factorization = since(t0);

@@ -11,13 +11,22 @@ namespace igac {
 
 void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = fmt::format("{}.tmp{}", path, getpid());
+  bool ok = false;
   {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp));
-    out << text;
-    if (!out.good()) throw std::runtime_error(fmt::format("cannot write {}", tmp));
+    std::ofstream out(tmp, std::ios::binary);
+    if (out) {
+      out << text;
+      out.close();  // the last buffer reaches the disk here: a full disk fails now
+      ok = !out.fail();
+    }
   }
-  std::filesystem::rename(tmp, path);
+  std::error_code ec;
+  if (ok && std::filesystem::file_size(tmp, ec) == text.size() && !ec) {
+    std::filesystem::rename(tmp, path, ec);
+    if (!ec) return;
+  }
+  std::filesystem::remove(tmp, ec);  // never a short file in place of a good one
+  throw std::runtime_error(fmt::format("cannot write {} (disk full or not writable?)", path));
 }
 
 Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }

@@ -14,6 +14,7 @@
 #include "io/case_run.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/json_out.hpp"
+#include "io/output_folder.hpp"
 #include "io/plots.hpp"
 #include "io/study.hpp"
 #include "io/vtk_output.hpp"
@@ -85,11 +86,16 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   apply_overrides(spec, degree, refine);
   if (no_output) out.clear();
   else if (out.empty()) out = "out/" + spec.name;
+  // Checked (and staged) before anything is computed; the files appear in
+  // `out` together, when the run ends.
+  std::optional<OutputFolder> folder;
+  if (!out.empty()) folder.emplace(out);
   Model model = build_model(spec);
   model.quiet = quiet;
-  const bool vtk = !out.empty() && spec.write_vtk;
-  if (!out.empty()) std::filesystem::create_directories(out);
-  VtkSeries series(out);
+  if (folder) folder->create_staging();
+  const std::string dir = folder ? folder->staging() : std::string();
+  const bool vtk = folder && spec.write_vtk;
+  VtkSeries series(dir);
   // Large deformation: one ParaView step per converged load step.
   StepObserver observer;
   if (vtk && spec.finite_strain())
@@ -105,20 +111,21 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     r.status = "failed: a result is not finite";
     summary["status"] = r.status;
   }
-  if (!out.empty()) {
+  if (folder) {
     if (r.contact) {
-      write_file_atomically(out + "/pressure.csv", pressure_csv(r));
-      draw_plot("plot_pressure.py", out + "/pressure.csv", out + "/pressure.png", spec.name, quiet);
+      write_file_atomically(dir + "/pressure.csv", pressure_csv(r));
+      draw_plot("plot_pressure.py", dir + "/pressure.csv", dir + "/pressure.png", spec.name, quiet);
     }
     if (!r.load_curve.empty()) {
-      write_file_atomically(out + "/load_curve.csv", load_curve_csv(r));
-      draw_plot("plot_load_curve.py", out + "/load_curve.csv", out + "/load_curve.png", spec.name, quiet);
+      write_file_atomically(dir + "/load_curve.csv", load_curve_csv(r));
+      draw_plot("plot_load_curve.py", dir + "/load_curve.csv", dir + "/load_curve.png", spec.name, quiet);
     }
-    write_file_atomically(out + "/summary.json", summary.dump(2) + "\n");
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);
+    write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
+    folder->commit();
   }
-  if (!quiet) print_summary(model, r, out);
+  if (!quiet) print_summary(model, r, folder ? folder->target() : std::string());
   return r.status == "converged" ? 0 : 1;
 }
 

@@ -4,9 +4,11 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <map>
+#include <optional>
 
 #include "io/case_run.hpp"
 #include "io/json_out.hpp"
+#include "io/output_folder.hpp"
 #include "io/plots.hpp"
 
 namespace igac {
@@ -14,6 +16,21 @@ namespace igac {
 int run_study(CaseSpec spec, const StudyOptions& opt) {
   if (opt.levels < 2) throw InputError(fmt::format("--levels {}: a study needs at least 2 levels", opt.levels));
   const int r0 = spec.refine;
+  try {  // Every level's size is checked before the first level is computed.
+    CaseSpec finest = spec;
+    apply_overrides(finest, {}, r0 + opt.levels - 1);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("--levels {}: the finest level is too large: {}", opt.levels, e.what()));
+  }
+  std::optional<OutputFolder> folder;  // --out checked now, written at the end
+  if (!opt.out.empty()) folder.emplace(opt.out);
+  const bool exact = exact_displacement(spec).has_value();
+  const int n_ref = opt.levels - 1;
+  std::vector<int> reported;
+  for (int l = 0; l < opt.levels; ++l)
+    if (exact || l <= n_ref - 2) reported.push_back(l);  // nested bisection: h_ref = h / 2^(n_ref - l) <= h/4
+  if (reported.size() < 2)
+    throw InputError(fmt::format("--levels {}: too few levels with h >= 4 h_ref to form a rate (use at least 4)", opt.levels));
   std::vector<Model> models;
   std::vector<RunResult> results;
   for (int l = 0; l < opt.levels; ++l) {
@@ -27,14 +44,6 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     if (results.back().status != "converged")
       throw std::runtime_error(fmt::format("level {} did not converge: {}", l, results.back().status));
   }
-  const bool exact = exact_displacement(spec).has_value();
-  const int n_ref = opt.levels - 1;
-  std::vector<int> reported;
-  for (int l = 0; l < opt.levels; ++l)
-    if (exact || l <= n_ref - 2) reported.push_back(l);  // nested bisection: h_ref = h / 2^(n_ref - l) <= h/4
-  if (reported.size() < 2)
-    throw InputError(fmt::format("--levels {}: too few levels with h >= 4 h_ref to form a rate (use at least 4)", opt.levels));
-
   std::vector<std::map<std::string, double>> errors(opt.levels);
   const Model& ref = models[n_ref];
   const RunResult& rref = results[n_ref];
@@ -113,11 +122,13 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     fmt::print("{}\n", line);
     csv += row + "\n";
   }
-  if (!opt.out.empty()) {
-    std::filesystem::create_directories(opt.out);
-    write_file_atomically(opt.out + "/study.csv", csv);
-    write_file_atomically(opt.out + "/study.json", j.dump(2) + "\n");
-    draw_plot("plot_study.py", opt.out + "/study.csv", opt.out + "/study.png", spec.name, opt.quiet);
+  if (folder) {
+    folder->create_staging();
+    const std::string dir = folder->staging();
+    write_file_atomically(dir + "/study.csv", csv);
+    write_file_atomically(dir + "/study.json", j.dump(2) + "\n");
+    draw_plot("plot_study.py", dir + "/study.csv", dir + "/study.png", spec.name, opt.quiet);
+    folder->commit();
   }
   return 0;
 }

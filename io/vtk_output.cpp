@@ -221,9 +221,12 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& dir, const std::st
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
   w->SetCompressorTypeToZLib();
-  if (w->Write() != 1) {
-    std::filesystem::remove(tmp);
-    throw std::runtime_error(fmt::format("cannot write {}", path));
+  w->SetGlobalWarningDisplay(0);  // a failure is one line of ours, not VTK's multi-line dump
+  const bool written = w->Write() == 1 && w->GetErrorCode() == 0;
+  std::error_code ec;
+  if (!written || std::filesystem::file_size(tmp, ec) == 0 || ec) {
+    std::filesystem::remove(tmp, ec);
+    throw std::runtime_error(fmt::format("cannot write {} (disk full or not writable?)", path));
   }
   std::filesystem::rename(tmp, path);
 }
