@@ -34,6 +34,17 @@ class Section {
   bool has(const std::string& key) const { return t_.contains(key); }
   const toml::node* node(const std::string& key) const { return t_.get(key); }
 
+  // A length or modulus: positive and within the range where det J, strains
+  // and stresses neither underflow nor overflow in double precision.
+  double scale(const std::string& key, const char* what) const {
+    const double v = number(key);
+    if (!(v > 0)) fail(key, fmt::format("{} = {} must be positive ({})", key, v, what));
+    if (v < 1e-100 || v > 1e100)
+      fail(key, fmt::format("{} = {:g} is outside [1e-100, 1e100], where the computation under- or overflows; "
+                            "choose units that bring it near 1", key, v));
+    return v;
+  }
+
   double number(const std::string& key, std::optional<double> def = {}) const {
     const auto* n = t_.get(key);
     if (!n) {
@@ -168,17 +179,16 @@ CaseSpec read_case(const std::string& path) {
                     {"shape", "radius", "inner_radius", "outer_radius", "size"});
   c.shape = geo.string("shape");
   if (c.shape == "quarter_disc" || c.shape == "sphere_octant") {
-    c.radius = geo.number("radius");
-    if (!(c.radius > 0)) geo.fail("radius", "must be positive");
+    c.radius = geo.scale("radius", "a length");
   } else if (c.shape == "quarter_annulus") {
-    c.inner_radius = geo.number("inner_radius");
-    c.outer_radius = geo.number("outer_radius");
-    if (!(c.inner_radius > 0)) geo.fail("inner_radius", "must be positive");
+    c.inner_radius = geo.scale("inner_radius", "a length");
+    c.outer_radius = geo.scale("outer_radius", "a length");
     if (!(c.outer_radius > c.inner_radius)) geo.fail("outer_radius", "must exceed inner_radius");
   } else if (c.shape == "rectangle" || c.shape == "box") {
     c.size = geo.numbers("size", c.shape == "box" ? 3 : 2);
     for (double s : c.size)
-      if (!(s > 0)) geo.fail("size", "every length must be positive");
+      if (!(s >= 1e-100 && s <= 1e100))
+        geo.fail("size", fmt::format("every length must be positive and within [1e-100, 1e100] (got {:g})", s));
   } else {
     geo.fail("shape", fmt::format("unknown shape '{}' (quarter_disc, sphere_octant, quarter_annulus, rectangle, box)", c.shape));
   }
@@ -188,6 +198,9 @@ CaseSpec read_case(const std::string& path) {
   c.degree = mesh.integer("degree");
   if (c.degree < 1) mesh.fail("degree", fmt::format("degree {} must be at least 1", c.degree));
   if (c.degree > 10) mesh.fail("degree", fmt::format("degree {} is above the supported 10", c.degree));
+  if (c.degree < 2 && (c.shape == "quarter_disc" || c.shape == "quarter_annulus" || c.shape == "sphere_octant"))
+    mesh.fail("degree", fmt::format("degree {}: a {} has exact circular arcs, quadratic NURBS; the degree must be at "
+                                    "least 2", c.degree, c.shape));
   for (double e : mesh.numbers("elements", dim)) {
     if (e != std::floor(e) || e < 1 || e > 1e6) mesh.fail("elements", "entries must be whole numbers from 1 to 1e6");
     c.elements.push_back(int(e));
@@ -233,9 +246,8 @@ CaseSpec read_case(const std::string& path) {
       mat.fail("model", fmt::format("unknown material model '{}' (available: linear_elastic (small deformation), {})",
                                     c.model, fmt::join(laws, ", ")));
   }
-  c.E = mat.number("E");
+  c.E = mat.scale("E", "Young's modulus");
   c.nu = mat.number("nu");
-  if (!(c.E > 0)) mat.fail("E", fmt::format("E = {} must be positive (Young's modulus)", c.E));
   if (!(c.nu > -1 && c.nu < 0.5)) mat.fail("nu", fmt::format("nu = {} must lie in (-1, 0.5)", c.nu));
 
   for (const auto* t : tables(path, root, "dirichlet")) {

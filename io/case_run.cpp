@@ -1,5 +1,6 @@
 #include "io/case_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
@@ -66,9 +67,17 @@ Model build_model(const CaseSpec& spec) {
     const GradingSpec* g = nullptr;
     for (const auto& gs : spec.gradings)
       if (gs.direction == d) g = &gs;
-    KnotVector target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start)
-                          : KnotVector::uniform(spec.degree, spec.elements[d]);
-    if (spec.refine > 0) target = target.subdivided(1 << spec.refine);
+    KnotVector target;
+    try {
+      target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start)
+                 : KnotVector::uniform(spec.degree, spec.elements[d]);
+      if (spec.refine > 0) target = target.subdivided(1 << spec.refine);
+    } catch (const SplineError& e) {
+      if (!g) throw;
+      throw InputError(fmt::format("{}: [mesh.grading] range_fraction = {:g}: the graded spans are too short to be "
+                                   "told apart ({}); use a larger range_fraction or fewer elements",
+                                   spec.path, g->range_fraction, e.what()));
+    }
     patch = refine_to(patch, d, target);
   }
   m.geometry.patch = patch;
@@ -78,6 +87,18 @@ Model build_model(const CaseSpec& spec) {
   for (const auto& d : spec.dirichlet)
     dc.push_back({resolve_faces(spec, m.geometry, d.faces, "dirichlet"), d.component, d.value});
   for (const auto& p : spec.pressure) resolve_faces(spec, m.geometry, p.faces, "pressure");
+  // The same face and component held at two values: the conditions are
+  // applied in order, so the last one wins; say so.
+  for (size_t a = 0; a < spec.dirichlet.size(); ++a)
+    for (size_t b = a + 1; b < spec.dirichlet.size(); ++b) {
+      const auto &da = spec.dirichlet[a], &db = spec.dirichlet[b];
+      if (da.component != db.component || da.value == db.value) continue;
+      for (const auto& fa : da.faces)
+        if (std::find(db.faces.begin(), db.faces.end(), fa) != db.faces.end())
+          m.warnings.push_back(fmt::format("{}: [[dirichlet]] face '{}' component {} is given two values ({} and {}); "
+                                           "the last one applies", spec.path, fa, "xyz"[da.component], da.value,
+                                           db.value));
+    }
   m.dofs = std::make_unique<DofMap>(patch, dc);
   m.material = LinearElastic(spec.E, spec.nu);
   if (spec.finite_strain()) m.law = make_law(spec.model, MaterialParameters{spec.E, spec.nu});
@@ -95,6 +116,15 @@ Model build_model(const CaseSpec& spec) {
     if (o.type == "plane") m.obstacle = std::make_unique<RigidPlane>(vec(o.point), vec(o.normal));
     else m.obstacle = std::make_unique<RigidSphere>(vec(o.centre), o.radius);
     m.contact_face = std::make_unique<ContactFace>(patch, faces->front());
+    // A Dirichlet condition on the contact face along the obstacle's normal
+    // leaves the contact nothing to do there.
+    const Eigen::VectorXd n = initial_contact_point(patch, *m.contact_face, *m.obstacle).second;
+    for (const auto& d : spec.dirichlet)
+      if (std::find(d.faces.begin(), d.faces.end(), spec.contact->face) != d.faces.end() && n.size() > d.component &&
+          std::abs(n[d.component]) > 0.5)
+        m.warnings.push_back(fmt::format("{}: [[dirichlet]] holds component {} of the contact face '{}', along the "
+                                         "obstacle's normal: the contact cannot act where it holds",
+                                         spec.path, "xyz"[d.component], spec.contact->face));
     if (auto why = contact_cannot_happen(patch, *m.contact_face, *m.obstacle))
       throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, spec.contact->face, *why));
   }
@@ -148,6 +178,41 @@ double pressure_resultant(const Model& m) {
   return total;
 }
 
+void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f) {
+  const int k = int(modes.modes.cols());
+  if (k == 0) return;
+  if (!m.obstacle)
+    throw InputError(fmt::format(
+        "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
+        m.spec.path, k));
+  // A frictionless contact holds a rigid motion only if the motion changes
+  // the weighted gaps: H = G * modes must have full column rank.
+  const WeightedGapOperator op = assemble_weighted_gaps(m.geometry.patch, *m.dofs, *m.contact_face, *m.obstacle);
+  const Eigen::MatrixXd H = op.G * modes.modes;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(H);
+  const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
+  int held = 0;
+  for (int i = 0; i < svd.singularValues().size(); ++i)
+    if (svd.singularValues()[i] > 1e-8 * s_max && s_max > 0) ++held;
+  if (held < k)
+    throw InputError(fmt::format(
+        "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and the frictionless contact "
+        "cannot stop them (it pushes only along the obstacle's normal); add a [[dirichlet]] condition",
+        m.spec.path, k - held));
+  // One free motion (the usual symmetric case): the load must move the body
+  // toward the obstacle, closing some gap, or nothing balances it.
+  if (k == 1) {
+    const double push = modes.modes.col(0).dot(f);
+    const double scale = H.col(0).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * H.col(0);  // gap change along the load's motion
+    if (std::abs(push) > 1e-12 * f.norm() && opening.minCoeff() >= -1e-12 * scale && opening.maxCoeff() > 1e-12 * scale)
+      throw InputError(fmt::format(
+          "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
+          "motion, and the load opens every gap (is the load's sign reversed?)",
+          m.spec.path));
+  }
+}
+
 RunResult solve_model(const Model& m, const StepObserver& on_step) {
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
@@ -171,11 +236,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
   const RigidModes modes = free_rigid_modes(patch, *m.dofs);
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
+  check_body_is_held(m, modes, sys.f);
   if (!m.obstacle) {
-    if (modes.modes.cols() > 0)
-      throw InputError(fmt::format(
-          "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
-          m.spec.path, modes.modes.cols()));
     t0 = Clock::now();
     chol.factorize(sys.K);
     r.timing.factorization = since(t0);

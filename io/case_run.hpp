@@ -28,6 +28,7 @@ struct Model {
   std::unique_ptr<ContactFace> contact_face;
   double mesh_size = 0;  // largest element diameter
   bool quiet = false;    // no progress lines
+  std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
 };
 
 struct ContactResult {
@@ -70,6 +71,10 @@ RunResult solve_model(const Model& model, const StepObserver& on_step = {});
 // The large-deformation path (io/finite_strain_run.cpp).
 RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 
+// Throws InputError (naming the case) when free rigid motions (`modes`, not
+// held by Dirichlet conditions) are not held: no contact, a contact that
+// cannot stop them, or a load `f` that pulls the body off the obstacle.
+void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen::VectorXd& f);
 // |int P n dGamma| summed over the pressure loads (the modelled part).
 double pressure_resultant(const Model& model);
 // Closed-form displacement of the case's reference solution, if it has one.

@@ -113,10 +113,11 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   FiniteStrainProblem problem(setup);
 
   const RigidModes modes = free_rigid_modes(patch, *m.dofs);
-  if (modes.modes.cols() > 0 && !m.obstacle)
-    throw std::runtime_error(fmt::format(
-        "the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
-        modes.modes.cols()));
+  if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
+    Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(m.dofs->num_free());
+    for (const auto& p : setup.pressures) add_pressure_load(patch, *m.dofs, p.faces, p.value, f_ref);
+    check_body_is_held(m, modes, f_ref);
+  }
   Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
   problem.activate_nearest(x, int(modes.modes.cols()));
   r.applied_force = pressure_resultant(m);

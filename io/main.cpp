@@ -92,6 +92,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!out.empty()) folder.emplace(out);
   Model model = build_model(spec);
   model.quiet = quiet;
+  if (!quiet)
+    for (const auto& w : model.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   if (folder) folder->create_staging();
   const std::string dir = folder ? folder->staging() : std::string();
   const bool vtk = folder && spec.write_vtk;

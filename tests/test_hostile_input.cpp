@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "engine/load_stepping.hpp"
 #include "tests/igac_process.hpp"
@@ -122,6 +123,57 @@ TEST(HostileInput, ContactFaceThatCannotTouchTheObstacleIsAnInputError) {
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("[contact] face 'top'"), std::string::npos) << o.output;
   EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+struct MessageCase {
+  std::string name, source, from, to;
+  std::vector<std::string> fragments;
+};
+void PrintTo(const MessageCase& c, std::ostream* os) { *os << c.name; }
+
+class InputMessage : public ::testing::TestWithParam<MessageCase> {};
+
+// Inputs that used to end in a solver's words (a folded map, a knot
+// multiplicity, "KINSOL stopped") now name the key or say what is wrong.
+TEST_P(InputMessage, NamesTheKeyInOneLine) {
+  const MessageCase& m = GetParam();
+  TempDir tmp("message");
+  const fs::path c = edited_case(m.source, m.from, m.to, tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  for (const auto& f : m.fragments) EXPECT_NE(o.output.find(f), std::string::npos) << f << " in: " << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    HostileInput, InputMessage,
+    ::testing::Values(
+        MessageCase{"tiny_E", "hertz2d", "E = 1.0", "E = 1e-300", {"[material] E:", "1e-300"}},
+        MessageCase{"tiny_radius", "hertz2d", "radius = 1.0", "radius = 1e-300", {"[geometry] radius:", "1e-300"}},
+        MessageCase{"tiny_range_fraction", "hertz2d", "range_fraction = 0.1", "range_fraction = 1e-12",
+                    {"[mesh.grading] range_fraction", "1e-12"}},
+        MessageCase{"degree_1_on_arcs", "lame_cylinder", "degree = 2", "degree = 1", {"[mesh] degree:", "at least 2"}},
+        MessageCase{"load_pulls_away", "hertz2d_neohookean_pressure", "value = 0.1", "value = -0.1",
+                    {"the load pulls the body away from the obstacle"}},
+        MessageCase{"not_held_large_deformation", "hertz2d_neohookean_pressure", "faces = [\"left\"]\ncomponent = \"x\"",
+                    "faces = [\"left\"]\ncomponent = \"y\"\nvalue = 0.0", {"the body is not held"}},
+        MessageCase{"load_pulls_away_small_deformation", "hertz2d", "value = 0.003", "value = -0.003",
+                    {"the load pulls the body away from the obstacle"}}),
+    [](const ::testing::TestParamInfo<MessageCase>& info) { return info.param.name; });
+
+TEST(HostileInput, SelfContradictingCaseIsWarnedAbout) {
+  TempDir tmp("contra");
+  const fs::path c = edited_case("hertz2d", "[[pressure]]",
+                                 "[[dirichlet]]\nfaces = [\"left\"]\ncomponent = \"x\"\nvalue = 0.01\n\n"
+                                 "[[dirichlet]]\nfaces = [\"curved\"]\ncomponent = \"y\"\n\n[[pressure]]",
+                                 tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --no-output", tmp.path());
+  EXPECT_NE(o.output.find("igac: warning: " + c.string() + ": [[dirichlet]] face 'left' component x is given two values"),
+            std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("holds component y of the contact face 'curved'"), std::string::npos) << o.output;
+  const Outcome q = run_igac("run " + quote(c.string()) + " --no-output --quiet", tmp.path());
+  EXPECT_EQ(q.output.find("warning"), std::string::npos) << "--quiet prints nothing but errors";
 }
 
 // A problem whose residual throws on its second call: the exception must not
