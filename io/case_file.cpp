@@ -236,19 +236,40 @@ CaseSpec read_case(const std::string& path) {
     }
   }
 
-  const Section mat(path, "material", top.sub("material"), {"model", "E", "nu"});
-  c.model = mat.string("model", "linear_elastic");
   {
-    // linear_elastic: small deformation, one linear solve; any registered
-    // hyperelastic law: total Lagrangian, load steps and Newton.
+    // The model names a registered law; the law declares its parameters
+    // (materials/hyperelastic.hpp): those, and only those, are the table's
+    // other keys.  linear_elastic runs the small-deformation path.
+    const toml::table& mt = top.sub("material");
     const auto laws = law_names();
-    if (c.model != "linear_elastic" && std::find(laws.begin(), laws.end(), c.model) == laws.end())
-      mat.fail("model", fmt::format("unknown material model '{}' (available: linear_elastic (small deformation), {})",
+    const std::string model = mt["model"].value_or(std::string("linear_elastic"));
+    std::set<std::string> keys{"model"};
+    const bool known = std::find(laws.begin(), laws.end(), model) != laws.end();
+    if (known)
+      for (const LawParameter& p : law_parameters(model)) keys.insert(std::string(p.key));
+    const Section mat(path, "material", mt, known ? keys : std::set<std::string>{"model", "E", "nu"});
+    c.model = mat.string("model", "linear_elastic");
+    if (!known)
+      mat.fail("model", fmt::format("unknown material model '{}' (available: {}; linear_elastic is small deformation)",
                                     c.model, fmt::join(laws, ", ")));
+    MaterialParameters given;
+    for (const LawParameter& p : law_parameters(model)) {
+      const bool modulus = p.lower == 0 && std::isinf(p.upper);  // a stiffness: within the computable range
+      const double v = modulus ? mat.scale(std::string(p.key), std::string(p.meaning).c_str()) : mat.number(std::string(p.key));
+      if (p.key == "E") given.E = v;
+      else if (p.key == "nu") given.nu = v;
+      else given.values[std::string(p.key)] = v;
+    }
+    try {
+      const MaterialParameters linear = small_strain_equivalent(model, given);
+      static_cast<void>(make_law(model, given));  // the law's own cross-checks (e.g. C10 + C01 > 0)
+      c.E = linear.E;
+      c.nu = linear.nu;
+      c.material_parameters = given;
+    } catch (const MaterialParameterError& e) {
+      mat.fail(e.key(), e.what());
+    }
   }
-  c.E = mat.scale("E", "Young's modulus");
-  c.nu = mat.number("nu");
-  if (!(c.nu > -1 && c.nu < 0.5)) mat.fail("nu", fmt::format("nu = {} must lie in (-1, 0.5)", c.nu));
 
   for (const auto* t : tables(path, root, "dirichlet")) {
     const Section s(path, "dirichlet", *t, {"faces", "component", "value"});

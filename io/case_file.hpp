@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "materials/hyperelastic.hpp"
+
 namespace igac {
 
 class InputError : public std::runtime_error {
@@ -69,7 +71,8 @@ struct CaseSpec {
   std::vector<GradingSpec> gradings;  // at most one per direction
   // material
   std::string model = "linear_elastic";  // or a hyperelastic law: large deformation
-  double E = 1, nu = 0.3;
+  double E = 1, nu = 0.3;                  // the law's small-strain equivalent (Hertz, scales)
+  MaterialParameters material_parameters;  // as the law declares them (E, nu or its own keys)
   LoadingSpec loading;
   // conditions and loads
   std::vector<DirichletSpec> dirichlet;

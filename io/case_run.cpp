@@ -101,7 +101,7 @@ Model build_model(const CaseSpec& spec) {
     }
   m.dofs = std::make_unique<DofMap>(patch, dc);
   m.material = LinearElastic(spec.E, spec.nu);
-  if (spec.finite_strain()) m.law = make_law(spec.model, MaterialParameters{spec.E, spec.nu});
+  if (spec.finite_strain()) m.law = make_law(spec.model, spec.material_parameters);
 
   if (spec.contact) {
     const auto faces = find_faces(m.geometry, spec.contact->face);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "materials/linear_elastic_law.hpp"
+#include "materials/mooney_rivlin.hpp"
 #include "materials/neo_hookean.hpp"
 #include "materials/saint_venant_kirchhoff.hpp"
 
@@ -14,16 +15,42 @@ namespace igac {
 // One place for the checks and messages: the small-strain material's constructor.
 void MaterialParameters::validate() const { static_cast<void>(LinearElastic(E, nu)); }
 
+double MaterialParameters::value(std::string_view key) const {
+  if (key == "E") return E;
+  if (key == "nu") return nu;
+  const auto it = values.find(key);
+  if (it == values.end())
+    throw MaterialParameterError(std::string(key), fmt::format("{} is missing", key));
+  return it->second;
+}
+
+void validate_parameters(std::span<const LawParameter> declared, const MaterialParameters& given) {
+  for (const LawParameter& p : declared) {
+    const double v = given.value(p.key);
+    const bool above = p.lower_open ? v > p.lower : v >= p.lower;
+    const bool below = p.upper_open ? v < p.upper : v <= p.upper;
+    if (above && below && std::isfinite(v)) continue;
+    const std::string key(p.key);
+    if (p.lower == 0 && std::isinf(p.upper))
+      throw MaterialParameterError(key, fmt::format("{} = {} must be {} ({})", key, v,
+                                                    p.lower_open ? "positive" : "non-negative", p.meaning));
+    throw MaterialParameterError(key, fmt::format("{} = {} must lie in {}{}, {}{} ({})", key, v, p.lower_open ? '(' : '[',
+                                                  p.lower, p.upper, p.upper_open ? ')' : ']', p.meaning));
+  }
+}
+
 namespace {
 
 struct LawEntry {
   std::string_view name;
   std::unique_ptr<HyperelasticLaw> (*make)(const MaterialParameters&);
+  std::span<const LawParameter> parameters;
+  MaterialParameters (*small_strain)(const MaterialParameters&);
 };
 
 template <DimensionTemplatedLaw Law>
 constexpr LawEntry entry() {
-  return {Law::kName, &adapt<Law>};
+  return {Law::kName, &adapt<Law>, Law::kParameters, &Law::small_strain_equivalent};
 }
 
 // The registry: one line per law.
@@ -31,6 +58,7 @@ constexpr LawEntry kLaws[] = {
     entry<LinearElasticLaw>(),
     entry<NeoHookean>(),
     entry<SaintVenantKirchhoff>(),
+    entry<MooneyRivlin>(),
 };
 
 }  // namespace
@@ -41,11 +69,25 @@ std::vector<std::string> law_names() {
   return names;
 }
 
-std::unique_ptr<HyperelasticLaw> make_law(const std::string& name, const MaterialParameters& parameters) {
+namespace {
+const LawEntry& find_law(const std::string& name) {
   for (const LawEntry& law : kLaws)
-    if (law.name == name) return law.make(parameters);
+    if (law.name == name) return law;
   throw MaterialError(fmt::format("unknown material law '{}' (known laws: {})", name,
                                   fmt::join(law_names(), ", ")));
+}
+}  // namespace
+
+std::unique_ptr<HyperelasticLaw> make_law(const std::string& name, const MaterialParameters& parameters) {
+  return find_law(name).make(parameters);
+}
+
+std::span<const LawParameter> law_parameters(const std::string& name) { return find_law(name).parameters; }
+
+MaterialParameters small_strain_equivalent(const std::string& name, const MaterialParameters& parameters) {
+  const LawEntry& law = find_law(name);
+  validate_parameters(law.parameters, parameters);
+  return law.small_strain(parameters);
 }
 
 namespace {

@@ -27,7 +27,9 @@
 #include <Eigen/LU>  // determinant and inverse of fixed-size F (closed form)
 #include <concepts>
 #include <limits>
+#include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -36,17 +38,54 @@
 
 namespace igac {
 
-// Elastic constants as given by a user (E, nu) and the Lame constants derived
-// from them (the same in plane strain and 3D).
+// A parameter a law declares: its case-file key, what it is, and the
+// admissible range (open or closed at each end).  Checked, with one-line
+// messages naming the key, before the law is made.
+struct LawParameter {
+  std::string_view key, meaning;
+  double lower = -std::numeric_limits<double>::infinity(), upper = std::numeric_limits<double>::infinity();
+  bool lower_open = true, upper_open = true;
+};
+
+// Invalid or missing material parameter: names the key.
+class MaterialParameterError : public MaterialError {
+ public:
+  MaterialParameterError(std::string key, const std::string& message) : MaterialError(message), key_(std::move(key)) {}
+  const std::string& key() const { return key_; }
+
+ private:
+  std::string key_;
+};
+
+// The parameters of a law as given by a user: (E, nu) for the laws written in
+// Young's modulus and Poisson's ratio, and `values` for a law's own keys
+// (C10, C01, bulk_modulus, ...).  lambda() and mu() derive the Lame constants
+// of (E, nu) (the same in plane strain and 3D).
 struct MaterialParameters {
-  double E, nu;
+  double E = std::numeric_limits<double>::quiet_NaN(), nu = std::numeric_limits<double>::quiet_NaN();
+  std::map<std::string, double, std::less<>> values;
   // lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).
   double lambda() const { return E * nu / ((1 + nu) * (1 - 2 * nu)); }
   double mu() const { return E / (2 * (1 + nu)); }
+  // "E", "nu" or a key of `values`; throws MaterialParameterError when absent.
+  double value(std::string_view key) const;
   // Throws MaterialError unless E > 0 and -1 < nu < 0.5 (the checks and
-  // messages of LinearElastic).  make_law and adapt<Law> call it.
+  // messages of LinearElastic).
   void validate() const;
 };
+
+// The parameters of every law written in (E, nu): derive from it.
+struct YoungPoissonParameters {
+  static constexpr LawParameter kParameters[] = {
+      {"E", "Young's modulus", 0.0, std::numeric_limits<double>::infinity(), true, true},
+      {"nu", "Poisson's ratio", -1.0, 0.5, true, true},
+  };
+  static MaterialParameters small_strain_equivalent(const MaterialParameters& p) { return {p.E, p.nu, {}}; }
+};
+
+// Checks every declared parameter of a law: present and in its range.
+// Throws MaterialParameterError naming the first key that is not.
+void validate_parameters(std::span<const LawParameter> declared, const MaterialParameters& given);
 
 // A second-order tensor (F, P) and a fourth-order tangent in the layout above.
 template <int dim>
@@ -72,7 +111,10 @@ class HyperelasticLaw {
 // What a law written as a template must provide (checked at compile time):
 //   static constexpr std::string_view kName;             the registry name
 //   static constexpr bool kRequiresPositiveJ;            det F <= 0 inadmissible?
-//   explicit Law(const MaterialParameters&);
+//   static constexpr LawParameter kParameters[];         its case-file keys and ranges
+//   static MaterialParameters small_strain_equivalent(p); the (E, nu) it linearises to
+//   explicit Law(const MaterialParameters&);             (may throw MaterialParameterError)
+// A law in (E, nu) derives from YoungPoissonParameters for the middle two.
 //   template <int dim> double energy(const DimMatrix<dim>& F) const;
 //   template <int dim> void stress(const DimMatrix<dim>& F, DimMatrix<dim>& P) const;
 //   template <int dim> void tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const;
@@ -84,6 +126,8 @@ concept DimensionTemplatedLaw =
              TangentMatrix<2>& A2, const DimMatrix<3>& F3, DimMatrix<3>& P3, TangentMatrix<3>& A3) {
       { Law::kName } -> std::convertible_to<std::string_view>;
       { Law::kRequiresPositiveJ } -> std::convertible_to<bool>;
+      { std::span<const LawParameter>(Law::kParameters) };
+      { Law::small_strain_equivalent(mp) } -> std::same_as<MaterialParameters>;
       Law(mp);
       { law.template energy<2>(F2) } -> std::same_as<double>;
       { law.template energy<3>(F3) } -> std::same_as<double>;
@@ -147,7 +191,7 @@ class HyperelasticAdapter final : public HyperelasticLaw {
 // Validates the parameters and wraps Law; the registry's one line per law.
 template <DimensionTemplatedLaw Law>
 std::unique_ptr<HyperelasticLaw> adapt(const MaterialParameters& parameters) {
-  parameters.validate();
+  validate_parameters(Law::kParameters, parameters);
   return std::make_unique<HyperelasticAdapter<Law>>(Law(parameters));
 }
 
@@ -156,6 +200,12 @@ std::unique_ptr<HyperelasticLaw> adapt(const MaterialParameters& parameters) {
 std::unique_ptr<HyperelasticLaw> make_law(const std::string& name, const MaterialParameters& parameters);
 // Registered names, in registration order.
 std::vector<std::string> law_names();
+// The parameters the law `name` declares (throws MaterialError if unknown).
+std::span<const LawParameter> law_parameters(const std::string& name);
+// The linear (E, nu) the law reduces to at small strain with these
+// parameters (E and nu filled); the small-strain quantities of a case (the
+// Hertz reference, the complementarity scale) use it.
+MaterialParameters small_strain_equivalent(const std::string& name, const MaterialParameters& parameters);
 
 // Gradient checker (after Ceres' GradientChecker): compares the law's P with
 // central differences of its energy, and its A with central differences of

@@ -21,7 +21,7 @@
 
 namespace igac {
 
-class LinearElasticLaw {
+class LinearElasticLaw : public YoungPoissonParameters {
  public:
   static constexpr std::string_view kName = "linear_elastic";
   static constexpr bool kRequiresPositiveJ = false;

@@ -24,7 +24,7 @@
 
 namespace igac {
 
-class NeoHookean {
+class NeoHookean : public YoungPoissonParameters {
  public:
   static constexpr std::string_view kName = "neo_hookean";
   static constexpr bool kRequiresPositiveJ = true;

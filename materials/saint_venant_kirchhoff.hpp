@@ -21,7 +21,7 @@
 
 namespace igac {
 
-class SaintVenantKirchhoff {
+class SaintVenantKirchhoff : public YoungPoissonParameters {
  public:
   static constexpr std::string_view kName = "saint_venant_kirchhoff";
   static constexpr bool kRequiresPositiveJ = true;

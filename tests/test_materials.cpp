@@ -52,6 +52,16 @@ constexpr double kLinearisation = 1e-10;
 // The paper's material (E = 1, nu = 0.3) and a stiff, nearly incompressible
 // steel-like one, where lambda / mu = 9 stresses the checker's scaling.
 const MaterialParameters kPaperMaterial{1.0, 0.3};
+// The law `name` with the small-strain constants of `mp`: (E, nu) itself for
+// the laws written in them, its own parameters for the others (Mooney-Rivlin:
+// C10 = 0.35 mu, C01 = 0.15 mu, so that 2 (C10 + C01) = mu, and K = lambda + 2 mu / 3).
+MaterialParameters own_parameters(const std::string& name, const MaterialParameters& mp) {
+  if (name != "mooney_rivlin") return mp;
+  return {NAN, NAN, {{"C10", 0.35 * mp.mu()}, {"C01", 0.15 * mp.mu()}, {"bulk_modulus", mp.lambda() + 2 * mp.mu() / 3}}};
+}
+std::unique_ptr<HyperelasticLaw> make_test_law(const std::string& name, const MaterialParameters& mp) {
+  return make_law(name, own_parameters(name, mp));
+}
 const MaterialParameters kStiffMaterial{210e3, 0.45};
 
 template <int dim>
@@ -116,7 +126,7 @@ class MaterialLaw : public ::testing::TestWithParam<std::string> {};
 template <int dim>
 void expect_fd_consistent(const std::string& name, unsigned seed) {
   for (const MaterialParameters& mp : {kPaperMaterial, kStiffMaterial}) {
-    const auto law = make_law(name, mp);
+    const auto law = make_test_law(name, mp);
     double worst_stress = 0, worst_tangent = 0;
     for (const DimMatrix<dim>& F : sample_F<dim>(seed)) {
       const TangentCheck c = check_law(*law, F, kFdTolerance);
@@ -145,7 +155,7 @@ void expect_zero_at_identity(const HyperelasticLaw& law) {
 }
 
 TEST_P(MaterialLaw, ZeroStressAndEnergyAtIdentity) {
-  const auto law = make_law(GetParam(), kPaperMaterial);
+  const auto law = make_test_law(GetParam(), kPaperMaterial);
   expect_zero_at_identity<2>(*law);
   expect_zero_at_identity<3>(*law);
 }
@@ -162,7 +172,7 @@ void expect_major_symmetry(const HyperelasticLaw& law) {
 }
 
 TEST_P(MaterialLaw, TangentHasMajorSymmetry) {
-  const auto law = make_law(GetParam(), kStiffMaterial);
+  const auto law = make_test_law(GetParam(), kStiffMaterial);
   expect_major_symmetry<2>(*law);
   expect_major_symmetry<3>(*law);
 }
@@ -188,7 +198,7 @@ void expect_linearises_to_linear_elasticity(const HyperelasticLaw& law, const Ma
 
 TEST_P(MaterialLaw, LinearisesToLinearElasticityAtIdentity) {
   for (const MaterialParameters& mp : {kPaperMaterial, kStiffMaterial}) {
-    const auto law = make_law(GetParam(), mp);
+    const auto law = make_test_law(GetParam(), mp);
     expect_linearises_to_linear_elasticity<2>(*law, mp);
     expect_linearises_to_linear_elasticity<3>(*law, mp);
   }
@@ -197,7 +207,7 @@ TEST_P(MaterialLaw, LinearisesToLinearElasticityAtIdentity) {
 // Plane strain: the 2D law at F2 is the in-plane block of the 3D law at
 // diag(F2, 1) -- energy, P_iJ and A_iJkL for i, J, k, L in {0, 1}.
 TEST_P(MaterialLaw, PlaneStrainIsTheInPlaneBlockOf3D) {
-  const auto law = make_law(GetParam(), kStiffMaterial);
+  const auto law = make_test_law(GetParam(), kStiffMaterial);
   for (const Eigen::Matrix2d& F2 : sample_F<2>(19)) {
     Eigen::Matrix3d F3 = Eigen::Matrix3d::Identity();
     F3.topLeftCorner<2, 2>() = F2;
@@ -230,7 +240,7 @@ void expect_refused_untouched(const HyperelasticLaw& law, const DimMatrix<dim>& 
 }
 
 TEST_P(MaterialLaw, RefusesNonFiniteF) {
-  const auto law = make_law(GetParam(), kPaperMaterial);
+  const auto law = make_test_law(GetParam(), kPaperMaterial);
   for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     Eigen::Matrix2d F2 = Eigen::Matrix2d::Identity();
     F2(0, 1) = bad;
@@ -243,7 +253,7 @@ TEST_P(MaterialLaw, RefusesNonFiniteF) {
 
 // evaluate without A (stress only) gives the same P as with it.
 TEST_P(MaterialLaw, StressOnlyEvaluationAgrees) {
-  const auto law = make_law(GetParam(), kPaperMaterial);
+  const auto law = make_test_law(GetParam(), kPaperMaterial);
   for (const Eigen::Matrix3d& F : sample_F<3>(23)) {
     Eigen::Matrix3d P, P_only;
     Eigen::Matrix<double, 9, 9> A;
@@ -289,7 +299,7 @@ void expect_objective(const HyperelasticLaw& law, unsigned seed) {
 // P(QF) = Q P(F), Psi(QF) = Psi(F).  The bound is 10 kRoundOff: Q F adds a
 // rotation's rounding to every entry of F before the law sees it.
 TEST_P(MaterialObjectivity, RotatingTheDeformationRotatesTheStress) {
-  const auto law = make_law(GetParam(), kPaperMaterial);
+  const auto law = make_test_law(GetParam(), kPaperMaterial);
   expect_objective<2>(*law, 29);
   expect_objective<3>(*law, 31);
 }
@@ -366,7 +376,7 @@ TEST(MaterialLinearElastic, AcceptsInvertedF) {
 // det F <= 0 (a flattened and an inverted element) is refused, P and A untouched.
 TEST(MaterialNeoHookean, RefusesNonPositiveDetF) {
   for (const std::string name : {"neo_hookean", "saint_venant_kirchhoff"}) {
-    const auto law = make_law(name, kPaperMaterial);
+    const auto law = make_test_law(name, kPaperMaterial);
     expect_refused_untouched<2>(*law, Eigen::Vector2d(1, 0).asDiagonal().toDenseMatrix());
     expect_refused_untouched<2>(*law, Eigen::Vector2d(-1, 1).asDiagonal().toDenseMatrix());
     expect_refused_untouched<3>(*law, Eigen::Vector3d(1, 1, 0).asDiagonal().toDenseMatrix());
@@ -382,7 +392,7 @@ TEST(MaterialNeoHookean, RefusesNonPositiveDetF) {
 // Saint Venant-Kirchhoff whose tangent forgets the geometric term d_ik S_JL:
 // the classic bug of a material-only stiffness.  Written as a test-only law
 // through the public adapter, as a user would add one.
-struct SvkWithoutGeometricTerm {
+struct SvkWithoutGeometricTerm : YoungPoissonParameters {
   static constexpr std::string_view kName = "svk_without_geometric_term";
   static constexpr bool kRequiresPositiveJ = true;
   explicit SvkWithoutGeometricTerm(const MaterialParameters& mp) : lambda(mp.lambda()), mu(mp.mu()) {}
@@ -416,7 +426,7 @@ struct SvkWithoutGeometricTerm {
 // Neo-Hookean whose stress forgets the volumetric term lambda ln J F^{-T}
 // (its tangent is consistent with that wrong stress, so only the stress
 // check can catch it).
-struct NeoHookeanWithoutVolumetricStress {
+struct NeoHookeanWithoutVolumetricStress : YoungPoissonParameters {
   static constexpr std::string_view kName = "neo_hookean_without_volumetric_stress";
   static constexpr bool kRequiresPositiveJ = true;
   explicit NeoHookeanWithoutVolumetricStress(const MaterialParameters& mp) : lambda(mp.lambda()), mu(mp.mu()) {}
@@ -495,19 +505,19 @@ TEST(MaterialTangentCheck, ReportNamesLawDimensionAndVerdict) {
 // ---------------------------------------------------- registry, parameters
 
 TEST(MaterialRegistry, ListsEveryLawAndMakesIt) {
-  const std::vector<std::string> expected{"linear_elastic", "neo_hookean", "saint_venant_kirchhoff"};
+  const std::vector<std::string> expected{"linear_elastic", "neo_hookean", "saint_venant_kirchhoff", "mooney_rivlin"};
   EXPECT_EQ(law_names(), expected);
-  for (const std::string& name : law_names()) EXPECT_EQ(make_law(name, kPaperMaterial)->name(), name);
+  for (const std::string& name : law_names()) EXPECT_EQ(make_test_law(name, kPaperMaterial)->name(), name);
 }
 
 TEST(MaterialRegistry, UnknownLawThrowsListingTheKnownOnes) {
   try {
-    make_law("mooney_rivlin", kPaperMaterial);
+    make_law("ogden", kPaperMaterial);
     FAIL() << "no MaterialError";
   } catch (const MaterialError& e) {
     EXPECT_STREQ(e.what(),
-                 "unknown material law 'mooney_rivlin' (known laws: linear_elastic, neo_hookean, "
-                 "saint_venant_kirchhoff)");
+                 "unknown material law 'ogden' (known laws: linear_elastic, neo_hookean, "
+                 "saint_venant_kirchhoff, mooney_rivlin)");
   }
 }
 
@@ -524,7 +534,7 @@ TEST(MaterialParameters, InvalidParametersThrow) {
                                        MaterialParameters{-2, 0.3}, MaterialParameters{nan, 0.3},
                                        MaterialParameters{1, nan}})
     for (const std::string& name : law_names())
-      EXPECT_THROW(make_law(name, bad), MaterialError) << name << " E=" << bad.E << " nu=" << bad.nu;
+      EXPECT_THROW(make_test_law(name, bad), MaterialError) << name << " E=" << bad.E << " nu=" << bad.nu;
   try {
     make_law("neo_hookean", {1, 0.5});
     FAIL() << "no MaterialError";
