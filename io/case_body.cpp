@@ -3,26 +3,37 @@
 #include <fmt/format.h>
 
 #include "engine/geometry/shapes.hpp"
+#include "engine/spline/split.hpp"
 #include "io/gismo_xml.hpp"
 
 namespace igac {
 
-MultiPatch case_body(const CaseSpec& spec) {
+Geometry case_geometry(const CaseSpec& spec) {
+  if (!spec.geometry_file.empty()) {
+    const MultiPatch body = read_gismo_xml(spec.geometry_file);
+    if (body.patches.size() != 1)
+      throw InputError(fmt::format("{}: [geometry] file: {} holds {} patches; igac reads single-patch bodies",
+                                   spec.path, spec.geometry_file, body.patches.size()));
+    // Knots on [0, 1] like the built-in shapes: the geometry is unchanged.
+    return Geometry{normalised(body.patches.front()), {}};
+  }
   try {
-    // The same shapes, with the same parameters, as build_model (io/case_run.cpp).
-    Geometry g;
-    if (spec.shape == "quarter_disc") g = quarter_disc(spec.radius);
-    else if (spec.shape == "sphere_octant") g = sphere_octant(spec.radius);
-    else if (spec.shape == "quarter_annulus") g = quarter_annulus(spec.inner_radius, spec.outer_radius);
-    else if (spec.shape == "rectangle") g = rectangle(spec.size.at(0), spec.size.at(1));
-    else if (spec.shape == "box") g = box(spec.size.at(0), spec.size.at(1), spec.size.at(2));
-    else throw InputError(fmt::format("{}: [geometry] shape: unknown shape \"{}\"", spec.path, spec.shape));
-    return single_patch_body(g.patch);
+    if (spec.shape == "quarter_disc") return quarter_disc(spec.radius);
+    if (spec.shape == "sphere_octant") return sphere_octant(spec.radius);
+    if (spec.shape == "quarter_annulus") return quarter_annulus(spec.inner_radius, spec.outer_radius);
+    if (spec.shape == "rectangle") return rectangle(spec.size.at(0), spec.size.at(1));
+    if (spec.shape == "box") return box(spec.size.at(0), spec.size.at(1), spec.size.at(2));
   } catch (const SplineError& e) {
     throw InputError(fmt::format("{}: [geometry] {}", spec.path, e.what()));
   } catch (const std::out_of_range&) {
     throw InputError(fmt::format("{}: [geometry] size: too few entries for a {}", spec.path, spec.shape));
   }
+  throw InputError(fmt::format("{}: [geometry] shape: unknown shape \"{}\"", spec.path, spec.shape));
+}
+
+MultiPatch case_body(const CaseSpec& spec) {
+  if (!spec.geometry_file.empty()) return read_gismo_xml(spec.geometry_file);  // as the user wrote it
+  return single_patch_body(case_geometry(spec).patch);
 }
 
 }  // namespace igac

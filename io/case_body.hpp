@@ -5,11 +5,16 @@
 #pragma once
 
 #include "engine/geometry/multipatch.hpp"
+#include "engine/geometry/shapes.hpp"
 #include "io/case_file.hpp"
 
 namespace igac {
 
 // Throws InputError (naming the case file) when the shape's data are invalid.
 MultiPatch case_body(const CaseSpec& spec);
+// The same body as the engine's coarse Geometry (before degree elevation and
+// refinement): a built-in shape with its face names, or the file's patch
+// with knots normalised to [0, 1].
+Geometry case_geometry(const CaseSpec& spec);
 
 }  // namespace igac

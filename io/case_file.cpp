@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 #include <algorithm>
 
+#include "io/gismo_xml.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
 
@@ -164,7 +165,7 @@ CaseSpec read_case(const std::string& path) {
   c.path = path;
   const Section top(path, "top level", root,
                     {"name", "description", "geometry", "mesh", "material", "dirichlet", "pressure", "body_force",
-                     "contact", "reference", "output", "loading"});
+                     "contact", "reference", "output", "loading", "faces"});
   c.name = top.string("name", std::filesystem::path(path).stem().string());
   // The name becomes a folder under out/: a plain file name, nothing that
   // climbs out of it or that a shell or a file system would read otherwise.
@@ -176,9 +177,26 @@ CaseSpec read_case(const std::string& path) {
   c.description = top.string("description", "");
 
   const Section geo(path, "geometry", top.sub("geometry"),
-                    {"shape", "radius", "inner_radius", "outer_radius", "size"});
-  c.shape = geo.string("shape");
-  if (c.shape == "quarter_disc" || c.shape == "sphere_octant") {
+                    {"shape", "file", "radius", "inner_radius", "outer_radius", "size"});
+  if (geo.has("file")) {
+    if (geo.has("shape")) geo.fail("file", "give either a shape or a file, not both");
+    const std::filesystem::path f = geo.string("file");
+    c.geometry_file = (f.is_absolute() ? f : std::filesystem::path(path).parent_path() / f).lexically_normal().string();
+    const MultiPatch body = read_gismo_xml(c.geometry_file);  // one-line errors naming the file's line
+    if (body.patches.size() != 1)
+      geo.fail("file", fmt::format("{} holds {} patches; igac reads single-patch bodies (multi-patch bodies are "
+                                   "not supported yet)", c.geometry_file, body.patches.size()));
+    c.file_dimension = body.patches.front().space_dim();
+    if (body.patches.front().param_dim() != c.file_dimension)
+      geo.fail("file", fmt::format("{}: a {}D patch in {}D space is not a solid body", c.geometry_file,
+                                   body.patches.front().param_dim(), c.file_dimension));
+    c.shape = "file";
+  } else {
+    c.shape = geo.string("shape");
+  }
+  if (c.shape == "file") {
+    c.radius = geo.has("radius") ? geo.scale("radius", "the radius a Hertz reference uses") : 0.0;
+  } else if (c.shape == "quarter_disc" || c.shape == "sphere_octant") {
     c.radius = geo.scale("radius", "a length");
   } else if (c.shape == "quarter_annulus") {
     c.inner_radius = geo.scale("inner_radius", "a length");
@@ -190,7 +208,8 @@ CaseSpec read_case(const std::string& path) {
       if (!(s >= 1e-100 && s <= 1e100))
         geo.fail("size", fmt::format("every length must be positive and within [1e-100, 1e100] (got {:g})", s));
   } else {
-    geo.fail("shape", fmt::format("unknown shape '{}' (quarter_disc, sphere_octant, quarter_annulus, rectangle, box)", c.shape));
+    geo.fail("shape", fmt::format("unknown shape '{}' (quarter_disc, sphere_octant, quarter_annulus, rectangle, box; "
+                                  "or file = \"body.xml\")", c.shape));
   }
   const int dim = c.dim();
 
@@ -271,6 +290,14 @@ CaseSpec read_case(const std::string& path) {
     }
   }
 
+  if (root.contains("faces")) {  // names of one's own for sets of faces
+    const toml::table& ft = top.sub("faces");
+    std::set<std::string> keys;
+    for (const auto& [k, v] : ft) keys.insert(std::string(k.str()));
+    const Section faces(path, "faces", ft, keys);
+    for (const auto& k : keys) c.face_sets[k] = faces.strings(k);
+  }
+
   for (const auto* t : tables(path, root, "dirichlet")) {
     const Section s(path, "dirichlet", *t, {"faces", "component", "value"});
     c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.number("value", 0.0)});
@@ -310,8 +337,9 @@ CaseSpec read_case(const std::string& path) {
     c.reference = s.string("solution");
     if (c.reference != "hertz" && c.reference != "lame" && c.reference != "none")
       s.fail("solution", fmt::format("unknown reference solution '{}' (hertz, lame, none)", c.reference));
-    if (c.reference == "hertz" && (!c.contact || (c.shape != "quarter_disc" && c.shape != "sphere_octant")))
-      s.fail("solution", "hertz needs a quarter_disc or sphere_octant with [contact]");
+    const bool round = c.shape == "quarter_disc" || c.shape == "sphere_octant" || (c.shape == "file" && c.radius > 0);
+    if (c.reference == "hertz" && (!c.contact || !round))
+      s.fail("solution", "hertz needs a quarter_disc or sphere_octant (or a geometry file with its radius) with [contact]");
     if (c.reference == "lame" && c.shape != "quarter_annulus")
       s.fail("solution", "lame needs shape = \"quarter_annulus\"");
   }

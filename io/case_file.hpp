@@ -4,6 +4,7 @@
 // names the file, the key and the reason.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -60,8 +61,11 @@ struct LoadingSpec {
 
 struct CaseSpec {
   std::string path, name, description;
-  // geometry
+  // geometry: a built-in shape, or a G+Smo XML file (one patch today)
   std::string shape;
+  std::string geometry_file;  // as resolved (relative to the case file); then shape == "file"
+  int file_dimension = 0;     // the file's space dimension
+  std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
   double radius = 1, inner_radius = 1, outer_radius = 2;
   std::vector<double> size;
   // mesh
@@ -83,7 +87,10 @@ struct CaseSpec {
   bool write_vtk = true;
 
   bool finite_strain() const { return model != "linear_elastic"; }
-  int dim() const { return shape == "box" || shape == "sphere_octant" ? 3 : 2; }
+  int dim() const {
+    if (!geometry_file.empty()) return file_dimension;
+    return shape == "box" || shape == "sphere_octant" ? 3 : 2;
+  }
 };
 
 // Throws InputError.

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "engine/spline/refinement.hpp"
+#include "io/case_body.hpp"
 
 namespace igac {
 namespace {
@@ -24,6 +26,28 @@ std::vector<Face> resolve_faces(const CaseSpec& s, const Geometry& g, const std:
     out.insert(out.end(), f->begin(), f->end());
   }
   return out;
+}
+
+// `target` with every breakpoint of `have` (at least its multiplicity there)
+// added: a geometry file's own interior knots stay, so refining it is exact.
+KnotVector with_knots_of(const KnotVector& target, const KnotVector& have) {
+  std::map<double, int> mult;
+  const auto add = [&](const KnotVector& kv) {
+    const auto b = kv.breakpoints();
+    const auto m = kv.multiplicities();
+    for (size_t i = 0; i < b.size(); ++i) {
+      auto it = mult.lower_bound(b[i] - 1e-12);
+      if (it != mult.end() && std::abs(it->first - b[i]) <= 1e-12) it->second = std::max(it->second, m[i]);
+      else mult[b[i]] = m[i];
+    }
+  };
+  add(target);
+  const size_t before = mult.size();
+  add(have);
+  if (mult.size() == before) return target;  // nothing new: the usual case
+  std::vector<double> knots;
+  for (const auto& [x, m] : mult) knots.insert(knots.end(), m, x);
+  return KnotVector(target.degree(), knots);
 }
 
 double largest_element_diameter(const NurbsPatch& p) {
@@ -56,11 +80,12 @@ double largest_element_diameter(const NurbsPatch& p) {
 Model build_model(const CaseSpec& spec) {
   Model m;
   m.spec = spec;
-  if (spec.shape == "quarter_disc") m.geometry = quarter_disc(spec.radius);
-  else if (spec.shape == "sphere_octant") m.geometry = sphere_octant(spec.radius);
-  else if (spec.shape == "quarter_annulus") m.geometry = quarter_annulus(spec.inner_radius, spec.outer_radius);
-  else if (spec.shape == "rectangle") m.geometry = rectangle(spec.size[0], spec.size[1]);
-  else m.geometry = box(spec.size[0], spec.size[1], spec.size[2]);
+  m.geometry = case_geometry(spec);
+  for (int d = 0; d < m.geometry.patch.param_dim(); ++d)
+    if (m.geometry.patch.degree(d) > spec.degree)
+      throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}: igac "
+                                   "raises the degree, never lowers it, so that the geometry stays exact",
+                                   spec.path, spec.degree, m.geometry.patch.degree(d), "uvw"[d]));
 
   NurbsPatch patch = elevate_to(m.geometry.patch, spec.degree);
   for (int d = 0; d < patch.param_dim(); ++d) {
@@ -78,10 +103,16 @@ Model build_model(const CaseSpec& spec) {
                                    "told apart ({}); use a larger range_fraction or fewer elements",
                                    spec.path, g->range_fraction, e.what()));
     }
-    patch = refine_to(patch, d, target);
+    patch = refine_to(patch, d, with_knots_of(target, patch.knots(d)));
   }
   m.geometry.patch = patch;
   m.mesh_size = largest_element_diameter(patch);
+
+  for (const auto& [name, members] : spec.face_sets) {  // [faces]: names of the user's own
+    if (find_faces(m.geometry, name))
+      throw InputError(fmt::format("{}: [faces] {}: the name is taken by a face of the body", spec.path, name));
+    m.geometry.faces[name] = resolve_faces(spec, m.geometry, members, "faces");
+  }
 
   std::vector<DirichletCondition> dc;
   for (const auto& d : spec.dirichlet)

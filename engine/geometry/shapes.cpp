@@ -120,9 +120,14 @@ Geometry box(double lx, double ly, double lz) {
 std::optional<std::vector<Face>> find_faces(const Geometry& g, const std::string& name) {
   if (auto it = g.faces.find(name); it != g.faces.end()) return it->second;
   static const char* dirs = "uvw";
+  static const char* sides[] = {"west", "east", "south", "north", "front", "back"};  // G+Smo's sides 1..6
   for (int d = 0; d < g.patch.param_dim(); ++d)
-    for (int e = 0; e < 2; ++e)
-      if (name == fmt::format("{}{}", dirs[d], e)) return std::vector<Face>{Face{d, e == 1}};
+    for (int e = 0; e < 2; ++e) {
+      const std::string parametric = fmt::format("{}{}", dirs[d], e);
+      // u0 ... w1, and PATCH:SIDE as in geometry files (the body is patch 0)
+      if (name == parametric || name == "0:" + parametric || name == std::string("0:") + sides[2 * d + e])
+        return std::vector<Face>{Face{d, e == 1}};
+    }
   return std::nullopt;
 }
 
@@ -132,6 +137,8 @@ std::vector<std::string> face_names(const Geometry& g) {
   static const char* dirs = "uvw";
   for (int d = 0; d < g.patch.param_dim(); ++d)
     for (int e = 0; e < 2; ++e) out.push_back(fmt::format("{}{}", dirs[d], e));
+  static const char* sides[] = {"west", "east", "south", "north", "front", "back"};
+  for (int s = 0; s < 2 * g.patch.param_dim(); ++s) out.push_back(fmt::format("0:{}", sides[s]));
   return out;
 }
 
