@@ -1,5 +1,7 @@
 #include "contact/finite_strain_problem.hpp"
 
+#include <optional>
+
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -24,7 +26,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     // tabulated once: every residual and Jacobian walks the same face points
     face_quadrature_ = std::make_unique<PatchQuadrature>(s_.contact_face->quadrature(contact_points(*s_.patch)));
     ContactEval ce;
-    evaluate_contact(Eigen::MatrixXd::Zero(s_.patch->num_control_points(), s_.patch->space_dim()),
+    evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.patch->num_control_points(), s_.patch->space_dim()),
                      Eigen::VectorXd::Zero(m_), false, ce);
     for (const auto& g : ce.G) {
       trip.emplace_back(g.col(), n_ + g.row(), 0.0);
@@ -56,8 +58,12 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
   return u;
 }
 
-void FiniteStrainProblem::evaluate_contact(const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda, bool tangent,
-                                           ContactEval& out) const {
+void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
+                                           bool tangent, ContactEval& out) const {
+  // A moving obstacle stands at its reference position moved by t * motion.
+  std::optional<TranslatedObstacle> moved;
+  if (s_.obstacle_motion.size() > 0) moved.emplace(*s_.obstacle, t * s_.obstacle_motion);
+  const Obstacle& obstacle = moved ? static_cast<const Obstacle&>(*moved) : *s_.obstacle;
   const int dim = s_.patch->space_dim();
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
@@ -72,7 +78,7 @@ void FiniteStrainProblem::evaluate_contact(const Eigen::MatrixXd& u, const Eigen
     for (int q = 0; q < ed.JxW.size(); ++q) {
       Eigen::VectorXd x = ed.X.row(q).transpose();
       for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
-      const ObstacleProbe pr = s_.obstacle->probe(x, tangent);
+      const ObstacleProbe pr = obstacle.probe(x, tangent);
       s_.contact_face->space.basis(ed.xi.row(q).transpose(), kidx, kval);
       double lambda_B = 0;  // sum_K lambda_K B_K at the point
       for (size_t k = 0; k < kidx.size(); ++k) {
@@ -118,7 +124,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   if (m_ > 0) {
     const Eigen::VectorXd lambda = x.tail(m_);
     ContactEval ce;
-    evaluate_contact(u, lambda, false, ce);
+    evaluate_contact(t, u, lambda, false, ce);
     for (const auto& g : ce.G) r[g.col()] += lambda[g.row()] * g.value();
     last_active_ = decide_active(ce.gamma, lambda);
     for (int K = 0; K < m_; ++K)
@@ -140,7 +146,7 @@ bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::Sp
   if (m_ > 0) {
     const Eigen::VectorXd lambda = x.tail(m_);
     ContactEval ce;
-    evaluate_contact(u, lambda, true, ce);
+    evaluate_contact(t, u, lambda, true, ce);
     const auto active = decide_active(ce.gamma, lambda);
     for (const auto& g : ce.G) {
       J_.coeffRef(g.col(), n_ + g.row()) += g.value();
@@ -174,7 +180,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
 Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
   ContactEval ce;
-  evaluate_contact(displacement(t, x), x.tail(m_), false, ce);
+  evaluate_contact(t, displacement(t, x), x.tail(m_), false, ce);
   return ce.gamma.cwiseQuotient(weights_);
 }
 

@@ -38,7 +38,8 @@ struct FiniteStrainSetup {
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
   const ContactFace* contact_face = nullptr;  // null: no contact, no multipliers
-  const Obstacle* obstacle = nullptr;
+  const Obstacle* obstacle = nullptr;         // at its reference position
+  Eigen::VectorXd obstacle_motion;            // empty, or the obstacle's translation at full load (ramped with t)
   double complementarity_scale = 1;           // c, stress per length
 };
 
@@ -69,7 +70,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
     std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value)
     std::vector<Eigen::Triplet<double>> curvature;        // (free eq, free eq, value), lambda-weighted
   };
-  void evaluate_contact(const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda, bool tangent, ContactEval& out) const;
+  void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda, bool tangent, ContactEval& out) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;

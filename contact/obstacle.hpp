@@ -1,13 +1,16 @@
 // Rigid obstacles behind one small interface: at a point x of space an
 // obstacle gives the signed normal gap g_n (positive when x is outside it)
 // and its own outward unit normal n (DESIGN.md: g_n = (x - x_obstacle) . n).
-//  - RigidPlane: through `point`, outward normal `normal`; g_n = (x - x0) . n.
-//  - RigidSphere (a circle in 2D, a ball in 3D): g_n = |x - c| - r,
-//    n = (x - c) / |x - c|, for a body pressed against its outside.
+// The types (contact/obstacles/): plane, sphere (a circle in 2D), cylinder
+// (3D, infinite).
 #pragma once
 
 #include <Eigen/Dense>
+#include <map>
 #include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
 #include <string>
 
 namespace igac {
@@ -30,26 +33,49 @@ class Obstacle {
   virtual std::string describe() const = 0;
 };
 
-class RigidPlane final : public Obstacle {
+// The obstacle moved rigidly by `shift`: g(x) = g_base(x - shift).  A moving
+// obstacle is its reference position translated by t * motion.
+class TranslatedObstacle final : public Obstacle {
  public:
-  // Throws std::invalid_argument for a zero normal or mismatched sizes.
-  RigidPlane(Eigen::VectorXd point, Eigen::VectorXd normal);
-  ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override;
+  // Borrows `base` (which must outlive this) ...
+  TranslatedObstacle(const Obstacle& base, Eigen::VectorXd shift) : base_(&base), shift_(std::move(shift)) {}
+  // ... or owns it.
+  TranslatedObstacle(std::unique_ptr<Obstacle> base, Eigen::VectorXd shift)
+      : owned_(std::move(base)), base_(owned_.get()), shift_(std::move(shift)) {}
+  ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override {
+    return base_->probe(x - shift_, with_derivative);
+  }
   std::string describe() const override;
 
  private:
-  Eigen::VectorXd point_, normal_;
+  std::unique_ptr<Obstacle> owned_;
+  const Obstacle* base_;
+  Eigen::VectorXd shift_;
 };
 
-class RigidSphere final : public Obstacle {
- public:
-  RigidSphere(Eigen::VectorXd centre, double radius);
-  ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override;
-  std::string describe() const override;
-
- private:
-  Eigen::VectorXd centre_;
-  double radius_;
+// The obstacle types a case file can name, one file each under
+// contact/obstacles/ and one line in contact/obstacle_registry.cpp.  A type
+// declares its keys; the case file checks them (presence, length, sign) with
+// one-line errors and hands the values to `make`.
+using ObstacleValues = std::map<std::string, std::vector<double>, std::less<>>;
+struct ObstacleKey {
+  std::string_view key, meaning;
+  bool vector = true;     // a point or direction of the space's dimension; else one number
+  bool positive = false;  // a number that must be > 0
+  bool nonzero = false;   // a direction that must not be zero
 };
+struct ObstacleType {
+  std::string_view name, description;
+  std::span<const ObstacleKey> keys;
+  int min_dim = 2, max_dim = 3;
+  // Throws std::invalid_argument for values the keys' checks cannot see.
+  std::unique_ptr<Obstacle> (*make)(const ObstacleValues& values);
+};
+std::span<const ObstacleType* const> obstacle_types();
+const ObstacleType* find_obstacle_type(std::string_view name);
 
 }  // namespace igac
+
+#include "contact/obstacles/cylinder.hpp"
+#include "contact/obstacles/plane.hpp"
+#include "contact/obstacles/sphere.hpp"

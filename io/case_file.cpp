@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 #include <algorithm>
 
+#include "contact/obstacle.hpp"
 #include "io/gismo_xml.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
@@ -314,20 +315,37 @@ CaseSpec read_case(const std::string& path) {
     const Section s(path, "contact", top.sub("contact"), {"face", "obstacle"});
     ContactSpec cs;
     cs.face = s.string("face");
-    const Section o(path, "contact.obstacle", s.sub("obstacle"), {"type", "point", "normal", "centre", "radius"});
-    cs.obstacle.type = o.string("type");
-    if (cs.obstacle.type == "plane") {
-      cs.obstacle.point = o.numbers("point", dim);
-      cs.obstacle.normal = o.numbers("normal", dim);
-      double n2 = 0;
-      for (double x : cs.obstacle.normal) n2 += x * x;
-      if (!(n2 > 0)) o.fail("normal", "must not be zero");
-    } else if (cs.obstacle.type == "sphere") {
-      cs.obstacle.centre = o.numbers("centre", dim);
-      cs.obstacle.radius = o.number("radius");
-      if (!(cs.obstacle.radius > 0)) o.fail("radius", "must be positive");
-    } else {
-      o.fail("type", fmt::format("unknown obstacle '{}' (plane, sphere)", cs.obstacle.type));
+    {
+      const toml::table& ot = s.sub("obstacle");
+      const std::string type = ot["type"].value_or(std::string());
+      const ObstacleType* kind = find_obstacle_type(type);
+      std::set<std::string> keys{"type", "motion"};
+      if (kind)
+        for (const ObstacleKey& k : kind->keys) keys.insert(std::string(k.key));
+      const Section o(path, "contact.obstacle", ot, kind ? keys : std::set<std::string>{"type", "motion"});
+      cs.obstacle.type = o.string("type");
+      if (!kind) {
+        std::vector<std::string> names;
+        for (const ObstacleType* t : obstacle_types()) names.emplace_back(t->name);
+        o.fail("type", fmt::format("unknown obstacle '{}' ({})", cs.obstacle.type, fmt::join(names, ", ")));
+      }
+      if (dim < kind->min_dim || dim > kind->max_dim)
+        o.fail("type", fmt::format("a {} obstacle needs a {}D body", kind->name, kind->min_dim));
+      for (const ObstacleKey& k : kind->keys) {
+        const std::string key(k.key);
+        if (k.vector) {
+          const auto v = o.numbers(key, dim);
+          double n2 = 0;
+          for (double x : v) n2 += x * x;
+          if (k.nonzero && !(n2 > 0)) o.fail(key, "must not be zero");
+          cs.obstacle.values[key] = v;
+        } else {
+          const double v = o.number(key);
+          if (k.positive && !(v > 0)) o.fail(key, "must be positive");
+          cs.obstacle.values[key] = {v};
+        }
+      }
+      if (o.has("motion")) cs.obstacle.motion = o.numbers("motion", dim);
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     c.contact = cs;

@@ -37,10 +37,9 @@ struct PressureSpec {
 };
 
 struct ObstacleSpec {
-  std::string type;                 // plane | sphere
-  std::vector<double> point, normal;  // plane
-  std::vector<double> centre;         // sphere
-  double radius = 0;
+  std::string type;  // a registered obstacle type (contact/obstacle.hpp): plane | sphere | cylinder
+  std::map<std::string, std::vector<double>, std::less<>> values;  // its declared keys (scalars as one entry)
+  std::vector<double> motion;  // rigid translation: applied with the load factor (large deformation) or whole
 };
 
 struct ContactSpec {

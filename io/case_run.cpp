@@ -143,9 +143,17 @@ Model build_model(const CaseSpec& spec) {
       throw InputError(fmt::format("{}: [contact] face: '{}' is made of {} parametric faces; the contact face must be one",
                                    spec.path, spec.contact->face, faces->size()));
     const auto& o = spec.contact->obstacle;
-    auto vec = [](const std::vector<double>& v) { return Eigen::Map<const Eigen::VectorXd>(v.data(), v.size()).eval(); };
-    if (o.type == "plane") m.obstacle = std::make_unique<RigidPlane>(vec(o.point), vec(o.normal));
-    else m.obstacle = std::make_unique<RigidSphere>(vec(o.centre), o.radius);
+    try {
+      m.obstacle = find_obstacle_type(o.type)->make(o.values);
+    } catch (const std::exception& e) {
+      throw InputError(fmt::format("{}: [contact.obstacle] {}", spec.path, e.what()));
+    }
+    if (!o.motion.empty()) {
+      m.obstacle_motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
+      // Small deformation: the obstacle stands where its motion puts it.
+      if (!spec.finite_strain())
+        m.obstacle = std::make_unique<TranslatedObstacle>(std::move(m.obstacle), m.obstacle_motion);
+    }
     m.contact_face = std::make_unique<ContactFace>(patch, faces->front());
     // A Dirichlet condition on the contact face along the obstacle's normal
     // leaves the contact nothing to do there.

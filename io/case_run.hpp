@@ -24,7 +24,8 @@ struct Model {
   std::unique_ptr<DofMap> dofs;
   LinearElastic material{1.0, 0.0};
   std::unique_ptr<HyperelasticLaw> law;  // large deformation only
-  std::unique_ptr<Obstacle> obstacle;
+  std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion)
+  Eigen::VectorXd obstacle_motion;     // large deformation: the obstacle is moved by t * motion
   std::unique_ptr<ContactFace> contact_face;
   double mesh_size = 0;  // largest element diameter
   bool quiet = false;    // no progress lines
@@ -48,6 +49,7 @@ struct LoadCurvePoint {
   double load_factor = 0;
   double contact_force = 0;    // sum_K -lambda_K K_K (modelled part)
   double face_displacement = 0;  // mean displacement of the loaded face along the last axis
+  double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|)
 };
 
 struct RunResult {

@@ -109,6 +109,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   setup.follower_pressure = m.spec.loading.follower_pressure;
   setup.contact_face = m.contact_face.get();
   setup.obstacle = m.obstacle.get();
+  setup.obstacle_motion = m.obstacle_motion;
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   FiniteStrainProblem problem(setup);
 
@@ -128,6 +129,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     const auto f = faces_named(m, p.faces);
     loaded.insert(loaded.end(), f.begin(), f.end());
   }
+  if (loaded.empty() && m.obstacle_motion.size() > 0 && m.contact_face)  // driven by the obstacle
+    loaded.push_back(m.contact_face->face);
   if (loaded.empty())
     for (const auto& d : m.spec.dirichlet)
       if (d.value != 0) {
@@ -150,6 +153,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     p.load_factor = t;
     p.contact_force = out.contact ? out.contact->report.total_force : 0.0;
     p.face_displacement = mean_face_displacement(patch, loaded, out.u);
+    p.obstacle_displacement = m.obstacle_motion.size() > 0 ? t * m.obstacle_motion.norm() : 0.0;
     return p;
   };
   const LoadSteppingSummary summary =

@@ -118,9 +118,10 @@ Json run_summary(const Model& m, const RunResult& r) {
 }
 
 std::string load_curve_csv(const RunResult& r) {
-  std::string s = "load_factor,contact_force,face_displacement\n";
+  std::string s = "load_factor,contact_force,face_displacement,obstacle_displacement\n";
   for (const auto& p : r.load_curve)
-    s += fmt::format("{:.10g},{:.10g},{:.10g}\n", p.load_factor, p.contact_force, p.face_displacement);
+    s += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g}\n", p.load_factor, p.contact_force, p.face_displacement,
+                     p.obstacle_displacement);
   return s;
 }
 

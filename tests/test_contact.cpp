@@ -312,7 +312,7 @@ struct FlatBlockRun {
 FlatBlockRun run_flat_block(int degree, double plane_y, double pressure) {
   CaseSpec spec = read_case(case_path("tests/data/contact_flat_block.toml"));
   apply_overrides(spec, degree, {});
-  spec.contact->obstacle.point = {0.0, plane_y};
+  spec.contact->obstacle.values["point"] = {0.0, plane_y};
   spec.pressure.at(0).value = pressure;
   FlatBlockRun run{build_model(spec), {}};
   run.result = solve_model(run.model);
@@ -440,7 +440,7 @@ struct HertzRun {
 
 HertzRun run_hertz2d(double plane_shift = 0.0) {
   CaseSpec spec = read_case(case_path("cases/hertz2d.toml"));
-  spec.contact->obstacle.point[1] += plane_shift;
+  spec.contact->obstacle.values["point"][1] += plane_shift;
   HertzRun run{build_model(spec), {}};
   run.result = solve_model(run.model);
   return run;
