@@ -14,7 +14,9 @@ int contact_points(const NurbsPatch& patch) { return gauss_points_for(patch.degr
 
 FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move(setup)) {
   n_ = s_.dofs->num_free();
-  m_ = s_.contact_face ? s_.contact_face->space.size() : 0;
+  offsets_.assign(1, 0);
+  for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->space.size());
+  m_ = offsets_.back();
   tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.patch, *s_.dofs, *s_.law);
   const Eigen::SparseMatrix<double>& P = tl_->pattern();
   std::vector<Eigen::Triplet<double>> trip;
@@ -24,7 +26,8 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
-    face_quadrature_ = std::make_unique<PatchQuadrature>(s_.contact_face->quadrature(contact_points(*s_.patch)));
+    for (const auto& c : s_.contacts)
+      face_quadratures_.push_back(std::make_unique<PatchQuadrature>(c.face->quadrature(contact_points(*s_.patch))));
     ContactEval ce;
     evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.patch->num_control_points(), s_.patch->space_dim()),
                      Eigen::VectorXd::Zero(m_), false, ce);
@@ -33,8 +36,10 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
       trip.emplace_back(n_ + g.row(), g.col(), 0.0);
     }
     for (int K = 0; K < m_; ++K) trip.emplace_back(n_ + K, n_ + K, 0.0);
-    // K_K on the reference face: the small-deformation operator's weights
-    weights_ = assemble_weighted_gaps(*s_.patch, *s_.dofs, *s_.contact_face, *s_.obstacle).weights;
+    // K_K on the reference faces: the small-deformation operator's weights
+    for (size_t k = 0; k < s_.contacts.size(); ++k)
+      weights_.segment(offsets_[k], offsets_[k + 1] - offsets_[k]) =
+          assemble_weighted_gaps(*s_.patch, *s_.dofs, *s_.contacts[k].face, *s_.contacts[k].obstacle).weights;
   }
   J_.resize(n_ + m_, n_ + m_);
   J_.setFromTriplets(trip.begin(), trip.end());
@@ -60,46 +65,51 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
                                            bool tangent, ContactEval& out) const {
-  // A moving obstacle stands at its reference position moved by t * motion.
-  std::optional<TranslatedObstacle> moved;
-  if (s_.obstacle_motion.size() > 0) moved.emplace(*s_.obstacle, t * s_.obstacle_motion);
-  const Obstacle& obstacle = moved ? static_cast<const Obstacle&>(*moved) : *s_.obstacle;
   const int dim = s_.patch->space_dim();
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
   out.curvature.clear();
-  const PatchQuadrature& quad = *face_quadrature_;
   ElementData ed;
   std::vector<int> kidx;
   std::vector<double> kval;
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.JxW.size(); ++q) {
-      Eigen::VectorXd x = ed.X.row(q).transpose();
-      for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
-      const ObstacleProbe pr = obstacle.probe(x, tangent);
-      s_.contact_face->space.basis(ed.xi.row(q).transpose(), kidx, kval);
-      double lambda_B = 0;  // sum_K lambda_K B_K at the point
-      for (size_t k = 0; k < kidx.size(); ++k) {
-        const double bw = kval[k] * ed.JxW[q];
-        out.gamma[kidx[k]] += pr.gap * bw;
-        lambda_B += lambda[kidx[k]] * bw;
-        for (size_t a = 0; a < ed.cps.size(); ++a)
-          for (int i = 0; i < dim; ++i) {
-            const int eq = dofs.equation(ed.cps[a] * dim + i);
-            if (eq >= 0) out.G.emplace_back(kidx[k], eq, bw * ed.N(q, a) * pr.normal[i]);
-          }
+  for (size_t c = 0; c < s_.contacts.size(); ++c) {
+    const auto& contact = s_.contacts[c];
+    const int offset = offsets_[c];
+    // A moving obstacle stands at its reference position moved by t * motion.
+    std::optional<TranslatedObstacle> moved;
+    if (contact.motion.size() > 0) moved.emplace(*contact.obstacle, t * contact.motion);
+    const Obstacle& obstacle = moved ? static_cast<const Obstacle&>(*moved) : *contact.obstacle;
+    const PatchQuadrature& quad = *face_quadratures_[c];
+    for (int e = 0; e < quad.num_elements(); ++e) {
+      quad.evaluate(e, ed, false);
+      for (int q = 0; q < ed.JxW.size(); ++q) {
+        Eigen::VectorXd x = ed.X.row(q).transpose();
+        for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
+        const ObstacleProbe pr = obstacle.probe(x, tangent);
+        contact.face->space.basis(ed.xi.row(q).transpose(), kidx, kval);
+        double lambda_B = 0;  // sum_K lambda_K B_K at the point
+        for (size_t k = 0; k < kidx.size(); ++k) {
+          const int K = offset + kidx[k];
+          const double bw = kval[k] * ed.JxW[q];
+          out.gamma[K] += pr.gap * bw;
+          lambda_B += lambda[K] * bw;
+          for (size_t a = 0; a < ed.cps.size(); ++a)
+            for (int i = 0; i < dim; ++i) {
+              const int eq = dofs.equation(ed.cps[a] * dim + i);
+              if (eq >= 0) out.G.emplace_back(K, eq, bw * ed.N(q, a) * pr.normal[i]);
+            }
+        }
+        if (tangent && lambda_B != 0.0 && pr.normal_derivative.squaredNorm() > 0)
+          for (size_t a = 0; a < ed.cps.size(); ++a)
+            for (size_t b = 0; b < ed.cps.size(); ++b)
+              for (int i = 0; i < dim; ++i)
+                for (int j = 0; j < dim; ++j) {
+                  const int r = dofs.equation(ed.cps[a] * dim + i), cc = dofs.equation(ed.cps[b] * dim + j);
+                  if (r >= 0 && cc >= 0)
+                    out.curvature.emplace_back(r, cc, lambda_B * ed.N(q, a) * ed.N(q, b) * pr.normal_derivative(i, j));
+                }
       }
-      if (tangent && lambda_B != 0.0 && pr.normal_derivative.squaredNorm() > 0)
-        for (size_t a = 0; a < ed.cps.size(); ++a)
-          for (size_t b = 0; b < ed.cps.size(); ++b)
-            for (int i = 0; i < dim; ++i)
-              for (int j = 0; j < dim; ++j) {
-                const int r = dofs.equation(ed.cps[a] * dim + i), c = dofs.equation(ed.cps[b] * dim + j);
-                if (r >= 0 && c >= 0)
-                  out.curvature.emplace_back(r, c, lambda_B * ed.N(q, a) * ed.N(q, b) * pr.normal_derivative(i, j));
-              }
     }
   }
 }

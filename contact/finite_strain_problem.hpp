@@ -37,9 +37,14 @@ struct FiniteStrainSetup {
   const HyperelasticLaw* law = nullptr;
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
-  const ContactFace* contact_face = nullptr;  // null: no contact, no multipliers
-  const Obstacle* obstacle = nullptr;         // at its reference position
-  Eigen::VectorXd obstacle_motion;            // empty, or the obstacle's translation at full load (ramped with t)
+  // One face pressed on one rigid obstacle; several are stacked, each with its
+  // own multipliers (S^{p-2} on its face), in order.  Empty: no multipliers.
+  struct Contact {
+    const ContactFace* face = nullptr;
+    const Obstacle* obstacle = nullptr;  // at its reference position
+    Eigen::VectorXd motion;              // empty, or its translation at full load (ramped with t)
+  };
+  std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
 };
 
@@ -60,6 +65,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // Weighted gaps gamma_K / K_K at the current position.
   Eigen::VectorXd weighted_gaps(double t, const Eigen::VectorXd& x) const;
   const Eigen::VectorXd& multiplier_weights() const { return weights_; }
+  // First multiplier of contact k (k = number of contacts: the total).
+  int multiplier_offset(int k) const { return offsets_[k]; }
   // A starting guess for a body held only by contact: the multipliers
   // nearest to the obstacle are made active by a small negative lambda.
   void activate_nearest(Eigen::VectorXd& x, int count) const;
@@ -79,7 +86,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd weights_;          // K_K
   Eigen::SparseMatrix<double> J_;    // fixed pattern of the Newton matrix
   Eigen::SparseMatrix<double> tangent_;  // K_T, reused across calls
-  std::unique_ptr<PatchQuadrature> face_quadrature_;  // contact face, tabulated once
+  std::vector<std::unique_ptr<PatchQuadrature>> face_quadratures_;  // per contact face, tabulated once
+  std::vector<int> offsets_;         // first multiplier of each contact
   std::vector<int> kt_to_j_;         // value index of K_T entry k in J_
   mutable std::vector<char> last_active_;
 };

@@ -70,4 +70,26 @@ Eigen::VectorXd exact_weighted_gaps(const NurbsPatch& patch, const Eigen::Matrix
   return num.cwiseQuotient(den);
 }
 
+WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops) {
+  if (ops.size() == 1) return ops.front();
+  WeightedGapOperator out;
+  Eigen::Index rows = 0, cols = ops.empty() ? 0 : ops.front().G.cols();
+  for (const auto& op : ops) rows += op.G.rows();
+  out.weights.resize(rows);
+  out.g0.resize(rows);
+  std::vector<Eigen::Triplet<double>> trip;
+  Eigen::Index r0 = 0;
+  for (const auto& op : ops) {
+    for (int r = 0; r < op.G.outerSize(); ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(op.G, r); it; ++it)
+        trip.emplace_back(int(r0 + r), int(it.col()), it.value());
+    out.weights.segment(r0, op.G.rows()) = op.weights;
+    out.g0.segment(r0, op.G.rows()) = op.g0;
+    r0 += op.G.rows();
+  }
+  out.G.resize(rows, cols);
+  out.G.setFromTriplets(trip.begin(), trip.end());
+  return out;
+}
+
 }  // namespace igac

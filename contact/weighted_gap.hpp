@@ -35,6 +35,8 @@ struct WeightedGapOperator {
   }
 };
 
+// Several operators (one per contact) as one: rows stacked in order.
+WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);
 WeightedGapOperator assemble_weighted_gaps(const NurbsPatch& patch, const DofMap& dofs, const ContactFace& cf,
                                            const Obstacle& obstacle);
 

@@ -311,8 +311,8 @@ CaseSpec read_case(const std::string& path) {
     const Section s(path, "body_force", top.sub("body_force"), {"value"});
     c.body_force = s.numbers("value", dim);
   }
-  if (root.contains("contact")) {
-    const Section s(path, "contact", top.sub("contact"), {"face", "obstacle"});
+  for (const auto* contact_table : tables(path, root, "contact")) {  // [contact] or [[contact]]
+    const Section s(path, "contact", *contact_table, {"face", "obstacle"});
     ContactSpec cs;
     cs.face = s.string("face");
     {
@@ -348,7 +348,7 @@ CaseSpec read_case(const std::string& path) {
       if (o.has("motion")) cs.obstacle.motion = o.numbers("motion", dim);
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
-    c.contact = cs;
+    c.contacts.push_back(cs);
   }
   if (root.contains("reference")) {
     const Section s(path, "reference", top.sub("reference"), {"solution"});
@@ -356,8 +356,8 @@ CaseSpec read_case(const std::string& path) {
     if (c.reference != "hertz" && c.reference != "lame" && c.reference != "none")
       s.fail("solution", fmt::format("unknown reference solution '{}' (hertz, lame, none)", c.reference));
     const bool round = c.shape == "quarter_disc" || c.shape == "sphere_octant" || (c.shape == "file" && c.radius > 0);
-    if (c.reference == "hertz" && (!c.contact || !round))
-      s.fail("solution", "hertz needs a quarter_disc or sphere_octant (or a geometry file with its radius) with [contact]");
+    if (c.reference == "hertz" && (c.contacts.size() != 1 || !round))
+      s.fail("solution", "hertz needs a quarter_disc or sphere_octant (or a geometry file with its radius) with one [contact]");
     if (c.reference == "lame" && c.shape != "quarter_annulus")
       s.fail("solution", "lame needs shape = \"quarter_annulus\"");
   }
@@ -396,7 +396,7 @@ CaseSpec read_case(const std::string& path) {
 void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> refine) {
   if (degree) {
     if (*degree < 1 || *degree > 10) throw InputError(fmt::format("--degree {}: must lie in 1..10", *degree));
-    if (c.contact && *degree < 2) throw InputError(fmt::format("--degree {}: contact needs degree >= 2", *degree));
+    if (!c.contacts.empty() && *degree < 2) throw InputError(fmt::format("--degree {}: contact needs degree >= 2", *degree));
     c.degree = *degree;
   }
   if (refine) {

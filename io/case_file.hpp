@@ -81,7 +81,7 @@ struct CaseSpec {
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;
   std::vector<double> body_force;
-  std::optional<ContactSpec> contact;
+  std::vector<ContactSpec> contacts;  // [contact] or [[contact]]: each face with its rigid obstacle
   std::string reference = "none";  // hertz | lame | none
   bool write_vtk = true;
 

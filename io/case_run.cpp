@@ -134,38 +134,40 @@ Model build_model(const CaseSpec& spec) {
   m.material = LinearElastic(spec.E, spec.nu);
   if (spec.finite_strain()) m.law = make_law(spec.model, spec.material_parameters);
 
-  if (spec.contact) {
-    const auto faces = find_faces(m.geometry, spec.contact->face);
+  for (const ContactSpec& cs : spec.contacts) {
+    const auto faces = find_faces(m.geometry, cs.face);
     if (!faces)
-      throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", spec.path,
-                                   spec.contact->face, spec.shape, fmt::join(face_names(m.geometry), ", ")));
+      throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", spec.path, cs.face,
+                                   spec.shape, fmt::join(face_names(m.geometry), ", ")));
     if (faces->size() != 1)
       throw InputError(fmt::format("{}: [contact] face: '{}' is made of {} parametric faces; the contact face must be one",
-                                   spec.path, spec.contact->face, faces->size()));
-    const auto& o = spec.contact->obstacle;
+                                   spec.path, cs.face, faces->size()));
+    Model::Contact c;
+    c.face_name = cs.face;
+    const auto& o = cs.obstacle;
     try {
-      m.obstacle = find_obstacle_type(o.type)->make(o.values);
+      c.obstacle = find_obstacle_type(o.type)->make(o.values);
     } catch (const std::exception& e) {
       throw InputError(fmt::format("{}: [contact.obstacle] {}", spec.path, e.what()));
     }
     if (!o.motion.empty()) {
-      m.obstacle_motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
+      c.motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
       // Small deformation: the obstacle stands where its motion puts it.
-      if (!spec.finite_strain())
-        m.obstacle = std::make_unique<TranslatedObstacle>(std::move(m.obstacle), m.obstacle_motion);
+      if (!spec.finite_strain()) c.obstacle = std::make_unique<TranslatedObstacle>(std::move(c.obstacle), c.motion);
     }
-    m.contact_face = std::make_unique<ContactFace>(patch, faces->front());
+    c.face = std::make_unique<ContactFace>(patch, faces->front());
     // A Dirichlet condition on the contact face along the obstacle's normal
     // leaves the contact nothing to do there.
-    const Eigen::VectorXd n = initial_contact_point(patch, *m.contact_face, *m.obstacle).second;
+    const Eigen::VectorXd n = initial_contact_point(patch, *c.face, *c.obstacle).second;
     for (const auto& d : spec.dirichlet)
-      if (std::find(d.faces.begin(), d.faces.end(), spec.contact->face) != d.faces.end() && n.size() > d.component &&
+      if (std::find(d.faces.begin(), d.faces.end(), cs.face) != d.faces.end() && n.size() > d.component &&
           std::abs(n[d.component]) > 0.5)
         m.warnings.push_back(fmt::format("{}: [[dirichlet]] holds component {} of the contact face '{}', along the "
                                          "obstacle's normal: the contact cannot act where it holds",
-                                         spec.path, "xyz"[d.component], spec.contact->face));
-    if (auto why = contact_cannot_happen(patch, *m.contact_face, *m.obstacle))
-      throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, spec.contact->face, *why));
+                                         spec.path, "xyz"[d.component], cs.face));
+    if (auto why = contact_cannot_happen(patch, *c.face, *c.obstacle))
+      throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, cs.face, *why));
+    m.contacts.push_back(std::move(c));
   }
   return m;
 }
@@ -217,16 +219,39 @@ double pressure_resultant(const Model& m) {
   return total;
 }
 
+std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::VectorXd& lambda,
+                                                const Eigen::VectorXd& weights, const std::vector<char>& active) {
+  std::vector<ObstacleReaction> out;
+  int offset = 0;
+  for (const auto& c : m.contacts) {
+    ObstacleReaction rr{c.face_name, c.obstacle->describe(), 0.0, 0};
+    for (int K = offset; K < offset + c.face->space.size(); ++K) {
+      rr.normal_force -= lambda[K] * weights[K];
+      rr.active += active[K] ? 1 : 0;
+    }
+    rr.normal_force += 0.0;  // no -0
+    offset += c.face->space.size();
+    out.push_back(rr);
+  }
+  return out;
+}
+
+WeightedGapOperator assemble_contact_operator(const Model& m) {
+  std::vector<WeightedGapOperator> ops;
+  for (const auto& c : m.contacts) ops.push_back(assemble_weighted_gaps(m.geometry.patch, *m.dofs, *c.face, *c.obstacle));
+  return stack(ops);
+}
+
 void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f) {
   const int k = int(modes.modes.cols());
   if (k == 0) return;
-  if (!m.obstacle)
+  if (m.contacts.empty())
     throw InputError(fmt::format(
         "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
         m.spec.path, k));
   // A frictionless contact holds a rigid motion only if the motion changes
   // the weighted gaps: H = G * modes must have full column rank.
-  const WeightedGapOperator op = assemble_weighted_gaps(m.geometry.patch, *m.dofs, *m.contact_face, *m.obstacle);
+  const WeightedGapOperator op = assemble_contact_operator(m);
   const Eigen::MatrixXd H = op.G * modes.modes;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(H);
   const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
@@ -276,7 +301,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
   check_body_is_held(m, modes, sys.f);
-  if (!m.obstacle) {
+  if (m.contacts.empty()) {
     t0 = Clock::now();
     chol.factorize(sys.K);
     r.timing.factorization = since(t0);
@@ -286,7 +311,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
   } else {
     t0 = Clock::now();
     auto c = std::make_unique<ContactResult>();
-    c->op = assemble_weighted_gaps(patch, *m.dofs, *m.contact_face, *m.obstacle);
+    c->op = assemble_contact_operator(m);
     r.timing.assembly += since(t0);
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
@@ -299,15 +324,20 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
       throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
     r.u = m.dofs->expand(c->solution.u);
     t0 = Clock::now();
-    std::tie(c->X0, c->normal) = initial_contact_point(patch, *m.contact_face, *m.obstacle);
-    c->pressure = std::make_unique<ContactPressure>(patch, *m.contact_face, c->solution.lambda, c->op.weights,
-                                                    c->solution.active, c->X0, c->normal);
+    r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
+    const Model::Contact& first = m.contacts.front();
+    const int m0 = first.face->space.size();
+    std::tie(c->X0, c->normal) = initial_contact_point(patch, *first.face, *first.obstacle);
+    c->pressure = std::make_unique<ContactPressure>(
+        patch, *first.face, c->solution.lambda.head(m0), c->op.weights.head(m0),
+        std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
     c->report = c->pressure->report();
     // A rigid obstacle can only push: a net pull on the body (tensile
     // multipliers) is a wrong result, never a converged one.
-    if (r.status == "converged" && c->report.total_force < -1e-9 * std::max(r.applied_force, 1e-300))
-      r.status = fmt::format("failed: the obstacle pulls on the body (total contact force {:.3g} < 0)",
-                             c->report.total_force);
+    for (const auto& rr : r.reactions)
+      if (r.status == "converged" && rr.normal_force < -1e-9 * std::max(r.applied_force, 1e-300))
+        r.status = fmt::format("failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)",
+                               rr.face, rr.normal_force);
     if (m.spec.reference == "hertz") {
       double P = 0;
       for (const auto& p : m.spec.pressure) P += p.value;
@@ -315,7 +345,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
                          : hertz_sphere(m.spec.radius, P, m.spec.E, m.spec.nu);
       const HertzSolution h = *r.hertz;
       const ContactPressure& cp = *c->pressure;
-      r.pressure_error = cp.l2_error(*m.contact_face,
+      r.pressure_error = cp.l2_error(*first.face,
                                      [&](const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
                                      std::max(10, patch.degree(0) + 1));
     }

@@ -24,12 +24,23 @@ struct Model {
   std::unique_ptr<DofMap> dofs;
   LinearElastic material{1.0, 0.0};
   std::unique_ptr<HyperelasticLaw> law;  // large deformation only
-  std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion)
-  Eigen::VectorXd obstacle_motion;     // large deformation: the obstacle is moved by t * motion
-  std::unique_ptr<ContactFace> contact_face;
+  // [contact] / [[contact]]: each face with its obstacle; the multipliers of
+  // all of them are stacked in this order.
+  struct Contact {
+    std::string face_name;
+    std::unique_ptr<ContactFace> face;
+    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion)
+    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
+  };
+  std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter
   bool quiet = false;    // no progress lines
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
+  int num_multipliers() const {
+    int m = 0;
+    for (const auto& c : contacts) m += c.face->space.size();
+    return m;
+  }
 };
 
 struct ContactResult {
@@ -38,6 +49,14 @@ struct ContactResult {
   Eigen::VectorXd X0, normal;
   PressureReport report;
   std::unique_ptr<ContactPressure> pressure;
+};
+
+// The force each obstacle exerts on the body: -sum_K lambda_K K_K over its
+// multipliers (the normal force, per unit thickness in 2D, on the modelled part).
+struct ObstacleReaction {
+  std::string face, obstacle;
+  double normal_force = 0;
+  int active = 0;
 };
 
 struct Timing {
@@ -55,7 +74,8 @@ struct LoadCurvePoint {
 struct RunResult {
   std::string status = "converged";
   Eigen::MatrixXd u;  // n_cp x dim
-  std::unique_ptr<ContactResult> contact;
+  std::unique_ptr<ContactResult> contact;  // the first contact's pressure and report (Hertz, pressure.csv, VTK)
+  std::vector<ObstacleReaction> reactions;  // every contact, in case order
   std::optional<HertzSolution> hertz;
   std::optional<ErrorNorms> displacement_errors;           // against a closed form
   std::optional<std::pair<double, double>> pressure_error;  // against Hertz: (error, norm)
@@ -77,6 +97,11 @@ RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 // held by Dirichlet conditions) are not held: no contact, a contact that
 // cannot stop them, or a load `f` that pulls the body off the obstacle.
 void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen::VectorXd& f);
+// The stacked weighted-gap operator of every contact (small deformation).
+WeightedGapOperator assemble_contact_operator(const Model& model);
+// Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
+std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
+                                                const Eigen::VectorXd& weights, const std::vector<char>& active);
 // |int P n dGamma| summed over the pressure loads (the modelled part).
 double pressure_resultant(const Model& model);
 // Closed-form displacement of the case's reference solution, if it has one.

@@ -46,7 +46,8 @@ double mean_face_displacement(const NurbsPatch& patch, const std::vector<Face>& 
 // Contact report of state x at load factor t.
 void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const Eigen::VectorXd& x, RunResult& r) {
   const NurbsPatch& patch = m.geometry.patch;
-  const ContactFace& cf = *m.contact_face;
+  const Model::Contact& first = m.contacts.front();  // reported in detail; every contact's force in reactions
+  const ContactFace& cf = *first.face;
   Eigen::VectorXd res;
   problem.residual(t, x, res);  // refreshes the active set at x
   auto c = std::make_unique<ContactResult>();
@@ -57,16 +58,19 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   c->solution.weighted_gap = problem.weighted_gaps(t, x);
   c->solution.converged = true;
   c->op.weights = problem.multiplier_weights();
-  std::tie(c->X0, c->normal) = initial_contact_point(patch, cf, *m.obstacle);
-  c->pressure = std::make_unique<ContactPressure>(patch, cf, c->solution.lambda, c->op.weights, c->solution.active,
-                                                  c->X0, c->normal);
+  r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
+  const int m0 = problem.multiplier_offset(1);
+  std::tie(c->X0, c->normal) = initial_contact_point(patch, cf, *first.obstacle);
+  c->pressure = std::make_unique<ContactPressure>(
+      patch, cf, c->solution.lambda.head(m0), c->op.weights.head(m0),
+      std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
   c->report = c->pressure->report();
   // Deformed extent: the face point at the reference half width, displaced.
   const PatchQuadrature q = cf.quadrature(10);
   ElementData ed;
   double best = std::numeric_limits<double>::infinity();
   int K_max = 0;
-  for (int K = 0; K < mm; ++K)
+  for (int K = 0; K < m0; ++K)
     if (-c->solution.lambda[K] > -c->solution.lambda[K_max]) K_max = K;
   for (int e = 0; e < q.num_elements(); ++e) {
     q.evaluate(e, ed, false);
@@ -107,9 +111,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   setup.law = m.law.get();
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({faces_named(m, p.faces), p.value});
   setup.follower_pressure = m.spec.loading.follower_pressure;
-  setup.contact_face = m.contact_face.get();
-  setup.obstacle = m.obstacle.get();
-  setup.obstacle_motion = m.obstacle_motion;
+  for (const auto& c : m.contacts) setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   FiniteStrainProblem problem(setup);
 
@@ -129,8 +131,11 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     const auto f = faces_named(m, p.faces);
     loaded.insert(loaded.end(), f.begin(), f.end());
   }
-  if (loaded.empty() && m.obstacle_motion.size() > 0 && m.contact_face)  // driven by the obstacle
-    loaded.push_back(m.contact_face->face);
+  // Driven by a moving obstacle: follow the face it pushes, and how far it moved.
+  const Model::Contact* mover = nullptr;
+  for (const auto& c : m.contacts)
+    if (c.motion.size() > 0 && !mover) mover = &c;
+  if (loaded.empty() && mover) loaded.push_back(mover->face->face);
   if (loaded.empty())
     for (const auto& d : m.spec.dirichlet)
       if (d.value != 0) {
@@ -148,12 +153,12 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.quiet = m.quiet;
   auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
     out.u = problem.displacement(t, xs);
-    if (m.contact_face) fill_contact(m, problem, t, xs, out);
+    if (!m.contacts.empty()) fill_contact(m, problem, t, xs, out);
     LoadCurvePoint p;
     p.load_factor = t;
     p.contact_force = out.contact ? out.contact->report.total_force : 0.0;
     p.face_displacement = mean_face_displacement(patch, loaded, out.u);
-    p.obstacle_displacement = m.obstacle_motion.size() > 0 ? t * m.obstacle_motion.norm() : 0.0;
+    p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
     return p;
   };
   const LoadSteppingSummary summary =
@@ -188,7 +193,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
                        : hertz_sphere(m.spec.radius, P, m.spec.E, m.spec.nu);
     const HertzSolution h = *r.hertz;
     const ContactPressure& cp = *r.contact->pressure;
-    r.pressure_error = cp.l2_error(*m.contact_face,
+    r.pressure_error = cp.l2_error(*m.contacts.front().face,
                                    [&](const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
                                    std::max(10, patch.degree(0) + 1));
   }

@@ -47,7 +47,7 @@ Json run_summary(const Model& m, const RunResult& r) {
   j["degree"] = patch.degree(0);
   j["elements"] = patch.num_elements();
   j["dofs"] = m.dofs->num_free();
-  j["multipliers"] = m.contact_face ? m.contact_face->space.size() : 0;
+  j["multipliers"] = m.num_multipliers();
   j["mesh_size"] = m.mesh_size;
   j["status"] = r.status;
   if (r.load_steps) {
@@ -91,8 +91,13 @@ Json run_summary(const Model& m, const RunResult& r) {
     if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
     c["model_part"] = patch.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
                                              : "modelled part (symmetry)";
-    c["obstacle"] = m.obstacle->describe();
+    c["obstacle"] = m.contacts.front().obstacle->describe();
     j["contact"] = c;
+    Json obstacles = Json::array();  // every contact: the force its obstacle exerts
+    for (const auto& rr : r.reactions)
+      obstacles.push_back({{"face", rr.face}, {"obstacle", rr.obstacle}, {"normal_force", finite_or_null(rr.normal_force)},
+                           {"active", rr.active}});
+    j["obstacles"] = obstacles;
   }
   if (r.hertz) j["analytic"] = {{"half_width", r.hertz->a}, {"max_pressure", r.hertz->p0}};
   Json e = Json::object();

@@ -30,7 +30,7 @@ std::string percent(double v, double ref) {
 void print_summary(const Model& m, const RunResult& r, const std::string& out) {
   const auto& p = m.geometry.patch;
   fmt::print("igac: {} — {}D, degree {}, {} elements, {} dofs, {} multipliers\n", m.spec.name, p.space_dim(),
-             p.degree(0), p.num_elements(), m.dofs->num_free(), m.contact_face ? m.contact_face->space.size() : 0);
+             p.degree(0), p.num_elements(), m.dofs->num_free(), m.num_multipliers());
   std::string status = r.status;
   if (r.load_steps) {
     int newton = 0, cuts = 0;
@@ -63,6 +63,10 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
     else
       fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
   }
+  if (r.reactions.size() > 1)
+    for (const auto& rr : r.reactions)
+      fmt::print("  obstacle      face '{}': normal force {:.10g}, {} active ({})\n", rr.face, rr.normal_force, rr.active,
+                 rr.obstacle);
   if (r.pressure_error && r.pressure_error->second > 0)
     fmt::print("  pressure L2   {:.4e}  (relative {:.4e}, against Hertz)\n", r.pressure_error->first,
                r.pressure_error->first / r.pressure_error->second);

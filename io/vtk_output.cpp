@@ -272,7 +272,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
 // Contact face: Bezier curves / quadrilaterals with the pressure, weighted
 // gap and active flag (see the header for what is exact).
 vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r) {
-  const ContactFace& cf = *model.contact_face;
+  const ContactFace& cf = *model.contacts.front().face;
   const ContactSolution& sol = r.contact->solution;
   Eigen::MatrixXd u_face(cf.face_cps.size(), r.u.cols());
   for (size_t i = 0; i < cf.face_cps.size(); ++i) u_face.row(i) = r.u.row(cf.face_cps[i]);
@@ -328,7 +328,7 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
 
 // One vertex per multiplier at its anchor on the reference face.
 vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r) {
-  const ContactFace& cf = *model.contact_face;
+  const ContactFace& cf = *model.contacts.front().face;
   const ContactSolution& sol = r.contact->solution;
   const int m = cf.space.size(), sd = cf.face_patch.space_dim();
   Eigen::MatrixXd u_face(cf.face_cps.size(), r.u.cols());
@@ -377,7 +377,7 @@ VtkStep write_vtk(const std::string& dir, const Model& model, const RunResult& r
   // Build every grid first: a failure (a NaN) leaves no file of this step.
   auto body = body_grid(model, result);
   vtkSmartPointer<vtkUnstructuredGrid> contact, multipliers;
-  if (result.contact && model.contact_face) {
+  if (result.contact && !model.contacts.empty()) {
     contact = contact_grid(model, result);
     multipliers = multiplier_grid(model, result);
   }

@@ -312,7 +312,7 @@ struct FlatBlockRun {
 FlatBlockRun run_flat_block(int degree, double plane_y, double pressure) {
   CaseSpec spec = read_case(case_path("tests/data/contact_flat_block.toml"));
   apply_overrides(spec, degree, {});
-  spec.contact->obstacle.values["point"] = {0.0, plane_y};
+  spec.contacts.at(0).obstacle.values["point"] = {0.0, plane_y};
   spec.pressure.at(0).value = pressure;
   FlatBlockRun run{build_model(spec), {}};
   run.result = solve_model(run.model);
@@ -328,7 +328,7 @@ void expect_uniform_block_solution(const FlatBlockRun& run, double plane_y, doub
   const ContactSolution& sol = r.contact->solution;
   EXPECT_TRUE(sol.converged);
   const int m = int(sol.lambda.size());
-  ASSERT_EQ(m, run.model.contact_face->space.size());
+  ASSERT_EQ(m, run.model.num_multipliers());
   for (int K = 0; K < m; ++K) {
     EXPECT_TRUE(sol.active[K]) << "multiplier " << K;
     EXPECT_NEAR(-sol.lambda[K], P, kPatchTolerance * P) << "multiplier " << K;
@@ -358,7 +358,7 @@ TEST_P(ContactFlatBlock, UniformPressureEqualsTheLoad) {
   const int p = GetParam();
   const double P = 0.01;
   const FlatBlockRun run = run_flat_block(p, 0.0, P);
-  EXPECT_EQ(run.model.contact_face->space.size(), 6 + p - 2);
+  EXPECT_EQ(run.model.num_multipliers(), 6 + p - 2);
   expect_uniform_block_solution(run, 0.0, P);
 }
 
@@ -391,7 +391,7 @@ BlockSystem assemble_flat_block(double pressure) {
   b.sys = assemble_linear_elasticity(patch, *b.model.dofs, b.model.material, Eigen::VectorXd::Zero(2));
   add_pressure_load(patch, *b.model.dofs, *find_faces(b.model.geometry, "top"), pressure, b.sys.f);
   b.modes = free_rigid_modes(patch, *b.model.dofs);
-  b.op = assemble_weighted_gaps(patch, *b.model.dofs, *b.model.contact_face, *b.model.obstacle);
+  b.op = assemble_weighted_gaps(patch, *b.model.dofs, *b.model.contacts.front().face, *b.model.contacts.front().obstacle);
   return b;
 }
 
@@ -440,7 +440,7 @@ struct HertzRun {
 
 HertzRun run_hertz2d(double plane_shift = 0.0) {
   CaseSpec spec = read_case(case_path("cases/hertz2d.toml"));
-  spec.contact->obstacle.values["point"][1] += plane_shift;
+  spec.contacts.at(0).obstacle.values["point"][1] += plane_shift;
   HertzRun run{build_model(spec), {}};
   run.result = solve_model(run.model);
   return run;
@@ -518,7 +518,7 @@ TEST(ContactHertzEquilibrium, SolutionDoesNotDependOnTheComplementarityConstant)
   add_pressure_load(patch, *run.model.dofs, *find_faces(run.model.geometry, "top"), P, sys.f);
   const RigidModes modes = free_rigid_modes(patch, *run.model.dofs);
   ASSERT_EQ(modes.modes.cols(), 1) << "the vertical translation is held by contact alone";
-  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contact_face, *run.model.obstacle);
+  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contacts.front().face, *run.model.contacts.front().obstacle);
   const Eigen::VectorXd& lam_ref = run.result.contact->solution.lambda;
   const double p0 = hertz_cylinder(1.0, P, 1.0, 0.3).p0;
   for (double scale : {0.01, 1.0, 100.0}) {
@@ -569,7 +569,7 @@ TEST(ContactHertzEquilibrium, SchurFromTheFactorEqualsColumnBySolves) {
   LinearSystem sys = assemble_linear_elasticity(patch, *run.model.dofs, run.model.material, Eigen::VectorXd::Zero(2));
   add_pressure_load(patch, *run.model.dofs, *find_faces(run.model.geometry, "top"), P, sys.f);
   const RigidModes modes = free_rigid_modes(patch, *run.model.dofs);
-  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contact_face, *run.model.obstacle);
+  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contacts.front().face, *run.model.contacts.front().obstacle);
   ContactSolverOptions opt;
   opt.complementarity_scale = 1.0 / run.model.mesh_size;
   SparseCholesky c1, c2;

@@ -42,8 +42,7 @@ FiniteStrainSetup setup_of(const Model& m) {
     s.pressures.push_back(pl);
   }
   s.follower_pressure = m.spec.loading.follower_pressure;
-  s.contact_face = m.contact_face.get();
-  s.obstacle = m.obstacle.get();
+  for (const auto& c : m.contacts) s.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});
   s.complementarity_scale = m.spec.E / m.mesh_size;
   return s;
 }
@@ -110,7 +109,7 @@ TEST(FiniteStrainTangent, ChecksCanFail) {
   ASSERT_EQ(run_load_steps(right_problem, x, opt, {}).status, "converged");
   Eigen::SparseMatrix<double> J_right, J_plane;
   ASSERT_TRUE(right_problem.jacobian(1.0, x, J_right));
-  wrong.obstacle = &tangent_plane;
+  wrong.contacts.at(0).obstacle = &tangent_plane;
   FiniteStrainProblem plane_problem(wrong);
   ASSERT_TRUE(plane_problem.jacobian(1.0, x, J_plane));
   // the displacement block differs by the curvature term of the sphere

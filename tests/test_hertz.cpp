@@ -180,7 +180,7 @@ std::vector<StudyLevel> hertz_study(CaseSpec spec, int levels) {
                                               ref_patch.degree(0) + 1);
     s.pressure_vs_reference =
         r.result.contact->pressure
-            ->l2_error(*ref.model.contact_face,
+            ->l2_error(*ref.model.contacts.front().face,
                        [&](const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return p_ref.pressure_at(xi); },
                        ref_patch.degree(0) + 2)
             .first;

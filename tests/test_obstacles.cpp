@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "contact/obstacle.hpp"
@@ -65,7 +66,7 @@ CaseSpec block_squeezed_by_moving_plate(double delta, const std::string& model) 
   CaseSpec spec = read_case(kSource + "/tests/data/contact_flat_block.toml");
   spec.pressure.clear();
   spec.dirichlet.push_back({{"top"}, 1, 0.0});
-  spec.contact->obstacle.motion = {0.0, delta};
+  spec.contacts.at(0).obstacle.motion = {0.0, delta};
   if (model != "linear_elastic") {
     spec.model = model;
     spec.loading.steps = 2;
@@ -114,6 +115,73 @@ TEST(MovingObstacle, ShippedORingConverges) {
   for (const auto& st : r.load_steps->steps) cut_backs += st.cut_backs;
   EXPECT_EQ(cut_backs, 0);
   EXPECT_NEAR(r.load_curve.back().obstacle_displacement, 0.25 * 5.33 / 2, 1e-12);
+}
+
+// The block between two plates: the fixed one below (the patch test's) and a
+// second one above that moves down by delta; nothing else holds it
+// vertically.  The two obstacles' forces balance, and equal the closed form.
+CaseSpec block_between_two_plates(double delta, const std::string& model) {
+  CaseSpec spec = read_case(kSource + "/tests/data/contact_flat_block.toml");
+  spec.pressure.clear();
+  ContactSpec top;
+  top.face = "top";
+  top.obstacle.type = "plane";
+  top.obstacle.values = {{"point", {0.0, 0.5}}, {"normal", {0.0, -1.0}}};
+  top.obstacle.motion = {0.0, -delta};
+  spec.contacts.push_back(top);
+  if (model != "linear_elastic") {
+    spec.model = model;
+    spec.loading.steps = 2;
+  }
+  return spec;
+}
+
+TEST(SeveralObstacles, TwoPlatesOnOneBlockBalance) {
+  const double delta = 0.01, E = 1, nu = 0.3, H = 0.5, W = 1.0;
+  const double closed_form = E / (1 - nu * nu) * delta / H * W;
+  Model m = build_model(block_between_two_plates(delta, "linear_elastic"));
+  const RunResult r = solve_model(m);
+  ASSERT_EQ(r.status, "converged");
+  ASSERT_EQ(r.reactions.size(), 2u);
+  EXPECT_EQ(r.reactions[0].face, "bottom");
+  EXPECT_EQ(r.reactions[1].face, "top");
+  EXPECT_NEAR(r.reactions[0].normal_force / r.reactions[1].normal_force, 1.0, 1e-10) << "the plates balance";
+  EXPECT_NEAR(r.reactions[1].normal_force / closed_form, 1.0, 1e-10);
+  EXPECT_EQ(m.num_multipliers(), int(r.contact->solution.lambda.size()));
+}
+
+TEST(SeveralObstacles, TwoPlatesBalanceInLargeDeformation) {
+  const double delta = 0.02;
+  Model m = build_model(block_between_two_plates(delta, "neo_hookean"));
+  m.quiet = true;
+  const RunResult r = solve_model(m);
+  ASSERT_EQ(r.status, "converged");
+  ASSERT_EQ(r.reactions.size(), 2u);
+  EXPECT_GT(r.reactions[0].normal_force, 0.0);
+  EXPECT_NEAR(r.reactions[0].normal_force / r.reactions[1].normal_force, 1.0, 1e-8) << "the plates balance";
+}
+
+TEST(SeveralObstacles, SummaryListsEveryObstacle) {
+  igac_test::TempDir tmp("two");
+  std::ifstream in(kSource + "/tests/data/contact_flat_block.toml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string s = ss.str();
+  // [contact] -> [[contact]] twice; the pressure replaced by the upper plate's motion.
+  s.replace(s.find("[contact]\n"), 10, "[[contact]]\n");
+  s.replace(s.find("[[pressure]]"), std::string("[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n").size(), "");
+  s.replace(s.find("[reference]"), 11,
+            "[[contact]]\nface = \"top\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.5]\n"
+            "normal = [0.0, -1.0]\nmotion = [0.0, -0.01]\n\n[reference]");
+  std::ofstream(tmp.path() / "two.toml") << s;
+  const auto o = igac_test::run_igac("run two.toml --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output << s;
+  EXPECT_NE(o.output.find("obstacle      face 'top'"), std::string::npos) << o.output;
+  std::ifstream js(tmp.path() / "out" / "summary.json");
+  const auto j = nlohmann::json::parse(js);
+  ASSERT_EQ(j["obstacles"].size(), 2u);
+  EXPECT_NEAR(j["obstacles"][0]["normal_force"].get<double>() / j["obstacles"][1]["normal_force"].get<double>(), 1.0,
+              1e-10);
 }
 
 struct BadObstacle {

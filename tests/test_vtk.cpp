@@ -334,7 +334,7 @@ TEST(VtkOutput, HertzFilesReadBackExactly) {
 
   // The contact face: Bezier curves on the same circle, one per face element;
   // pressure cell data = -lambda_K for S0 (p = 2), active flags as solved.
-  const ContactFace& cf = *model.contact_face;
+  const ContactFace& cf = *model.contacts.front().face;
   const BezierMesh face(cf.face_patch);
   auto c = read_vtu(dir + "/contact_0001.vtu");
   ASSERT_EQ(c->GetNumberOfPoints(), face.num_points());
