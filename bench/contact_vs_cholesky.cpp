@@ -14,7 +14,7 @@
 #include <string>
 
 #include "contact/small_strain_contact.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 using namespace igac;
 using Clock = std::chrono::steady_clock;

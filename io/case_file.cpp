@@ -393,6 +393,25 @@ CaseSpec read_case(const std::string& path) {
   return c;
 }
 
+double estimated_peak_bytes(const CaseSpec& c) {
+  // Stiffness nonzeros, and the Cholesky factor measured at fill ~10 x
+  // nnz(K)/2 in 2D (slowly growing) and ~7 x nnz(K)/2 at 18k dofs in 3D,
+  // growing like dofs^(1/3) there (nested dissection); times kCalibration, fitted so that
+  // the estimate covers the peak resident memory measured by
+  // bench/memory_guard.py (README "Memory").
+  constexpr double kCalibration = 1.35;
+  constexpr double kBase = 80.0 * (1 << 20);  // the program itself: libraries, VTK, tables
+  double cps = 1;
+  for (int e : c.elements) cps *= std::ldexp(double(e), std::min(c.refine, 60)) + c.degree;
+  const int dim = c.dim();
+  const double dofs = cps * dim;
+  const double nnz = dofs * std::pow(2.0 * c.degree + 1, dim) * dim;
+  // 2D: the fill of nested dissection grows slowly (measured: +10 % per doubling of the dofs beyond 33k).
+  const double fill = dim == 2 ? 10.0 * (1 + 0.1 * std::max(0.0, std::log2(std::max(dofs, 1.0) / 33000.0)))
+                               : 8.0 * std::cbrt(std::max(dofs, 1.0) / 18000.0);
+  return kBase + kCalibration * (12 * nnz + 10 * fill * nnz / 2);
+}
+
 void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> refine) {
   if (degree) {
     if (*degree < 1 || *degree > 10) throw InputError(fmt::format("--degree {}: must lie in 1..10", *degree));
@@ -403,20 +422,12 @@ void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> 
     if (*refine < 0) throw InputError(fmt::format("--refine {}: must be >= 0", *refine));
     c.refine = *refine;
   }
-  // Memory check before anything is built: stiffness nonzeros, and the
-  // Cholesky factor measured at fill ~10 x nnz(K)/2 in 2D and ~7 x nnz(K)/2
-  // at 18k dofs in 3D, growing like dofs^(1/3) there (nested dissection).
-  double cps = 1, elements = 1;
-  for (int e : c.elements) {
-    const double n = std::ldexp(double(e), std::min(c.refine, 60));
-    elements *= n;
-    cps *= n + c.degree;
-  }
-  const int dim = c.dim();
-  const double dofs = cps * dim;
-  const double nnz = dofs * std::pow(2.0 * c.degree + 1, dim) * dim;
-  const double fill = dim == 2 ? 10.0 : 8.0 * std::cbrt(std::max(dofs, 1.0) / 18000.0);
-  const double bytes = 12 * nnz + 10 * fill * nnz / 2;
+  // Memory check before anything is built.
+  const double bytes = estimated_peak_bytes(c);
+  double elements = 1;
+  for (int e : c.elements) elements *= std::ldexp(double(e), std::min(c.refine, 60));
+  double dofs = c.dim();
+  for (int e : c.elements) dofs *= std::ldexp(double(e), std::min(c.refine, 60)) + c.degree;
   const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
   if (!(bytes < physical) || elements > 2e9)
     throw InputError(fmt::format(

@@ -97,5 +97,8 @@ CaseSpec read_case(const std::string& path);
 // Checks a --degree / --refine override and the memory the mesh would need;
 // throws InputError naming the option.
 void apply_overrides(CaseSpec& spec, std::optional<int> degree, std::optional<int> refine);
+// The peak memory a small-deformation run of this case is expected to need
+// (bytes): what apply_overrides compares with the machine's memory.
+double estimated_peak_bytes(const CaseSpec& spec);
 
 }  // namespace igac

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fstream>
 #include <stdexcept>
+#include <sys/resource.h>
 #include <unistd.h>
 
 namespace igac {
@@ -116,6 +117,12 @@ Json run_summary(const Model& m, const RunResult& r) {
   }
   if (!e.empty()) j["errors"] = e;
   if (r.load_steps) j["newton_seconds"] = r.load_steps->newton_seconds;
+  {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);  // ru_maxrss in KiB on Linux
+    j["memory_gib"] = {{"estimated", estimated_peak_bytes(m.spec) / double(1 << 30)},
+                       {"peak_resident", double(usage.ru_maxrss) / double(1 << 20)}};
+  }
   j["timing_s"] = {{"assembly", r.timing.assembly},         {"factorization", r.timing.factorization},
                    {"linear_solve", r.timing.linear_solve}, {"contact", r.timing.contact},
                    {"postprocess", r.timing.postprocess},   {"total", r.timing.total}};

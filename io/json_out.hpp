@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/case_run.hpp"
+#include "io/run_record.hpp"
 
 namespace igac {
 

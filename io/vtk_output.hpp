@@ -68,7 +68,7 @@
 #include <vector>
 
 #include "engine/spline/bezier_extraction.hpp"
-#include "io/case_run.hpp"
+#include "io/run_record.hpp"
 
 namespace igac {
 

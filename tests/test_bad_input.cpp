@@ -30,7 +30,7 @@ using igac_test::quote;
 using igac_test::run_igac;
 using igac_test::TempDir;
 
-// Exit code of igac for bad input (io/main.cpp, DESIGN.md).
+// Exit code of igac for bad input (app/main.cpp, DESIGN.md).
 constexpr int kBadInputExit = 2;
 
 std::string data_file(const std::string& name) { return std::string(IGAC_SOURCE_DIR) + "/tests/data/" + name; }

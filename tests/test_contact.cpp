@@ -33,7 +33,7 @@
 #include "engine/linear_static.hpp"
 #include "engine/spline/refinement.hpp"
 #include "io/case_file.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 namespace igac {
 namespace {

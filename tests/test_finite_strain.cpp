@@ -11,7 +11,7 @@
 
 #include "contact/finite_strain_problem.hpp"
 #include "engine/linear_static.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 using namespace igac;
 

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "engine/spline/refinement.hpp"
-#include "io/case_body.hpp"
-#include "io/case_run.hpp"
+#include "app/case_body.hpp"
+#include "app/case_run.hpp"
 #include "io/gismo_xml.hpp"
 #include "tests/igac_process.hpp"
 

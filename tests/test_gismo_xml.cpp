@@ -38,7 +38,7 @@ constexpr double kRoundTrip = 1e-15;
 // Knot insertion is a sequence of convex combinations: its geometry agrees
 // with the original to a few ulps of the coordinates (size ~1).
 constexpr double kSplitTolerance = 1e-13;
-// Exit code of igac for bad input (io/main.cpp).
+// Exit code of igac for bad input (app/main.cpp).
 constexpr int kBadInputExit = 2;
 
 std::string source(const std::string& rel) { return std::string(IGAC_SOURCE_DIR) + "/" + rel; }

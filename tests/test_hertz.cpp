@@ -20,7 +20,7 @@
 #include "contact/pressure.hpp"
 #include "engine/error_norms.hpp"
 #include "io/case_file.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 namespace igac {
 namespace {

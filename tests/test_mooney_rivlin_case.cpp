@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 #include "tests/igac_process.hpp"
 
 namespace igac {

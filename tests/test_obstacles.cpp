@@ -11,7 +11,7 @@
 #include <string>
 
 #include "contact/obstacle.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 #include "tests/igac_process.hpp"
 
 namespace igac {

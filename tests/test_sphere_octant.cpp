@@ -10,7 +10,7 @@
 #include "engine/assembly.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/spline/refinement.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 using namespace igac;
 

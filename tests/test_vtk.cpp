@@ -36,7 +36,7 @@
 #include "engine/spline/bezier_extraction.hpp"
 #include "engine/spline/refinement.hpp"
 #include "io/case_file.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 #include "io/vtk_output.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "io/case_body.hpp"
+#include "app/case_body.hpp"
 
 #include <fmt/format.h>
 

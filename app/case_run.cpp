@@ -1,4 +1,4 @@
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "engine/spline/refinement.hpp"
-#include "io/case_body.hpp"
+#include "app/case_body.hpp"
 
 namespace igac {
 namespace {

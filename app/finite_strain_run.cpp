@@ -8,7 +8,7 @@
 #include "contact/finite_strain_problem.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/linear_static.hpp"
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 
 namespace igac {
 namespace {

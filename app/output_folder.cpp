@@ -1,4 +1,4 @@
-#include "io/output_folder.hpp"
+#include "app/output_folder.hpp"
 
 #include <fcntl.h>
 #include <signal.h>

@@ -1,4 +1,4 @@
-#include "io/study.hpp"
+#include "app/study.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -6,9 +6,9 @@
 #include <map>
 #include <optional>
 
-#include "io/case_run.hpp"
+#include "app/case_run.hpp"
 #include "io/json_out.hpp"
-#include "io/output_folder.hpp"
+#include "app/output_folder.hpp"
 #include "io/plots.hpp"
 
 namespace igac {

@@ -10,13 +10,13 @@
 #include <fmt/format.h>
 
 #include "engine/spline/knot_vector.hpp"
-#include "io/case_body.hpp"
-#include "io/case_run.hpp"
+#include "app/case_body.hpp"
+#include "app/case_run.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/json_out.hpp"
-#include "io/output_folder.hpp"
+#include "app/output_folder.hpp"
 #include "io/plots.hpp"
-#include "io/study.hpp"
+#include "app/study.hpp"
 #include "io/vtk_output.hpp"
 
 using namespace igac;

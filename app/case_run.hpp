@@ -1,0 +1,36 @@
+// From a case to a solution: build the refined patch, the dofs and the loads,
+// then solve — one Cholesky solve for a linear case, the active-set contact
+// solve when the case has an obstacle.  No Newton loop, no multipliers and no
+// stress recovery unless the case needs them.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "io/run_record.hpp"
+
+namespace igac {
+
+Model build_model(const CaseSpec& spec);
+// `on_step` (large deformation) sees the state after each converged load step.
+using StepObserver = std::function<void(const RunResult&, double load_factor)>;
+RunResult solve_model(const Model& model, const StepObserver& on_step = {});
+// The large-deformation path (app/finite_strain_run.cpp).
+RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
+
+// Throws InputError (naming the case) when free rigid motions (`modes`, not
+// held by Dirichlet conditions) are not held: no contact, a contact that
+// cannot stop them, or a load `f` that pulls the body off the obstacle.
+void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen::VectorXd& f);
+// The stacked weighted-gap operator of every contact (small deformation).
+WeightedGapOperator assemble_contact_operator(const Model& model);
+// Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
+std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
+                                                const Eigen::VectorXd& weights, const std::vector<char>& active);
+// |int P n dGamma| summed over the pressure loads (the modelled part).
+double pressure_resultant(const Model& model);
+// Closed-form displacement of the case's reference solution, if it has one.
+std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec);
+
+}  // namespace igac
