@@ -20,19 +20,12 @@ using igac_test::run_igac;
 using igac_test::TempDir;
 const std::string kCases = std::string(IGAC_SOURCE_DIR) + "/cases/";
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-nlohmann::json json_of(const fs::path& p) { return nlohmann::json::parse(read(p)); }
+nlohmann::json json_of(const fs::path& p) { return nlohmann::json::parse(igac_test::read_file(p)); }
 
 // Rows of a CSV file: header first.
 std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
   std::vector<std::vector<std::string>> rows;
-  std::istringstream in(read(p));
+  std::istringstream in(igac_test::read_file(p));
   std::string line;
   while (std::getline(in, line)) {
     std::vector<std::string> cells;
@@ -47,7 +40,7 @@ std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
 
 // cases/NAME.toml with edits, written to dir/NAME.toml.
 fs::path edited(const std::string& name, const std::vector<std::pair<std::string, std::string>>& edits, const fs::path& dir) {
-  std::string s = read(kCases + name + ".toml");
+  std::string s = igac_test::read_file(kCases + name + ".toml");
   for (const auto& [from, to] : edits) {
     const auto at = s.find(from);
     EXPECT_NE(at, std::string::npos) << from;

@@ -22,16 +22,9 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kSource = IGAC_SOURCE_DIR;
 
-std::string read_text(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // hertz2d.toml with its [geometry] table replaced and `from` -> `to` edits.
 fs::path hertz_from_file(const fs::path& dir, const std::string& file, std::vector<std::pair<std::string, std::string>> edits = {}) {
-  std::string s = read_text(kSource + "/cases/hertz2d.toml");
+  std::string s = igac_test::read_file(kSource + "/cases/hertz2d.toml");
   const auto a = s.find("[geometry]"), b = s.find("[mesh]");
   s.replace(a, b - a, "[geometry]\nfile = \"" + file + "\"\nradius = 1.0\n\n");
   if (edits.empty())  // a file's faces are PATCH:SIDE: curved = v0 (0:south), top = u1 (0:east), left = u0 + v1
@@ -109,7 +102,7 @@ TEST(GeometryFile, DegreeBelowTheFilesIsRefused) {
   const auto g = igac_test::run_igac(
       "geometry " + igac_test::quote(kSource + "/cases/lame_cylinder.toml") + " --out annulus.xml", tmp.path());
   ASSERT_EQ(g.exit_code, 0) << g.output;
-  std::string s = read_text(kSource + "/cases/lame_cylinder.toml");
+  std::string s = igac_test::read_file(kSource + "/cases/lame_cylinder.toml");
   const auto a = s.find("[geometry]"), b = s.find("[mesh]");
   s.replace(a, b - a, "[geometry]\nfile = \"annulus.xml\"\n\n");
   s.replace(s.find("degree = 2"), 10, "degree = 1");

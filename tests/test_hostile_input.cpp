@@ -25,17 +25,10 @@ using igac_test::quote;
 using igac_test::run_igac;
 using igac_test::TempDir;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // cases/NAME.toml with `from` replaced by `to` (which must occur), written to dir/file.
 fs::path edited_case(const std::string& name, const std::string& from, const std::string& to, const fs::path& dir,
                      const std::string& file = "case.toml") {
-  std::string text = read(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
+  std::string text = igac_test::read_file(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   if (at != std::string::npos) text.replace(at, from.size(), to);
@@ -93,7 +86,7 @@ TEST(HostileInput, ZeroLoadGivesZeroDisplacementAndNoNaN) {
   EXPECT_EQ(j.value("status", ""), "converged");
   EXPECT_EQ(j["contact"].value("total_force", 1.0), 0.0);
   EXPECT_FALSE(j["errors"].contains("pressure_l2_rel")) << "a relative error against zero is absent";
-  const std::string csv = read(tmp.path() / "out" / "pressure.csv");
+  const std::string csv = igac_test::read_file(tmp.path() / "out" / "pressure.csv");
   EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
   EXPECT_EQ(csv.find("inf"), std::string::npos) << csv;
 }

@@ -20,10 +20,7 @@ const std::string kSource = IGAC_SOURCE_DIR;
 
 // hertz2d with its [material] table replaced by `material` (TOML lines).
 std::filesystem::path hertz_with_material(const std::string& material, const std::filesystem::path& dir) {
-  std::ifstream in(kSource + "/cases/hertz2d.toml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string s = ss.str();
+  std::string s = igac_test::read_file(kSource + "/cases/hertz2d.toml");
   const auto a = s.find("[material]"), b = s.find("[[dirichlet]]");
   s.replace(a, b - a, "[material]\n" + material + "\n\n[loading]\nsteps = 2\npressure = \"dead\"\n\n");
   const auto path = dir / "rubber.toml";

@@ -163,10 +163,7 @@ TEST(SeveralObstacles, TwoPlatesBalanceInLargeDeformation) {
 
 TEST(SeveralObstacles, SummaryListsEveryObstacle) {
   igac_test::TempDir tmp("two");
-  std::ifstream in(kSource + "/tests/data/contact_flat_block.toml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string s = ss.str();
+  std::string s = igac_test::read_file(kSource + "/tests/data/contact_flat_block.toml");
   // [contact] -> [[contact]] twice; the pressure replaced by the upper plate's motion.
   s.replace(s.find("[contact]\n"), 10, "[[contact]]\n");
   s.replace(s.find("[[pressure]]"), std::string("[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n").size(), "");
@@ -193,10 +190,7 @@ class ObstacleBadInput : public ::testing::TestWithParam<BadObstacle> {};
 
 TEST_P(ObstacleBadInput, OneLineNamingTheKey) {
   igac_test::TempDir tmp("obst");
-  std::ifstream in(kSource + "/cases/hertz2d.toml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string s = ss.str();
+  std::string s = igac_test::read_file(kSource + "/cases/hertz2d.toml");
   const auto a = s.find("[contact.obstacle]"), b = s.find("[reference]");
   s.replace(a, b - a, "[contact.obstacle]\n" + GetParam().obstacle + "\n\n");
   std::ofstream(tmp.path() / "c.toml") << s;
