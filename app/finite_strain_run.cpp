@@ -150,6 +150,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.max_increment = m.spec.loading.max_increment;
   opt.max_newton_iterations = m.spec.loading.max_newton_iterations;
   opt.line_search = m.spec.loading.line_search;
+  opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.quiet = m.quiet;
   auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
     out.u = problem.displacement(t, xs);

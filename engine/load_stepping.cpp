@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
+#include <optional>
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -208,6 +209,34 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
   return ok;
 }
 
+// Euler (tangent) predictor from the converged state x at t to t + dt:
+// x - J(x, t)^{-1} dR/dt dt, with dR/dt by a forward difference in t (the
+// ramped loads, prescribed displacements and obstacle motions all enter R
+// through t).  Without a history to extrapolate, this is what keeps a first
+// step of prescribed displacement from inverting the elements next to the
+// moved face.  Nothing (nullopt) when a state is inadmissible or the matrix singular.
+std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, const Eigen::VectorXd& x, double t, double dt,
+                                                 Eigen::SparseMatrix<double>& J,
+                                                 Eigen::UmfPackLU<Eigen::SparseMatrix<double>>& lu, bool& analyzed) {
+  try {
+    Eigen::VectorXd r0, r1;
+    const double eps = 1e-6 * std::max(dt, 1e-3);
+    if (!problem.residual(t, x, r0) || !problem.residual(t + eps, x, r1)) return std::nullopt;
+    if (!problem.residual(t, x, r0) || !problem.jacobian(t, x, J)) return std::nullopt;  // active set of (x, t)
+    if (!analyzed) {
+      lu.analyzePattern(J);
+      analyzed = true;
+    }
+    lu.factorize(J);
+    if (lu.info() != Eigen::Success) return std::nullopt;
+    const Eigen::VectorXd dx = lu.solve(Eigen::VectorXd((r1 - r0) * (-dt / eps)));
+    if (!dx.allFinite()) return std::nullopt;
+    return Eigen::VectorXd(x + dx);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& opt,
@@ -234,12 +263,15 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     dt = std::min({dt, 1.0 - t, opt.max_increment});
     bool done = false;
     std::string why;
-    // First try with the step extrapolated from the last increment, then
-    // from the last converged state as it is.
+    // First try from a predicted state: extrapolated from the last
+    // increment, or (no history yet) the tangent predictor; then from the
+    // last converged state as it is.
+    std::optional<Eigen::VectorXd> predicted;
+    if (dt_old > 0) predicted = Eigen::VectorXd(x + (x - x_old) * (dt / dt_old));
+    else if (opt.tangent_predictor) predicted = tangent_predictor(problem, x, t, dt, J, lu, analyzed);
     for (int attempt = 0; attempt < 2 && !done; ++attempt) {
-      if (attempt == 1 && dt_old == 0) break;
-      Eigen::VectorXd x_try = x;
-      if (attempt == 0 && dt_old > 0) x_try += (x - x_old) * (dt / dt_old);
+      if (attempt == 0 && !predicted) continue;
+      Eigen::VectorXd x_try = attempt == 0 ? *predicted : x;
       Attempt a{problem, t + dt, 1.0, J, lu, analyzed, {}, {}, {}};
       a.record.load_factor = t + dt;
       if (solve_step(a, x_try, ctx, opt)) {

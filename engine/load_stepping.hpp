@@ -52,6 +52,7 @@ struct LoadSteppingOptions {
   double growth = 1.5;
   double tolerance = 1e-9;         // on |R|_inf / force scale
   bool line_search = true;         // KINSOL's KIN_LINESEARCH, else KIN_NONE
+  bool tangent_predictor = true;   // a step without history starts from x - J^{-1} dR/dt dt
   bool quiet = false;
 };
 

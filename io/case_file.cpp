@@ -363,7 +363,7 @@ CaseSpec read_case(const std::string& path) {
   }
   if (root.contains("loading")) {
     const Section s(path, "loading", top.sub("loading"),
-                    {"steps", "first_increment", "min_increment", "max_increment", "max_newton_iterations", "line_search",
+                    {"steps", "first_increment", "min_increment", "max_increment", "max_newton_iterations", "line_search", "predictor",
                      "pressure"});
     if (!c.finite_strain())
       s.fail("steps", "[loading] drives the large-deformation models; linear_elastic is solved in one linear step");
@@ -381,6 +381,10 @@ CaseSpec read_case(const std::string& path) {
     l.max_newton_iterations = s.integer("max_newton_iterations", 30);
     if (l.max_newton_iterations < 1 || l.max_newton_iterations > 1000) s.fail("max_newton_iterations", "must lie in 1..1000");
     l.line_search = s.boolean("line_search", true);
+    const std::string predictor = s.string("predictor", "tangent");
+    if (predictor != "tangent" && predictor != "none")
+      s.fail("predictor", "must be \"tangent\" (the first step starts from x - J^-1 dR/dt dt) or \"none\"");
+    l.tangent_predictor = predictor == "tangent";
     const std::string pk = s.string("pressure", "follower");
     if (pk != "follower" && pk != "dead") s.fail("pressure", "must be \"follower\" or \"dead\"");
     l.follower_pressure = pk == "follower";

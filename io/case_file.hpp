@@ -55,6 +55,7 @@ struct LoadingSpec {
   double max_increment = 1.0;  // caps the growth after fast steps
   int max_newton_iterations = 30;
   bool line_search = true;
+  bool tangent_predictor = true;  // [loading] predictor = "tangent" | "none"
   bool follower_pressure = true;  // false: dead load (reference normal)
 };
 
