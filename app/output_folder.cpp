@@ -49,6 +49,17 @@ OutputFolder::OutputFolder(std::string target) : target_(std::move(target)) {
       throw bad(fmt::format("lies under {}, which is not a place for results", system));
   }
   if (fs::exists(abs, ec) && !fs::is_directory(abs, ec)) throw bad("exists and is not a folder");
+  // The folder is replaced as a whole when the run ends: never one that holds
+  // anything but an earlier igac output, nor the folder we stand in.
+  const fs::path here = fs::current_path(ec);
+  for (fs::path p = here; !p.empty(); p = p.parent_path()) {
+    if (p == abs) throw bad("is the current folder or one above it; results go to a folder of their own");
+    if (p == p.parent_path()) break;
+  }
+  if (fs::is_directory(abs, ec) && !fs::is_empty(abs, ec) && !fs::exists(abs / "summary.json", ec) &&
+      !fs::exists(abs / "study.json", ec))
+    throw bad("exists and holds files that are not an igac output (no summary.json or study.json); it would be "
+              "replaced: choose a new or empty folder");
   const fs::path parent = abs.parent_path();
   if (abs.filename().empty() || abs.filename() == "." || abs.filename() == "..") throw bad("names no folder");
   // Nothing is created yet: the nearest existing ancestor must let us create.

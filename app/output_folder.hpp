@@ -14,8 +14,10 @@ namespace igac {
 class OutputFolder {
  public:
   // Checks `target` (the --out folder) before any work, writing nothing: it
-  // must not be a file, nor lie under /proc, /sys or /dev, and the folder it
-  // would be created in must be writable.  Throws InputError naming --out.
+  // must not be a file, nor lie under /proc, /sys or /dev, nor be the current
+  // folder or above it; if it exists it must be empty or an earlier igac
+  // output (summary.json or study.json), since it is replaced as a whole; the
+  // folder it would be created in must be writable.  Throws InputError naming --out.
   explicit OutputFolder(std::string target);
   // Creates the staging folder (and the target's parents); call it once the
   // input is known to be good.  Throws InputError naming --out.

@@ -64,6 +64,19 @@ TEST(OutputFolder, OutUnderSystemFoldersIsRefused) {
   EXPECT_TRUE(tmp.empty());
 }
 
+TEST(OutputFolder, AFolderThatIsNotAnIgacOutputIsNeverReplaced) {
+  TempDir tmp("foreign");
+  const fs::path mine = tmp.path() / "thesis";
+  fs::create_directories(mine);
+  std::ofstream(mine / "chapter1.tex") << "precious";
+  expect_out_refused(mine.string(), tmp.path());
+  EXPECT_TRUE(fs::exists(mine / "chapter1.tex"));
+  expect_out_refused(".", mine);  // the current folder
+  expect_out_refused(tmp.path().string(), mine);  // a folder above it
+  EXPECT_TRUE(fs::exists(mine / "chapter1.tex"));
+  EXPECT_EQ(listing(mine), std::set<std::string>{"chapter1.tex"});
+}
+
 TEST(OutputFolder, BodyHeldByNothingIsAnInputError) {
   TempDir tmp("unheld");
   std::ifstream in(kCases + "lame_cylinder.toml");
