@@ -132,7 +132,11 @@ Model build_model(const CaseSpec& spec) {
     }
   m.dofs = std::make_unique<DofMap>(patch, dc);
   m.material = LinearElastic(spec.E, spec.nu);
-  if (spec.finite_strain()) m.law = make_law(spec.model, spec.material_parameters);
+  // The case's law: the Newton path's material, and the stress of the
+  // ParaView output in both paths (small strain: the linear law's P is sigma).
+  // (A CaseSpec made in code may give only E and nu.)
+  const MaterialParameters& given = spec.material_parameters;
+  m.law = make_law(spec.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{spec.E, spec.nu, {}} : given);
 
   for (const ContactSpec& cs : spec.contacts) {
     const auto faces = find_faces(m.geometry, cs.face);

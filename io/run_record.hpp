@@ -25,7 +25,7 @@ struct Model {
   Geometry geometry;  // geometry.patch is the refined patch
   std::unique_ptr<DofMap> dofs;
   LinearElastic material{1.0, 0.0};
-  std::unique_ptr<HyperelasticLaw> law;  // large deformation only
+  std::unique_ptr<HyperelasticLaw> law;  // the case's law (small strain too: the ParaView stress)
   // [contact] / [[contact]]: each face with its obstacle; the multipliers of
   // all of them are stacked in this order.
   struct Contact {

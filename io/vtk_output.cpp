@@ -24,11 +24,20 @@ namespace igac {
 
 // ---------------------------------------------------------------- stress
 
-StressLaw linear_elastic_stress(double lambda, double mu) {
-  return [lambda, mu](const Eigen::Matrix3d& g) -> Eigen::Matrix3d {
-    const Eigen::Matrix3d eps = 0.5 * (g + g.transpose());
-    return lambda * eps.trace() * Eigen::Matrix3d::Identity() + 2 * mu * eps;
+StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_strain) {
+  return [law = std::move(law), small_strain](const Eigen::Matrix3d& grad_u) {
+    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
+    Eigen::Matrix3d P;
+    if (!law->evaluate(F, P, nullptr)) return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()).eval();
+    // Small strain: P of the linear law is sigma itself; else sigma = P F^T / J.
+    return small_strain ? P : Eigen::Matrix3d(P * F.transpose() / F.determinant());
   };
+}
+
+StressLaw linear_elastic_stress(double lambda, double mu) {
+  // The one linear-elastic law of materials/, from its Lame constants.
+  const MaterialParameters p{mu * (3 * lambda + 2 * mu) / (lambda + mu), lambda / (2 * (lambda + mu)), {}};
+  return cauchy_stress(std::shared_ptr<const HyperelasticLaw>(make_law("linear_elastic", p)), true);
 }
 
 double von_mises(const Eigen::Matrix3d& s) {
@@ -242,14 +251,9 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
   // (plane strain in 2D is the 3D law with F_33 = 1).
   const StressLaw law =
-      model.law ? StressLaw([&](const Eigen::Matrix3d& grad_u) {
-        const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
-        Eigen::Matrix3d P;
-        if (!model.law->evaluate(F, P, nullptr))
-          return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()).eval();
-        return Eigen::Matrix3d(P * F.transpose() / F.determinant());
-      })
-                : linear_elastic_stress(model.material.lambda(), model.material.mu());
+      model.law ? cauchy_stress(std::shared_ptr<const HyperelasticLaw>(model.law.get(), [](const HyperelasticLaw*) {}),
+                                !model.spec.finite_strain())
+                : linear_elastic_stress(model.material.lambda(), model.material.mu());  // a Model made in code
   const RecoveredStress s = recover_stress(mesh, law);
   const vtkIdType np = mesh.num_points();
   auto stress = make_array("stress", 6, np);

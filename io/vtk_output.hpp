@@ -64,6 +64,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,10 @@ class VtkSeries {
 // Cauchy stress (3 x 3) from the displacement gradient grad u = du/dX
 // (3 x 3; the third row and column zero in plane strain).
 using StressLaw = std::function<Eigen::Matrix3d(const Eigen::Matrix3d& grad_u)>;
+// sigma(grad u) of a law: its P in small strain (the linear law's P is the
+// small-strain sigma), P F^T / J in large deformation.  NaN where F is inadmissible.
+StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_strain);
+// The linear_elastic law's sigma from its Lame constants.
 StressLaw linear_elastic_stress(double lambda, double mu);
 
 struct RecoveredStress {

@@ -120,7 +120,7 @@ TEST(OutputFolder, KilledRunLeavesThePreviousOutputWhole) {
   }
   // Kill it while it runs: after its first steps are written.
   bool staged = false;
-  for (int i = 0; i < 400 && !staged; ++i) {
+  for (int i = 0; i < 6000 && !staged; ++i) {  // up to 30 s on a loaded machine
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
     for (const auto& e : fs::directory_iterator(tmp.path()))
       if (e.path().filename().string().find(".igac-tmp-") != std::string::npos &&
