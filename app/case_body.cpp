@@ -18,11 +18,15 @@ Geometry case_geometry(const CaseSpec& spec) {
     return Geometry{normalised(body.patches.front()), {}};
   }
   try {
-    if (spec.shape == "quarter_disc") return quarter_disc(spec.radius);
-    if (spec.shape == "sphere_octant") return sphere_octant(spec.radius);
-    if (spec.shape == "quarter_annulus") return quarter_annulus(spec.inner_radius, spec.outer_radius);
-    if (spec.shape == "rectangle") return rectangle(spec.size.at(0), spec.size.at(1));
-    if (spec.shape == "box") return box(spec.size.at(0), spec.size.at(1), spec.size.at(2));
+    if (const ShapeType* kind = find_shape_type(spec.shape)) {
+      if (!spec.shape_values.empty()) return kind->make(spec.shape_values);
+      // A CaseSpec made in code may give only the named fields.
+      const ShapeValues v{{"radius", {spec.radius}},
+                          {"inner_radius", {spec.inner_radius}},
+                          {"outer_radius", {spec.outer_radius}},
+                          {"size", spec.size}};
+      return kind->make(v);
+    }
   } catch (const SplineError& e) {
     throw InputError(fmt::format("{}: [geometry] {}", spec.path, e.what()));
   } catch (const std::out_of_range&) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "contact/obstacle.hpp"
+#include "engine/geometry/shapes.hpp"
 #include "io/gismo_xml.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
@@ -177,8 +178,18 @@ CaseSpec read_case(const std::string& path) {
                                  "no '/', not empty, not '.' or '..')", c.name));
   c.description = top.string("description", "");
 
-  const Section geo(path, "geometry", top.sub("geometry"),
-                    {"shape", "file", "radius", "inner_radius", "outer_radius", "size"});
+  // The shape names a registered built-in shape (engine/geometry/shapes.hpp),
+  // which declares its keys: those, and only those, go with it.
+  const toml::table& gt = top.sub("geometry");
+  const ShapeType* kind = find_shape_type(gt["shape"].value_or(std::string()));
+  std::set<std::string> geo_keys{"shape", "file"};
+  if (kind)
+    for (const ShapeKey& k : kind->keys) geo_keys.insert(std::string(k.key));
+  if (gt.contains("file")) geo_keys.insert("radius");
+  if (!kind && !gt.contains("file"))
+    for (const ShapeType* t : shape_types())
+      for (const ShapeKey& k : t->keys) geo_keys.insert(std::string(k.key));
+  const Section geo(path, "geometry", gt, geo_keys);
   if (geo.has("file")) {
     if (geo.has("shape")) geo.fail("file", "give either a shape or a file, not both");
     const std::filesystem::path f = geo.string("file");
@@ -187,30 +198,43 @@ CaseSpec read_case(const std::string& path) {
     if (body.patches.size() != 1)
       geo.fail("file", fmt::format("{} holds {} patches; igac reads single-patch bodies (multi-patch bodies are "
                                    "not supported yet)", c.geometry_file, body.patches.size()));
-    c.file_dimension = body.patches.front().space_dim();
-    if (body.patches.front().param_dim() != c.file_dimension)
+    c.dimension = body.patches.front().space_dim();
+    if (body.patches.front().param_dim() != c.dimension)
       geo.fail("file", fmt::format("{}: a {}D patch in {}D space is not a solid body", c.geometry_file,
-                                   body.patches.front().param_dim(), c.file_dimension));
+                                   body.patches.front().param_dim(), c.dimension));
     c.shape = "file";
+    c.radius = geo.has("radius") ? geo.scale("radius", "the radius a Hertz reference uses") : 0.0;
   } else {
     c.shape = geo.string("shape");
-  }
-  if (c.shape == "file") {
-    c.radius = geo.has("radius") ? geo.scale("radius", "the radius a Hertz reference uses") : 0.0;
-  } else if (c.shape == "quarter_disc" || c.shape == "sphere_octant") {
-    c.radius = geo.scale("radius", "a length");
-  } else if (c.shape == "quarter_annulus") {
-    c.inner_radius = geo.scale("inner_radius", "a length");
-    c.outer_radius = geo.scale("outer_radius", "a length");
-    if (!(c.outer_radius > c.inner_radius)) geo.fail("outer_radius", "must exceed inner_radius");
-  } else if (c.shape == "rectangle" || c.shape == "box") {
-    c.size = geo.numbers("size", c.shape == "box" ? 3 : 2);
-    for (double s : c.size)
-      if (!(s >= 1e-100 && s <= 1e100))
-        geo.fail("size", fmt::format("every length must be positive and within [1e-100, 1e100] (got {:g})", s));
-  } else {
-    geo.fail("shape", fmt::format("unknown shape '{}' (quarter_disc, sphere_octant, quarter_annulus, rectangle, box; "
-                                  "or file = \"body.xml\")", c.shape));
+    if (kind) c.dimension = kind->dim;
+    if (!kind) {
+      std::vector<std::string> names;
+      for (const ShapeType* t : shape_types()) names.emplace_back(t->name);
+      geo.fail("shape", fmt::format("unknown shape '{}' ({}; or file = \"body.xml\")", c.shape, fmt::join(names, ", ")));
+    }
+    for (const ShapeKey& k : kind->keys) {
+      const std::string key(k.key);
+      std::vector<double> v;
+      if (k.length == 1) {
+        v = {geo.scale(key, std::string(k.meaning).c_str())};
+      } else {
+        v = geo.numbers(key, size_t(k.length));
+        for (double x : v)
+          if (!(x >= 1e-100 && x <= 1e100))
+            geo.fail(key, fmt::format("every length must be positive and within [1e-100, 1e100] (got {:g})", x));
+      }
+      c.shape_values[key] = v;
+    }
+    try {
+      static_cast<void>(kind->make(c.shape_values));  // the shape's own cross-checks (outer > inner radius, ...)
+    } catch (const SplineError& e) {
+      geo.fail(std::string(kind->keys.back().key), e.what());
+    }
+    // The reference solutions read these (Hertz: radius; Lame: the radii).
+    if (c.shape_values.count("radius")) c.radius = c.shape_values["radius"][0];
+    if (c.shape_values.count("inner_radius")) c.inner_radius = c.shape_values["inner_radius"][0];
+    if (c.shape_values.count("outer_radius")) c.outer_radius = c.shape_values["outer_radius"][0];
+    if (c.shape_values.count("size")) c.size = c.shape_values["size"];
   }
   const int dim = c.dim();
 
@@ -218,7 +242,7 @@ CaseSpec read_case(const std::string& path) {
   c.degree = mesh.integer("degree");
   if (c.degree < 1) mesh.fail("degree", fmt::format("degree {} must be at least 1", c.degree));
   if (c.degree > 10) mesh.fail("degree", fmt::format("degree {} is above the supported 10", c.degree));
-  if (c.degree < 2 && (c.shape == "quarter_disc" || c.shape == "quarter_annulus" || c.shape == "sphere_octant"))
+  if (c.degree < 2 && kind && kind->curved)
     mesh.fail("degree", fmt::format("degree {}: a {} has exact circular arcs, quadratic NURBS; the degree must be at "
                                     "least 2", c.degree, c.shape));
   for (double e : mesh.numbers("elements", dim)) {

@@ -63,8 +63,9 @@ struct CaseSpec {
   std::string path, name, description;
   // geometry: a built-in shape, or a G+Smo XML file (one patch today)
   std::string shape;
+  std::map<std::string, std::vector<double>, std::less<>> shape_values;  // the shape's declared keys
   std::string geometry_file;  // as resolved (relative to the case file); then shape == "file"
-  int file_dimension = 0;     // the file's space dimension
+  int dimension = 0;          // the body's, from the shape's registry entry or the file (0: from the shape name)
   std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
   double radius = 1, inner_radius = 1, outer_radius = 2;
   std::vector<double> size;
@@ -88,8 +89,8 @@ struct CaseSpec {
 
   bool finite_strain() const { return model != "linear_elastic"; }
   int dim() const {
-    if (!geometry_file.empty()) return file_dimension;
-    return shape == "box" || shape == "sphere_octant" ? 3 : 2;
+    if (dimension > 0) return dimension;
+    return shape == "box" || shape == "sphere_octant" ? 3 : 2;  // a CaseSpec made in code
   }
 };
 

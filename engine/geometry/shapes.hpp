@@ -26,6 +26,8 @@
 
 #include <map>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,30 @@ Geometry sphere_octant(double radius);
 Geometry quarter_annulus(double inner_radius, double outer_radius);
 Geometry rectangle(double lx, double ly);
 Geometry box(double lx, double ly, double lz);
+
+// The built-in shapes behind a registry: each declares its case-file keys
+// (a number, or a vector of `length` numbers, all positive lengths) and makes
+// its Geometry from them.  A new shape is one file in engine/geometry/shapes/
+// and one line in shapes.cpp.
+using ShapeValues = std::map<std::string, std::vector<double>, std::less<>>;
+struct ShapeKey {
+  std::string_view key, meaning;
+  int length = 1;  // 1: one number; else a vector of that many
+};
+struct ShapeType {
+  std::string_view name, description;
+  int dim = 2;
+  bool curved = false;  // exact arcs: quadratic NURBS, degree >= 2
+  std::span<const ShapeKey> keys;
+  Geometry (*make)(const ShapeValues& values);  // throws SplineError for invalid values
+};
+std::span<const ShapeType* const> shape_types();
+const ShapeType* find_shape_type(std::string_view name);
+const ShapeType& quarter_disc_shape();
+const ShapeType& sphere_octant_shape();
+const ShapeType& quarter_annulus_shape();
+const ShapeType& rectangle_shape();
+const ShapeType& box_shape();
 
 // The faces a name stands for on this geometry (named or parametric), or
 // nothing when the name is unknown.
