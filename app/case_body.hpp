@@ -1,7 +1,8 @@
 // The body a case describes, as it is described: the coarse multi-patch
 // geometry before degree elevation and knot refinement (what `igac geometry`
-// writes, engine/geometry/multipatch.hpp).  Today a built-in shape
-// (engine/geometry/shapes.hpp) as one patch with every side on the boundary.
+// writes, engine/geometry/multipatch.hpp): the patches of a geometry file,
+// or a built-in shape (engine/geometry/shapes.hpp) as one patch with every
+// side on the boundary.
 #pragma once
 
 #include "engine/geometry/multipatch.hpp"

@@ -9,20 +9,20 @@
 
 #include "engine/spline/refinement.hpp"
 #include "app/case_body.hpp"
+#include "engine/spline/split.hpp"
 
 namespace igac {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::vector<Face> resolve_faces(const CaseSpec& s, const Geometry& g, const std::vector<std::string>& names,
-                                const char* section) {
-  std::vector<Face> out;
+std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::string>& names, const char* section) {
+  std::vector<PatchSide> out;
   for (const auto& n : names) {
-    auto f = find_faces(g, n);
+    auto f = find_faces(m, n);
     if (!f)
-      throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})", s.path, section, n,
-                                   s.shape, fmt::join(face_names(g), ", ")));
+      throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})", m.spec.path, section, n,
+                                   m.spec.shape, fmt::join(face_names(m), ", ")));
     out.insert(out.end(), f->begin(), f->end());
   }
   return out;
@@ -75,19 +75,16 @@ double largest_element_diameter(const NurbsPatch& p) {
   return h;
 }
 
-}  // namespace
-
-Model build_model(const CaseSpec& spec) {
-  Model m;
-  m.spec = spec;
-  m.geometry = case_geometry(spec);
-  for (int d = 0; d < m.geometry.patch.param_dim(); ++d)
-    if (m.geometry.patch.degree(d) > spec.degree)
-      throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}: igac "
+// Refines one coarse patch as the case asks: degree elevation to
+// [mesh] degree, then per direction the uniform or graded knots (with the
+// patch's own interior knots kept), subdivided `refine` times.
+NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const std::string& which) {
+  for (int d = 0; d < coarse.param_dim(); ++d)
+    if (coarse.degree(d) > spec.degree)
+      throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}{}: igac "
                                    "raises the degree, never lowers it, so that the geometry stays exact",
-                                   spec.path, spec.degree, m.geometry.patch.degree(d), "uvw"[d]));
-
-  NurbsPatch patch = elevate_to(m.geometry.patch, spec.degree);
+                                   spec.path, spec.degree, coarse.degree(d), "uvw"[d], which));
+  NurbsPatch patch = elevate_to(coarse, spec.degree);
   for (int d = 0; d < patch.param_dim(); ++d) {
     const GradingSpec* g = nullptr;
     for (const auto& gs : spec.gradings)
@@ -105,19 +102,97 @@ Model build_model(const CaseSpec& spec) {
     }
     patch = refine_to(patch, d, with_knots_of(target, patch.knots(d)));
   }
-  m.geometry.patch = patch;
-  m.mesh_size = largest_element_diameter(patch);
+  return patch;
+}
+
+// A geometry file's patch must map its parameter cube onto the body without
+// folding: det J > 0 at every Gauss point.  Names the patch and the place.
+void check_patch_map(const CaseSpec& spec, const NurbsPatch& patch, int k) {
+  const PatchQuadrature quad(patch, gauss_points_for(spec.degree));
+  ElementData ed;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    if (ed.min_det_J > 0) continue;
+    for (int q = 0; q < ed.JxW.size(); ++q)
+      if (!(ed.JxW[q] > 0))
+        throw InputError(fmt::format("{}: [geometry] file {}: patch {} folds: its Jacobian determinant is not positive "
+                                     "at parameter ({:.4g}), point ({:.4g})",
+                                     spec.path, spec.geometry_file, k, fmt::join(ed.xi.row(q), ", "),
+                                     fmt::join(ed.X.row(q), ", ")));
+  }
+}
+
+}  // namespace
+
+std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name) {
+  if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
+  static const char* dirs = "uvw";
+  const int pd = m.body.param_dim();
+  for (int k = 0; k < m.body.num_patches(); ++k)
+    for (int d = 0; d < pd; ++d)
+      for (int e = 0; e < 2; ++e) {
+        const Face f{d, e == 1};
+        const std::string parametric = fmt::format("{}{}", dirs[d], e);
+        const std::string prefix = fmt::format("{}:", k);
+        if (name == prefix + parametric || name == prefix + gismo_side_name(gismo_side_of(f)) ||
+            (m.body.num_patches() == 1 && name == parametric))
+          return std::vector<PatchSide>{PatchSide{k, f}};
+      }
+  return std::nullopt;
+}
+
+std::vector<std::string> face_names(const Model& m) {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : m.faces) out.push_back(k);
+  static const char* dirs = "uvw";
+  const int pd = m.body.param_dim();
+  if (m.body.num_patches() == 1)
+    for (int d = 0; d < pd; ++d)
+      for (int e = 0; e < 2; ++e) out.push_back(fmt::format("{}{}", dirs[d], e));
+  for (int k = 0; k < m.body.num_patches(); ++k)
+    for (int s = 1; s <= 2 * pd; ++s) out.push_back(fmt::format("{}:{}", k, gismo_side_name(s)));
+  return out;
+}
+
+Model build_model(const CaseSpec& spec) {
+  Model m;
+  m.spec = spec;
+  // The coarse body: a built-in shape (one patch, with its face names) or
+  // the patches of a geometry file.
+  MultiPatch coarse;
+  if (spec.geometry_file.empty()) {
+    const Geometry g = case_geometry(spec);
+    coarse = MultiPatch{{g.patch}, {}, {}};
+    m.faces = g.faces;
+  } else {
+    coarse = case_body(spec);
+    for (auto& p : coarse.patches) p = normalised(p);  // knots on [0, 1], geometry unchanged
+  }
+  const bool several = coarse.patches.size() > 1;
+  std::vector<NurbsPatch> patches;
+  for (size_t k = 0; k < coarse.patches.size(); ++k) {
+    patches.push_back(refine_patch(spec, coarse.patches[k], several ? fmt::format(" of patch {}", k) : ""));
+    if (!spec.geometry_file.empty()) check_patch_map(spec, patches.back(), int(k));
+  }
+  try {
+    m.body = several ? Body(std::move(patches), coarse.interfaces) : Body(std::move(patches.front()));
+  } catch (const BodyError& e) {
+    throw InputError(fmt::format("{}: [geometry] file {}: {}", spec.path, spec.geometry_file, e.what()));
+  }
+  double h = 0;
+  for (const auto& p : m.body.patches()) h = std::max(h, largest_element_diameter(p));
+  m.mesh_size = h;
 
   for (const auto& [name, members] : spec.face_sets) {  // [faces]: names of the user's own
-    if (find_faces(m.geometry, name))
+    if (find_faces(m, name))
       throw InputError(fmt::format("{}: [faces] {}: the name is taken by a face of the body", spec.path, name));
-    m.geometry.faces[name] = resolve_faces(spec, m.geometry, members, "faces");
+    m.faces[name] = resolve_faces(m, members, "faces");
   }
 
   std::vector<DirichletCondition> dc;
   for (const auto& d : spec.dirichlet)
-    dc.push_back({resolve_faces(spec, m.geometry, d.faces, "dirichlet"), d.component, d.value});
-  for (const auto& p : spec.pressure) resolve_faces(spec, m.geometry, p.faces, "pressure");
+    dc.push_back({resolve_faces(m, d.faces, "dirichlet"), d.component, d.value});
+  for (const auto& p : spec.pressure) resolve_faces(m, p.faces, "pressure");
   // The same face and component held at two values: the conditions are
   // applied in order, so the last one wins; say so.
   for (size_t a = 0; a < spec.dirichlet.size(); ++a)
@@ -130,7 +205,7 @@ Model build_model(const CaseSpec& spec) {
                                            "the last one applies", spec.path, fa, "xyz"[da.component], da.value,
                                            db.value));
     }
-  m.dofs = std::make_unique<DofMap>(patch, dc);
+  m.dofs = std::make_unique<DofMap>(m.body, dc);
   m.material = LinearElastic(spec.E, spec.nu);
   // The case's law: the Newton path's material, and the stress of the
   // ParaView output in both paths (small strain: the linear law's P is sigma).
@@ -139,13 +214,10 @@ Model build_model(const CaseSpec& spec) {
   m.law = make_law(spec.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{spec.E, spec.nu, {}} : given);
 
   for (const ContactSpec& cs : spec.contacts) {
-    const auto faces = find_faces(m.geometry, cs.face);
+    const auto faces = find_faces(m, cs.face);
     if (!faces)
       throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", spec.path, cs.face,
-                                   spec.shape, fmt::join(face_names(m.geometry), ", ")));
-    if (faces->size() != 1)
-      throw InputError(fmt::format("{}: [contact] face: '{}' is made of {} parametric faces; the contact face must be one",
-                                   spec.path, cs.face, faces->size()));
+                                   spec.shape, fmt::join(face_names(m), ", ")));
     Model::Contact c;
     c.face_name = cs.face;
     const auto& o = cs.obstacle;
@@ -159,17 +231,21 @@ Model build_model(const CaseSpec& spec) {
       // Small deformation: the obstacle stands where its motion puts it.
       if (!spec.finite_strain()) c.obstacle = std::make_unique<TranslatedObstacle>(std::move(c.obstacle), c.motion);
     }
-    c.face = std::make_unique<ContactFace>(patch, faces->front());
+    try {
+      c.face = std::make_unique<ContactFace>(m.body, *faces);
+    } catch (const SplineError& e) {
+      throw InputError(fmt::format("{}: [contact] face '{}': {}", spec.path, cs.face, e.what()));
+    }
     // A Dirichlet condition on the contact face along the obstacle's normal
     // leaves the contact nothing to do there.
-    const Eigen::VectorXd n = initial_contact_point(patch, *c.face, *c.obstacle).second;
+    const Eigen::VectorXd n = initial_contact_point(*c.face, *c.obstacle).second;
     for (const auto& d : spec.dirichlet)
       if (std::find(d.faces.begin(), d.faces.end(), cs.face) != d.faces.end() && n.size() > d.component &&
           std::abs(n[d.component]) > 0.5)
         m.warnings.push_back(fmt::format("{}: [[dirichlet]] holds component {} of the contact face '{}', along the "
                                          "obstacle's normal: the contact cannot act where it holds",
                                          spec.path, "xyz"[d.component], cs.face));
-    if (auto why = contact_cannot_happen(patch, *c.face, *c.obstacle))
+    if (auto why = contact_cannot_happen(*c.face, *c.obstacle))
       throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, cs.face, *why));
     m.contacts.push_back(std::move(c));
   }
@@ -203,22 +279,21 @@ std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec) {
 }
 
 double pressure_resultant(const Model& m) {
-  const NurbsPatch& patch = m.geometry.patch;
-  const int dim = patch.space_dim();
+  const int dim = m.body.space_dim();
   double total = 0;
   for (const auto& p : m.spec.pressure)  // |int P n dGamma| per pressure load, on the reference faces
     for (const auto& n : p.faces) {
-      const std::vector<Face> faces = *find_faces(m.geometry, n);
-      for (const Face& f : faces) {
-        const PatchQuadrature q = face_quadrature(patch, f, gauss_points_for(patch.degree(0)));
+      const std::vector<PatchSide> faces = *find_faces(m, n);
+      Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);  // a face made of several sides sums them
+      for (const PatchSide& f : faces) {
+        const PatchQuadrature q = face_quadrature(m.body, f, gauss_points_for(m.body.degree()));
         ElementData ed;
-        Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);
         for (int e = 0; e < q.num_elements(); ++e) {
           q.evaluate(e, ed, false);
           for (int k = 0; k < ed.JxW.size(); ++k) res += p.value * ed.normal.row(k).transpose() * ed.JxW[k];
         }
-        total += res.norm();
       }
+      total += res.norm();
     }
   return total;
 }
@@ -229,12 +304,12 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::Ve
   int offset = 0;
   for (const auto& c : m.contacts) {
     ObstacleReaction rr{c.face_name, c.obstacle->describe(), 0.0, 0};
-    for (int K = offset; K < offset + c.face->space.size(); ++K) {
+    for (int K = offset; K < offset + c.face->num_multipliers(); ++K) {
       rr.normal_force -= lambda[K] * weights[K];
       rr.active += active[K] ? 1 : 0;
     }
     rr.normal_force += 0.0;  // no -0
-    offset += c.face->space.size();
+    offset += c.face->num_multipliers();
     out.push_back(rr);
   }
   return out;
@@ -242,7 +317,7 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::Ve
 
 WeightedGapOperator assemble_contact_operator(const Model& m) {
   std::vector<WeightedGapOperator> ops;
-  for (const auto& c : m.contacts) ops.push_back(assemble_weighted_gaps(m.geometry.patch, *m.dofs, *c.face, *c.obstacle));
+  for (const auto& c : m.contacts) ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
   return stack(ops);
 }
 
@@ -285,23 +360,16 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
   const auto t_start = Clock::now();
-  const NurbsPatch& patch = m.geometry.patch;
-  const int dim = patch.space_dim();
+  const Body& body = m.body;
+  const int dim = body.space_dim();
   auto t0 = Clock::now();
   Eigen::VectorXd bf = m.spec.body_force.empty()
                            ? Eigen::VectorXd::Zero(dim)
                            : Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim).eval();
-  LinearSystem sys = assemble_linear_elasticity(patch, *m.dofs, m.material, bf);
-  for (const auto& p : m.spec.pressure) {
-    std::vector<Face> faces;
-    for (const auto& n : p.faces) {
-      auto f = *find_faces(m.geometry, n);
-      faces.insert(faces.end(), f.begin(), f.end());
-    }
-    add_pressure_load(patch, *m.dofs, faces, p.value, sys.f);
-  }
+  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.material, bf);
+  for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
   r.timing.assembly = since(t0);
-  const RigidModes modes = free_rigid_modes(patch, *m.dofs);
+  const RigidModes modes = free_rigid_modes(body, *m.dofs);
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
   check_body_is_held(m, modes, sys.f);
@@ -330,10 +398,10 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
     t0 = Clock::now();
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
     const Model::Contact& first = m.contacts.front();
-    const int m0 = first.face->space.size();
-    std::tie(c->X0, c->normal) = initial_contact_point(patch, *first.face, *first.obstacle);
+    const int m0 = first.face->num_multipliers();
+    std::tie(c->X0, c->normal) = initial_contact_point(*first.face, *first.obstacle);
     c->pressure = std::make_unique<ContactPressure>(
-        patch, *first.face, c->solution.lambda.head(m0), c->op.weights.head(m0),
+        *first.face, c->solution.lambda.head(m0), c->op.weights.head(m0),
         std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
     c->report = c->pressure->report();
     // A rigid obstacle can only push: a net pull on the body (tensile
@@ -350,15 +418,15 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
       const HertzSolution h = *r.hertz;
       const ContactPressure& cp = *c->pressure;
       r.pressure_error = cp.l2_error(*first.face,
-                                     [&](const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
-                                     std::max(10, patch.degree(0) + 1));
+                                     [&](int, const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
+                                     std::max(10, body.degree() + 1));
     }
     r.timing.postprocess += since(t0);
     r.contact = std::move(c);
   }
   if (auto exact = exact_displacement(m.spec)) {
     t0 = Clock::now();
-    r.displacement_errors = errors_against_exact(patch, r.u, *exact, patch.degree(0) + 2);
+    r.displacement_errors = errors_against_exact(body, r.u, *exact, body.degree() + 2);
     r.timing.postprocess += since(t0);
   }
   r.timing.total = since(t_start);

@@ -13,6 +13,14 @@
 namespace igac {
 
 Model build_model(const CaseSpec& spec);
+// The sides a face name stands for on the model's body: a name of the shape
+// or of [faces], "PATCH:SIDE" with SIDE one of west east south north front
+// back or u0 u1 v0 v1 w0 w1, and on a one-patch body u0 ... w1 alone.
+// nothing when the name is unknown.
+std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name);
+// Every accepted face name, for error messages.
+std::vector<std::string> face_names(const Model& m);
+
 // `on_step` (large deformation) sees the state after each converged load step.
 using StepObserver = std::function<void(const RunResult&, double load_factor)>;
 RunResult solve_model(const Model& model, const StepObserver& on_step = {});

@@ -14,21 +14,21 @@ namespace igac {
 namespace {
 using Clock = std::chrono::steady_clock;
 
-std::vector<Face> faces_named(const Model& m, const std::vector<std::string>& names) {
-  std::vector<Face> out;
+std::vector<PatchSide> faces_named(const Model& m, const std::vector<std::string>& names) {
+  std::vector<PatchSide> out;
   for (const auto& n : names) {
-    const auto f = *find_faces(m.geometry, n);
+    const auto f = *find_faces(m, n);
     out.insert(out.end(), f.begin(), f.end());
   }
   return out;
 }
 
 // Mean of the last displacement component over faces (reference measure).
-double mean_face_displacement(const NurbsPatch& patch, const std::vector<Face>& faces, const Eigen::MatrixXd& u) {
-  const int dim = patch.space_dim();
+double mean_face_displacement(const Body& body, const std::vector<PatchSide>& faces, const Eigen::MatrixXd& u) {
+  const int dim = body.space_dim();
   double s = 0, area = 0;
-  for (const Face& f : faces) {
-    const PatchQuadrature q = face_quadrature(patch, f, gauss_points_for(patch.degree(0)));
+  for (const PatchSide& f : faces) {
+    const PatchQuadrature q = face_quadrature(body, f, gauss_points_for(body.degree()));
     ElementData ed;
     for (int e = 0; e < q.num_elements(); ++e) {
       q.evaluate(e, ed, false);
@@ -45,7 +45,6 @@ double mean_face_displacement(const NurbsPatch& patch, const std::vector<Face>& 
 
 // Contact report of state x at load factor t.
 void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const Eigen::VectorXd& x, RunResult& r) {
-  const NurbsPatch& patch = m.geometry.patch;
   const Model::Contact& first = m.contacts.front();  // reported in detail; every contact's force in reactions
   const ContactFace& cf = *first.face;
   Eigen::VectorXd res;
@@ -60,40 +59,45 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   c->op.weights = problem.multiplier_weights();
   r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
   const int m0 = problem.multiplier_offset(1);
-  std::tie(c->X0, c->normal) = initial_contact_point(patch, cf, *first.obstacle);
+  std::tie(c->X0, c->normal) = initial_contact_point(cf, *first.obstacle);
   c->pressure = std::make_unique<ContactPressure>(
-      patch, cf, c->solution.lambda.head(m0), c->op.weights.head(m0),
+      cf, c->solution.lambda.head(m0), c->op.weights.head(m0),
       std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
   c->report = c->pressure->report();
   // Deformed extent: the face point at the reference half width, displaced.
-  const PatchQuadrature q = cf.quadrature(10);
   ElementData ed;
   double best = std::numeric_limits<double>::infinity();
   int K_max = 0;
   for (int K = 0; K < m0; ++K)
     if (-c->solution.lambda[K] > -c->solution.lambda[K_max]) K_max = K;
-  for (int e = 0; e < q.num_elements(); ++e) {
-    q.evaluate(e, ed, false);
-    for (int k = 0; k < ed.JxW.size(); ++k) {
-      const Eigen::VectorXd X = ed.X.row(k).transpose();
-      const double d = std::abs(c->pressure->r_of(X) - c->report.half_width);
-      if (d < best) {
-        best = d;
-        Eigen::VectorXd xk = X;
-        for (size_t a = 0; a < ed.cps.size(); ++a) xk += ed.N(k, a) * r.u.row(ed.cps[a]).transpose();
-        r.half_width_deformed = c->pressure->r_of(xk);
+  for (const ContactSide& side : cf.sides) {
+    const PatchQuadrature q = side.quadrature(10);
+    for (int e = 0; e < q.num_elements(); ++e) {
+      q.evaluate(e, ed, false);
+      for (int k = 0; k < ed.JxW.size(); ++k) {
+        const Eigen::VectorXd X = ed.X.row(k).transpose();
+        const double d = std::abs(c->pressure->r_of(X) - c->report.half_width);
+        if (d < best) {
+          best = d;
+          Eigen::VectorXd xk = X;
+          for (size_t a = 0; a < ed.cps.size(); ++a) xk += ed.N(k, a) * r.u.row(ed.cps[a]).transpose();
+          r.half_width_deformed = c->pressure->r_of(xk);
+        }
       }
     }
   }
   // Cauchy pressure at the most pressed multiplier: nominal / surface stretch.
   {
-    const Eigen::VectorXd xi = cf.space.anchor(K_max);
-    Eigen::MatrixXd uf(cf.face_cps.size(), patch.space_dim());
-    for (size_t a = 0; a < cf.face_cps.size(); ++a) uf.row(a) = r.u.row(cf.face_cps[a]);
+    const ContactSide* side = &cf.sides.front();
+    for (const ContactSide& s : cf.sides)
+      if (K_max >= s.first_multiplier) side = &s;
+    const Eigen::VectorXd xi = side->space.anchor(K_max - side->first_multiplier);
+    Eigen::MatrixXd uf(side->face_cps.size(), m.body.space_dim());
+    for (size_t a = 0; a < side->face_cps.size(); ++a) uf.row(a) = r.u.row(side->face_cps[a]);
     Eigen::MatrixXd dudxi;
-    cf.face_patch.field(uf, xi, &dudxi);
-    const Eigen::MatrixXd T0 = cf.face_patch.jacobian(xi), T = T0 + dudxi;
-    const double stretch = face_area_vector(cf.face, T).norm() / face_area_vector(cf.face, T0).norm();
+    side->face_patch.field(uf, xi, &dudxi);
+    const Eigen::MatrixXd T0 = side->face_patch.jacobian(xi), T = T0 + dudxi;
+    const double stretch = face_area_vector(side->face(), T).norm() / face_area_vector(side->face(), T0).norm();
     r.max_pressure_cauchy = c->report.max_pressure / stretch;
   }
   r.contact = std::move(c);
@@ -104,9 +108,9 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
 RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   RunResult r;
   const auto t_start = Clock::now();
-  const NurbsPatch& patch = m.geometry.patch;
+  const Body& body = m.body;
   FiniteStrainSetup setup;
-  setup.patch = &patch;
+  setup.body = &body;
   setup.dofs = m.dofs.get();
   setup.law = m.law.get();
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({faces_named(m, p.faces), p.value});
@@ -115,10 +119,10 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   FiniteStrainProblem problem(setup);
 
-  const RigidModes modes = free_rigid_modes(patch, *m.dofs);
+  const RigidModes modes = free_rigid_modes(body, *m.dofs);
   if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
     Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(m.dofs->num_free());
-    for (const auto& p : setup.pressures) add_pressure_load(patch, *m.dofs, p.faces, p.value, f_ref);
+    for (const auto& p : setup.pressures) add_pressure_load(body, *m.dofs, p.faces, p.value, f_ref);
     check_body_is_held(m, modes, f_ref);
   }
   Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
@@ -126,7 +130,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   r.applied_force = pressure_resultant(m);
 
   // the face whose displacement the load curve follows
-  std::vector<Face> loaded;
+  std::vector<PatchSide> loaded;
   for (const auto& p : m.spec.pressure) {
     const auto f = faces_named(m, p.faces);
     loaded.insert(loaded.end(), f.begin(), f.end());
@@ -135,7 +139,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   const Model::Contact* mover = nullptr;
   for (const auto& c : m.contacts)
     if (c.motion.size() > 0 && !mover) mover = &c;
-  if (loaded.empty() && mover) loaded.push_back(mover->face->face);
+  if (loaded.empty() && mover)
+    for (const ContactSide& side : mover->face->sides) loaded.push_back(side.side);
   if (loaded.empty())
     for (const auto& d : m.spec.dirichlet)
       if (d.value != 0) {
@@ -158,7 +163,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     LoadCurvePoint p;
     p.load_factor = t;
     p.contact_force = out.contact ? out.contact->report.total_force : 0.0;
-    p.face_displacement = mean_face_displacement(patch, loaded, out.u);
+    p.face_displacement = mean_face_displacement(body, loaded, out.u);
     p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
     return p;
   };
@@ -177,8 +182,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     // the follower load's resultant along the obstacle normal, on the deformed faces
     Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());
     for (const auto& p : setup.pressures)
-      add_follower_pressure(patch, *m.dofs, p.faces, t_final * p.value, r.u, f_ext, nullptr);
-    const int dim = patch.space_dim();
+      add_follower_pressure(body, *m.dofs, p.faces, t_final * p.value, r.u, f_ext, nullptr);
+    const int dim = body.space_dim();
     std::vector<int> component(problem.num_displacements(), 0);
     for (int i = 0; i < m.dofs->num_dofs(); ++i)
       if (m.dofs->equation(i) >= 0) component[m.dofs->equation(i)] = i % dim;
@@ -189,14 +194,14 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   if (r.contact && m.spec.reference == "hertz") {
     double P = 0;
     for (const auto& p : m.spec.pressure) P += p.value;
-    const int dim = patch.space_dim();
+    const int dim = body.space_dim();
     r.hertz = dim == 2 ? hertz_cylinder(m.spec.radius, P, m.spec.E, m.spec.nu)
                        : hertz_sphere(m.spec.radius, P, m.spec.E, m.spec.nu);
     const HertzSolution h = *r.hertz;
     const ContactPressure& cp = *r.contact->pressure;
     r.pressure_error = cp.l2_error(*m.contacts.front().face,
-                                   [&](const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
-                                   std::max(10, patch.degree(0) + 1));
+                                   [&](int, const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
+                                   std::max(10, body.degree() + 1));
   }
   r.timing.total = std::chrono::duration<double>(Clock::now() - t_start).count();
   return r;

@@ -28,9 +28,10 @@ std::string percent(double v, double ref) {
 }
 
 void print_summary(const Model& m, const RunResult& r, const std::string& out) {
-  const auto& p = m.geometry.patch;
-  fmt::print("igac: {} — {}D, degree {}, {} elements, {} dofs, {} multipliers\n", m.spec.name, p.space_dim(),
-             p.degree(0), p.num_elements(), m.dofs->num_free(), m.num_multipliers());
+  const Body& b = m.body;
+  fmt::print("igac: {} — {}D, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
+             b.degree(), b.num_elements(), b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
+             m.dofs->num_free(), m.num_multipliers());
   std::string status = r.status;
   if (r.load_steps) {
     int newton = 0, cuts = 0;

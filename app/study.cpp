@@ -51,8 +51,7 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     auto& e = errors[l];
     const RunResult& r = results[l];
     ErrorNorms d = exact ? *r.displacement_errors
-                         : errors_against_reference(models[l].geometry.patch, r.u, ref.geometry.patch, rref.u,
-                                                    ref.geometry.patch.degree(0) + 1);
+                         : errors_against_reference(models[l].body, r.u, ref.body, rref.u, ref.body.degree() + 1);
     e["displacement_l2"] = d.l2;
     e["displacement_h1"] = d.h1;
     e["displacement_l2_rel"] = d.l2 / d.ref_l2;
@@ -64,8 +63,8 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     if (r.contact && !exact) {
       const ContactPressure& pref = *rref.contact->pressure;
       const auto pe = r.contact->pressure->l2_error(
-          *ref.contacts.front().face, [&](const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return pref.pressure_at(xi); },
-          ref.geometry.patch.degree(0) + 2);
+          *ref.contacts.front().face, [&](int side, const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return pref.pressure_at(side, xi); },
+          ref.body.degree() + 2);
       e["pressure_l2_vs_reference"] = pe.first;
       e["pressure_l2_vs_reference_rel"] = pe.first / pe.second;
     }

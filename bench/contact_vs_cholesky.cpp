@@ -46,17 +46,17 @@ int main(int argc, char** argv) {
     CaseSpec spec = read_case(argv[1]);
     apply_overrides(spec, {}, refine);
     const Model m = build_model(spec);
-    const NurbsPatch& patch = m.geometry.patch;
-    LinearSystem sys = assemble_linear_elasticity(patch, *m.dofs, m.material, Eigen::VectorXd::Zero(patch.space_dim()));
+    const Body& body = m.body;
+    LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.material, Eigen::VectorXd::Zero(body.space_dim()));
     for (const auto& p : spec.pressure) {
-      std::vector<Face> faces;
+      std::vector<PatchSide> faces;
       for (const auto& n : p.faces) {
-        const auto f = *find_faces(m.geometry, n);
+        const auto f = *find_faces(m, n);
         faces.insert(faces.end(), f.begin(), f.end());
       }
-      add_pressure_load(patch, *m.dofs, faces, p.value, sys.f);
+      add_pressure_load(body, *m.dofs, faces, p.value, sys.f);
     }
-    const RigidModes modes = free_rigid_modes(patch, *m.dofs);
+    const RigidModes modes = free_rigid_modes(body, *m.dofs);
     const WeightedGapOperator op = assemble_contact_operator(m);
     const Eigen::SparseMatrix<double> Kp = pin_equations(sys.K, modes.pinned);
     ContactSolverOptions opt;

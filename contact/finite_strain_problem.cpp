@@ -8,16 +8,12 @@
 #include "engine/follower_pressure.hpp"
 
 namespace igac {
-namespace {
-int contact_points(const NurbsPatch& patch) { return gauss_points_for(patch.degree(0)) + 1; }
-}  // namespace
-
 FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move(setup)) {
   n_ = s_.dofs->num_free();
   offsets_.assign(1, 0);
-  for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->space.size());
+  for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->num_multipliers());
   m_ = offsets_.back();
-  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.patch, *s_.dofs, *s_.law);
+  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law);
   const Eigen::SparseMatrix<double>& P = tl_->pattern();
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(P.nonZeros() + 4 * size_t(m_) * 64);
@@ -26,10 +22,13 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
-    for (const auto& c : s_.contacts)
-      face_quadratures_.push_back(std::make_unique<PatchQuadrature>(c.face->quadrature(contact_points(*s_.patch))));
+    for (const auto& c : s_.contacts) {
+      face_quadratures_.emplace_back();
+      for (const ContactSide& side : c.face->sides)
+        face_quadratures_.back().push_back(side.quadrature(c.face->quadrature_points()));
+    }
     ContactEval ce;
-    evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.patch->num_control_points(), s_.patch->space_dim()),
+    evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.body->num_control_points(), s_.body->space_dim()),
                      Eigen::VectorXd::Zero(m_), false, ce);
     for (const auto& g : ce.G) {
       trip.emplace_back(g.col(), n_ + g.row(), 0.0);
@@ -39,7 +38,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     // K_K on the reference faces: the small-deformation operator's weights
     for (size_t k = 0; k < s_.contacts.size(); ++k)
       weights_.segment(offsets_[k], offsets_[k + 1] - offsets_[k]) =
-          assemble_weighted_gaps(*s_.patch, *s_.dofs, *s_.contacts[k].face, *s_.contacts[k].obstacle).weights;
+          assemble_weighted_gaps(*s_.dofs, *s_.contacts[k].face, *s_.contacts[k].obstacle).weights;
   }
   J_.resize(n_ + m_, n_ + m_);
   J_.setFromTriplets(trip.begin(), trip.end());
@@ -65,7 +64,7 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
                                            bool tangent, ContactEval& out) const {
-  const int dim = s_.patch->space_dim();
+  const int dim = s_.body->space_dim();
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
@@ -80,17 +79,20 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
     std::optional<TranslatedObstacle> moved;
     if (contact.motion.size() > 0) moved.emplace(*contact.obstacle, t * contact.motion);
     const Obstacle& obstacle = moved ? static_cast<const Obstacle&>(*moved) : *contact.obstacle;
-    const PatchQuadrature& quad = *face_quadratures_[c];
+    for (size_t si = 0; si < contact.face->sides.size(); ++si) {
+    const ContactSide& side = contact.face->sides[si];
+    const int side_offset = offset + side.first_multiplier;
+    const PatchQuadrature& quad = face_quadratures_[c][si];
     for (int e = 0; e < quad.num_elements(); ++e) {
       quad.evaluate(e, ed, false);
       for (int q = 0; q < ed.JxW.size(); ++q) {
         Eigen::VectorXd x = ed.X.row(q).transpose();
         for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
         const ObstacleProbe pr = obstacle.probe(x, tangent);
-        contact.face->space.basis(ed.xi.row(q).transpose(), kidx, kval);
+        side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
         double lambda_B = 0;  // sum_K lambda_K B_K at the point
         for (size_t k = 0; k < kidx.size(); ++k) {
-          const int K = offset + kidx[k];
+          const int K = side_offset + kidx[k];
           const double bw = kval[k] * ed.JxW[q];
           out.gamma[K] += pr.gap * bw;
           lambda_B += lambda[K] * bw;
@@ -111,6 +113,7 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
                 }
       }
     }
+    }
   }
 }
 
@@ -126,8 +129,8 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   if (!tl_->assemble(u, f_int, nullptr)) return false;
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(n_);
   for (const auto& p : s_.pressures) {
-    if (s_.follower_pressure) add_follower_pressure(*s_.patch, *s_.dofs, p.faces, t * p.value, u, f_ext, nullptr);
-    else add_dead_pressure(*s_.patch, *s_.dofs, p.faces, t * p.value, f_ext);
+    if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, u, f_ext, nullptr);
+    else add_dead_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, f_ext);
   }
   r.resize(n_ + m_);
   r.head(n_) = f_int - f_ext;
@@ -150,7 +153,7 @@ bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::Sp
   if (K.nonZeros() == 0) K = tl_->pattern();  // filled in place from the second call on
   if (!tl_->assemble(u, f_int, &K)) return false;
   if (s_.follower_pressure)
-    for (const auto& p : s_.pressures) add_follower_pressure(*s_.patch, *s_.dofs, p.faces, t * p.value, u, f_ext, &K);
+    for (const auto& p : s_.pressures) add_follower_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, u, f_ext, &K);
   std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
   for (int k = 0; k < K.nonZeros(); ++k) J_.valuePtr()[kt_to_j_[k]] = K.valuePtr()[k];
   if (m_ > 0) {
@@ -182,7 +185,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
   double scale = 0;
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
-  for (const auto& p : s_.pressures) add_dead_pressure(*s_.patch, *s_.dofs, p.faces, t * p.value, f_ext);
+  for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
   return scale > 0 ? scale : 1.0;
 }

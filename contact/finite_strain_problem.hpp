@@ -27,12 +27,12 @@
 namespace igac {
 
 struct PressureLoad {
-  std::vector<Face> faces;
+  std::vector<PatchSide> faces;
   double value = 0;
 };
 
 struct FiniteStrainSetup {
-  const NurbsPatch* patch = nullptr;
+  const Body* body = nullptr;
   const DofMap* dofs = nullptr;               // prescribed values at full load (ramped with t)
   const HyperelasticLaw* law = nullptr;
   std::vector<PressureLoad> pressures;
@@ -86,7 +86,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd weights_;          // K_K
   Eigen::SparseMatrix<double> J_;    // fixed pattern of the Newton matrix
   Eigen::SparseMatrix<double> tangent_;  // K_T, reused across calls
-  std::vector<std::unique_ptr<PatchQuadrature>> face_quadratures_;  // per contact face, tabulated once
+  std::vector<std::vector<PatchQuadrature>> face_quadratures_;  // per contact, per side: tabulated once
   std::vector<int> offsets_;         // first multiplier of each contact
   std::vector<int> kt_to_j_;         // value index of K_T entry k in J_
   mutable std::vector<char> last_active_;

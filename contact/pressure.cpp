@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 namespace igac {
 
@@ -25,10 +26,9 @@ HertzSolution hertz_sphere(double R, double P, double E, double nu) {
   return h;
 }
 
-ContactPressure::ContactPressure(const NurbsPatch& patch, const ContactFace& cf, Eigen::VectorXd lambda,
-                                 Eigen::VectorXd weights, std::vector<char> active, Eigen::VectorXd X0,
-                                 Eigen::VectorXd normal)
-    : patch_(patch), cf_(cf), lambda_(std::move(lambda)), weights_(std::move(weights)), active_(std::move(active)),
+ContactPressure::ContactPressure(const ContactFace& cf, Eigen::VectorXd lambda, Eigen::VectorXd weights,
+                                 std::vector<char> active, Eigen::VectorXd X0, Eigen::VectorXd normal)
+    : cf_(cf), lambda_(std::move(lambda)), weights_(std::move(weights)), active_(std::move(active)),
       X0_(std::move(X0)), n_(std::move(normal)) {}
 
 double ContactPressure::r_of(const Eigen::VectorXd& X) const {
@@ -36,44 +36,53 @@ double ContactPressure::r_of(const Eigen::VectorXd& X) const {
   return (d - d.dot(n_) * n_).norm();
 }
 
-double ContactPressure::pressure_at(const Eigen::VectorXd& xi) const {
+double ContactPressure::pressure_at(int side, const Eigen::VectorXd& xi) const {
   std::vector<int> idx;
   std::vector<double> val;
-  cf_.space.basis(xi, idx, val);
+  const ContactSide& s = cf_.sides[side];
+  s.space.basis(xi, idx, val);
   double p = 0;
-  for (size_t k = 0; k < idx.size(); ++k) p -= lambda_[idx[k]] * val[k];
+  for (size_t k = 0; k < idx.size(); ++k) p -= lambda_[s.first_multiplier + idx[k]] * val[k];
   return p;
 }
 
 PressureReport ContactPressure::report() const {
   PressureReport rep;
-  const int m = int(lambda_.size());
-  for (int K = 0; K < m; ++K) {
-    const Eigen::VectorXd X = cf_.face_patch.point(cf_.space.anchor(K));
-    rep.multipliers.push_back({r_of(X), -lambda_[K]});
-    rep.max_pressure = std::max(rep.max_pressure, -lambda_[K]);
-    rep.total_force -= lambda_[K] * weights_[K];
-    rep.active += active_[K] ? 1 : 0;
-  }
+  for (const ContactSide& s : cf_.sides)
+    for (int k = 0; k < s.space.size(); ++k) {
+      const int K = s.first_multiplier + k;
+      const Eigen::VectorXd X = s.face_patch.point(s.space.anchor(k));
+      rep.multipliers.push_back({r_of(X), -lambda_[K]});
+      rep.max_pressure = std::max(rep.max_pressure, -lambda_[K]);
+      rep.total_force -= lambda_[K] * weights_[K];
+      rep.active += active_[K] ? 1 : 0;
+    }
   // Pressure profile along the face edge that starts at the initial contact
-  // point (the whole face in 2D; in 3D the edge on a symmetry plane):
-  // element values for S0, nodal values at the breakpoints, and the P1
-  // re-interpolation.
-  const NurbsPatch& fp = cf_.face_patch;
-  const int fd = fp.param_dim();
-  std::array<bool, 2> at_end{false, false};  // which corner of the face holds X0
+  // point (the whole side in 2D; in 3D the edge on a symmetry plane), on the
+  // side that holds it: element values for S0, nodal values at the
+  // breakpoints, and the P1 re-interpolation.
+  int side = 0;
+  std::array<bool, 2> at_end{false, false};  // which corner of the side holds X0
   {
     double best = std::numeric_limits<double>::infinity();
-    for (int c = 0; c < (1 << fd); ++c) {
-      Eigen::VectorXd xi(fd);
-      for (int d = 0; d < fd; ++d) xi[d] = (c >> d) & 1 ? fp.knots(d).last() : fp.knots(d).first();
-      const double dist = (fp.point(xi) - X0_).norm();
-      if (dist < best) {
-        best = dist;
-        for (int d = 0; d < fd; ++d) at_end[d] = (c >> d) & 1;
+    for (int si = 0; si < int(cf_.sides.size()); ++si) {
+      const NurbsPatch& fp = cf_.sides[si].face_patch;
+      const int fd = fp.param_dim();
+      for (int c = 0; c < (1 << fd); ++c) {
+        Eigen::VectorXd xi(fd);
+        for (int d = 0; d < fd; ++d) xi[d] = (c >> d) & 1 ? fp.knots(d).last() : fp.knots(d).first();
+        const double dist = (fp.point(xi) - X0_).norm();
+        if (dist < best) {
+          best = dist;
+          side = si;
+          for (int d = 0; d < fd; ++d) at_end[d] = (c >> d) & 1;
+        }
       }
     }
   }
+  const ContactSide& cs = cf_.sides[side];
+  const NurbsPatch& fp = cs.face_patch;
+  const int fd = fp.param_dim();
   auto line = [&](double t) {
     Eigen::VectorXd xi(fd);
     xi[0] = t;
@@ -85,12 +94,12 @@ PressureReport ContactPressure::report() const {
   const int ne = int(b.size()) - 1;
   std::vector<double> rb(b.size());
   for (size_t j = 0; j < b.size(); ++j) rb[j] = r_of(fp.point(line(b[j])));
-  const bool constants = cf_.space.degree() == 0;
+  const bool constants = cs.space.degree() == 0;
   std::vector<double> mean(ne);
-  for (int e = 0; e < ne; ++e) mean[e] = pressure_at(line(0.5 * (b[e] + b[e + 1])));
+  for (int e = 0; e < ne; ++e) mean[e] = pressure_at(side, line(0.5 * (b[e] + b[e + 1])));
   for (size_t j = 0; j < b.size(); ++j) {
     if (!constants) {
-      rep.p1.push_back({rb[j], pressure_at(line(b[j]))});
+      rep.p1.push_back({rb[j], pressure_at(side, line(b[j]))});
       continue;
     }
     // nodal value = length-weighted mean of the adjacent element constants
@@ -122,10 +131,10 @@ PressureReport ContactPressure::report() const {
     std::vector<int> idx;
     std::vector<double> val;
     auto element_of = [&](int e) {
-      cf_.space.basis(line(0.5 * (b[e] + b[e + 1])), idx, val);
-      return idx.front();  // S0: multiplier K lives on face element K
+      cs.space.basis(line(0.5 * (b[e] + b[e + 1])), idx, val);
+      return idx.front();  // S0: multiplier k of the side lives on its face element k
     };
-    const PatchQuadrature fine = cf_.quadrature(10);
+    const PatchQuadrature fine = cs.quadrature(10);
     ElementData ed;
     std::array<std::vector<std::pair<double, double>>, 2> rw;  // (r, weight) at the points
     const std::array<int, 2> elems{element_of(last - 1), element_of(last)};
@@ -141,7 +150,7 @@ PressureReport ContactPressure::report() const {
       }
       return m / w;
     };
-    const double ratio = -lambda_[elems[1]] / -lambda_[elems[0]];
+    const double ratio = -lambda_[cs.first_multiplier + elems[1]] / -lambda_[cs.first_multiplier + elems[0]];
     auto f = [&](double a) { return sqrt_mean(1, a) / sqrt_mean(0, a) - ratio; };
     const double r1 = rb[last], r2 = rb[last + 1];
     double lo = r1, hi = r2;
@@ -171,19 +180,23 @@ PressureReport ContactPressure::report() const {
 }
 
 std::pair<double, double> ContactPressure::l2_error(
-    const ContactFace& mesh, const std::function<double(const Eigen::VectorXd&, const Eigen::VectorXd&)>& p,
+    const ContactFace& mesh, const std::function<double(int, const Eigen::VectorXd&, const Eigen::VectorXd&)>& p,
     int points) const {
-  const PatchQuadrature quad = mesh.quadrature(points);
+  if (mesh.sides.size() != cf_.sides.size())
+    throw std::invalid_argument("pressure error: the two contact faces have different sides");
   ElementData ed;
   double e2 = 0, n2 = 0;
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.JxW.size(); ++q) {
-      const Eigen::VectorXd xi = ed.xi.row(q).transpose();
-      const double ref = p(xi, ed.X.row(q).transpose());
-      const double ph = pressure_at(xi);
-      e2 += (ph - ref) * (ph - ref) * ed.JxW[q];
-      n2 += ref * ref * ed.JxW[q];
+  for (int s = 0; s < int(mesh.sides.size()); ++s) {
+    const PatchQuadrature quad = mesh.sides[s].quadrature(points);
+    for (int e = 0; e < quad.num_elements(); ++e) {
+      quad.evaluate(e, ed, false);
+      for (int q = 0; q < ed.JxW.size(); ++q) {
+        const Eigen::VectorXd xi = ed.xi.row(q).transpose();
+        const double ref = p(s, xi, ed.X.row(q).transpose());
+        const double ph = pressure_at(s, xi);
+        e2 += (ph - ref) * (ph - ref) * ed.JxW[q];
+        n2 += ref * ref * ed.JxW[q];
+      }
     }
   }
   return {std::sqrt(e2), std::sqrt(n2)};
@@ -194,30 +207,32 @@ namespace {
 // Visits the face's corner control points (normal unknown: empty) and its
 // Gauss points (with the face's outward unit normal).
 template <class Visit>
-void for_each_face_sample(const NurbsPatch& patch, const ContactFace& cf, Visit&& visit) {
+void for_each_face_sample(const ContactFace& cf, Visit&& visit) {
   const Eigen::VectorXd no_normal;
-  for (int i = 0; i < cf.face_patch.num_control_points(); ++i) {
-    const auto mi = cf.face_patch.multi_index(i);
-    bool corner = true;
-    for (int d = 0; d < cf.face_patch.param_dim(); ++d)
-      corner = corner && (mi[d] == 0 || mi[d] == cf.face_patch.num_basis(d) - 1);
-    if (corner) visit(cf.face_patch.points().row(i).transpose().eval(), no_normal);
-  }
-  const PatchQuadrature quad = cf.quadrature(gauss_points_for(patch.degree(0)));
-  ElementData ed;
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.JxW.size(); ++q) visit(ed.X.row(q).transpose().eval(), ed.normal.row(q).transpose().eval());
+  for (const ContactSide& s : cf.sides) {
+    const NurbsPatch& fp = s.face_patch;
+    for (int i = 0; i < fp.num_control_points(); ++i) {
+      const auto mi = fp.multi_index(i);
+      bool corner = true;
+      for (int d = 0; d < fp.param_dim(); ++d) corner = corner && (mi[d] == 0 || mi[d] == fp.num_basis(d) - 1);
+      if (corner) visit(fp.points().row(i).transpose().eval(), no_normal);
+    }
+    const PatchQuadrature quad = s.quadrature(gauss_points_for(cf.degree));
+    ElementData ed;
+    for (int e = 0; e < quad.num_elements(); ++e) {
+      quad.evaluate(e, ed, false);
+      for (int q = 0; q < ed.JxW.size(); ++q)
+        visit(ed.X.row(q).transpose().eval(), ed.normal.row(q).transpose().eval());
+    }
   }
 }
 
 }  // namespace
 
-std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
-                                                                  const Obstacle& obstacle) {
+std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const ContactFace& cf, const Obstacle& obstacle) {
   double best = std::numeric_limits<double>::infinity();
   Eigen::VectorXd X0, n0;
-  for_each_face_sample(patch, cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd&) {
+  for_each_face_sample(cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd&) {
     const ObstacleProbe pr = obstacle.probe(X);
     if (pr.gap < best) {
       best = pr.gap;
@@ -228,14 +243,13 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPat
   return {X0, n0};
 }
 
-std::optional<std::string> contact_cannot_happen(const NurbsPatch& patch, const ContactFace& cf,
-                                                 const Obstacle& obstacle) {
+std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Obstacle& obstacle) {
   // Judged where the face is nearest the obstacle's surface (smallest |g_n|):
   // there a face that can press on the obstacle has its outward normal
   // against the obstacle's (n_face . n_obstacle < 0).  An initial
   // penetration is allowed: the solve pushes the body out.
   double nearest = std::numeric_limits<double>::infinity(), facing = -1;
-  for_each_face_sample(patch, cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd& n_face) {
+  for_each_face_sample(cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd& n_face) {
     if (n_face.size() == 0) return;  // corners carry no normal
     const ObstacleProbe pr = obstacle.probe(X);
     if (std::abs(pr.gap) < nearest) {

@@ -34,29 +34,30 @@ struct PressureReport {
   double max_pressure = 0;                   // max_K -lambda_K
   double total_force = 0;                    // sum_K -lambda_K K_K
   double half_width = 0;                     // extent of the contact zone in r (along the
-                                             // face edge through X0 in 3D: a symmetry plane)
+                                             // face edge through X0 in 3D: a symmetry plane),
+                                             // on the side that holds X0
   int active = 0;
 };
 
 class ContactPressure {
  public:
   // X0: the initial contact point; normal: the obstacle normal there.
-  ContactPressure(const NurbsPatch& patch, const ContactFace& cf, Eigen::VectorXd lambda,
-                  Eigen::VectorXd weights, std::vector<char> active, Eigen::VectorXd X0, Eigen::VectorXd normal);
+  // The face `cf` must outlive the object.
+  ContactPressure(const ContactFace& cf, Eigen::VectorXd lambda, Eigen::VectorXd weights, std::vector<char> active,
+                  Eigen::VectorXd X0, Eigen::VectorXd normal);
   double r_of(const Eigen::VectorXd& X) const;
-  // p_h at face parameter xi.
-  double pressure_at(const Eigen::VectorXd& xi) const;
+  // p_h at parameter xi of side `side` of the face.
+  double pressure_at(int side, const Eigen::VectorXd& xi) const;
   PressureReport report() const;
-  // || p_h - p ||_{L2(Gamma_C)} and || p ||, p given as a function of face
-  // parameter and physical point, integrated with `points` Gauss points per
+  // || p_h - p ||_{L2(Gamma_C)} and || p ||, p given as a function of the side,
+  // its parameter and the physical point, integrated with `points` Gauss points per
   // face element direction of `mesh` (a face of the same geometry, perhaps
-  // finer).
+  // finer, whose side i refines side i of this face).
   std::pair<double, double> l2_error(const ContactFace& mesh,
-                                     const std::function<double(const Eigen::VectorXd& xi, const Eigen::VectorXd& X)>& p,
+                                     const std::function<double(int side, const Eigen::VectorXd& xi, const Eigen::VectorXd& X)>& p,
                                      int points) const;
 
  private:
-  const NurbsPatch& patch_;
   const ContactFace& cf_;
   Eigen::VectorXd lambda_, weights_;
   std::vector<char> active_;
@@ -65,13 +66,11 @@ class ContactPressure {
 
 // The point of the contact face with the smallest initial gap, and the
 // obstacle normal there (sampled at the face's Gauss points and anchors).
-std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const NurbsPatch& patch, const ContactFace& cf,
-                                                                  const Obstacle& obstacle);
+std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const ContactFace& cf, const Obstacle& obstacle);
 
 // Why the face can never press on the obstacle, judged from the reference
 // geometry: it lies inside it everywhere (an obstacle normal that points away
 // from the body), or it faces away from it.  nullopt when contact can happen.
-std::optional<std::string> contact_cannot_happen(const NurbsPatch& patch, const ContactFace& cf,
-                                                 const Obstacle& obstacle);
+std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Obstacle& obstacle);
 
 }  // namespace igac

@@ -1,18 +1,29 @@
 #include "contact/weighted_gap.hpp"
 
+#include <stdexcept>
+
 namespace igac {
 
-ContactFace::ContactFace(const NurbsPatch& patch, const Face& f)
-    : face_patch(patch.face_patch(f)), face_cps(patch.face_control_points(f)), face(f), space(face_patch) {}
+ContactSide::ContactSide(const Body& body, const PatchSide& s, int first)
+    : side(s),
+      face_patch(body.side_patch(s)),
+      face_cps(body.side_control_points(s)),
+      space(face_patch),
+      first_multiplier(first) {}
 
-namespace {
-int contact_points(const NurbsPatch& patch) { return gauss_points_for(patch.degree(0)) + 1; }
-}  // namespace
+ContactFace::ContactFace(const Body& body, const std::vector<PatchSide>& list) : degree(body.degree()) {
+  if (list.empty()) throw std::invalid_argument("a contact face needs at least one side");
+  int first = 0;
+  for (const PatchSide& s : list) {
+    sides.emplace_back(body, s, first);
+    first += sides.back().space.size();
+  }
+}
 
-WeightedGapOperator assemble_weighted_gaps(const NurbsPatch& patch, const DofMap& dofs, const ContactFace& cf,
-                                           const Obstacle& obstacle) {
-  const int dim = patch.space_dim(), m = cf.space.size();
-  const PatchQuadrature quad = cf.quadrature(contact_points(patch));
+int ContactFace::quadrature_points() const { return gauss_points_for(degree) + 1; }
+
+WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle) {
+  const int dim = dofs.dim(), m = cf.num_multipliers();
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
@@ -20,23 +31,29 @@ WeightedGapOperator assemble_weighted_gaps(const NurbsPatch& patch, const DofMap
   ElementData ed;
   std::vector<int> kidx;
   std::vector<double> kval;
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.JxW.size(); ++q) {
-      cf.space.basis(ed.xi.row(q).transpose(), kidx, kval);
-      const ObstacleProbe pr = obstacle.probe(ed.X.row(q).transpose());
-      for (size_t k = 0; k < kidx.size(); ++k) {
-        const double bw = kval[k] * ed.JxW[q];
-        if (bw == 0.0) continue;
-        op.weights[kidx[k]] += bw;
-        op.g0[kidx[k]] += pr.gap * bw;
-        for (size_t a = 0; a < ed.cps.size(); ++a)
-          for (int i = 0; i < dim; ++i) {
-            const int dof = ed.cps[a] * dim + i;
-            const double v = bw * ed.N(q, a) * pr.normal[i];
-            if (dofs.equation(dof) >= 0) trip.emplace_back(kidx[k], dofs.equation(dof), v);
-            else op.g0[kidx[k]] += v * dofs.prescribed_value(dof);
-          }
+  for (const ContactSide& side : cf.sides) {
+    const PatchQuadrature quad = side.quadrature(cf.quadrature_points());
+    for (int e = 0; e < quad.num_elements(); ++e) {
+      quad.evaluate(e, ed, false);
+      for (int q = 0; q < ed.JxW.size(); ++q) {
+        side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
+        for (int& K : kidx) K += side.first_multiplier;
+        const ObstacleProbe pr = obstacle.probe(ed.X.row(q).transpose());
+        for (size_t k = 0; k < kidx.size(); ++k) {
+          const double bw = kval[k] * ed.JxW[q];
+          if (bw == 0.0) continue;
+          op.weights[kidx[k]] += bw;
+          op.g0[kidx[k]] += pr.gap * bw;
+          for (size_t a = 0; a < ed.cps.size(); ++a)
+            for (int i = 0; i < dim; ++i) {
+              const int dof = ed.cps[a] * dim + i;
+              const double v = bw * ed.N(q, a) * pr.normal[i];
+              if (dofs.equation(dof) >= 0)
+                trip.emplace_back(kidx[k], dofs.equation(dof), v);
+              else
+                op.g0[kidx[k]] += v * dofs.prescribed_value(dof);
+            }
+        }
       }
     }
   }
@@ -46,24 +63,25 @@ WeightedGapOperator assemble_weighted_gaps(const NurbsPatch& patch, const DofMap
   return op;
 }
 
-Eigen::VectorXd exact_weighted_gaps(const NurbsPatch& patch, const Eigen::MatrixXd& u, const ContactFace& cf,
-                                    const Obstacle& obstacle) {
-  const int m = cf.space.size();
-  const PatchQuadrature quad = cf.quadrature(contact_points(patch));
+Eigen::VectorXd exact_weighted_gaps(const Eigen::MatrixXd& u, const ContactFace& cf, const Obstacle& obstacle) {
+  const int m = cf.num_multipliers();
   Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
   ElementData ed;
   std::vector<int> kidx;
   std::vector<double> kval;
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.JxW.size(); ++q) {
-      Eigen::VectorXd x = ed.X.row(q).transpose();
-      for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
-      const double g = obstacle.probe(x).gap;
-      cf.space.basis(ed.xi.row(q).transpose(), kidx, kval);
-      for (size_t k = 0; k < kidx.size(); ++k) {
-        num[kidx[k]] += g * kval[k] * ed.JxW[q];
-        den[kidx[k]] += kval[k] * ed.JxW[q];
+  for (const ContactSide& side : cf.sides) {
+    const PatchQuadrature quad = side.quadrature(cf.quadrature_points());
+    for (int e = 0; e < quad.num_elements(); ++e) {
+      quad.evaluate(e, ed, false);
+      for (int q = 0; q < ed.JxW.size(); ++q) {
+        Eigen::VectorXd x = ed.X.row(q).transpose();
+        for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
+        const double g = obstacle.probe(x).gap;
+        side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
+        for (size_t k = 0; k < kidx.size(); ++k) {
+          num[side.first_multiplier + kidx[k]] += g * kval[k] * ed.JxW[q];
+          den[side.first_multiplier + kidx[k]] += kval[k] * ed.JxW[q];
+        }
       }
     }
   }

@@ -16,13 +16,29 @@
 
 namespace igac {
 
-struct ContactFace {
-  NurbsPatch face_patch;
-  std::vector<int> face_cps;  // parent numbers of the face's control points
-  Face face;
+// One patch side of a contact face and its multipliers S^{p-2}.
+struct ContactSide {
+  PatchSide side;
+  NurbsPatch face_patch;      // the side as a patch
+  std::vector<int> face_cps;  // body numbers of the side's control points
   MultiplierSpace space;
-  ContactFace(const NurbsPatch& patch, const Face& f);
-  PatchQuadrature quadrature(int points) const { return PatchQuadrature(face_patch, points, face, face_cps); }
+  int first_multiplier = 0;   // of the contact face's numbering
+  ContactSide(const Body& body, const PatchSide& s, int first);
+  Face face() const { return side.face; }
+  PatchQuadrature quadrature(int points) const { return PatchQuadrature(face_patch, points, side.face, face_cps); }
+};
+
+// The contact face Gamma_C: one or more patch sides (a face of a multi-patch
+// body may span several), each with its own multiplier space S^{p-2} (paper,
+// eq. (7), per side); the multipliers are numbered side after side.
+struct ContactFace {
+  std::vector<ContactSide> sides;
+  int degree = 2;  // of the body: the quadrature of the contact integrals
+  ContactFace(const Body& body, const std::vector<PatchSide>& sides);
+  ContactFace(const Body& body, const PatchSide& side) : ContactFace(body, std::vector<PatchSide>{side}) {}
+  int num_multipliers() const { return sides.back().first_multiplier + sides.back().space.size(); }
+  // Gauss points per direction of the contact integrals.
+  int quadrature_points() const;
 };
 
 struct WeightedGapOperator {
@@ -37,12 +53,10 @@ struct WeightedGapOperator {
 
 // Several operators (one per contact) as one: rows stacked in order.
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);
-WeightedGapOperator assemble_weighted_gaps(const NurbsPatch& patch, const DofMap& dofs, const ContactFace& cf,
-                                           const Obstacle& obstacle);
+WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle);
 
 // Weighted gaps of the exact (not linearised) gap at the displaced position
 // X + u(X), u given per control point (n_cp x dim): what G linearises.
-Eigen::VectorXd exact_weighted_gaps(const NurbsPatch& patch, const Eigen::MatrixXd& u, const ContactFace& cf,
-                                    const Obstacle& obstacle);
+Eigen::VectorXd exact_weighted_gaps(const Eigen::MatrixXd& u, const ContactFace& cf, const Obstacle& obstacle);
 
 }  // namespace igac

@@ -48,12 +48,33 @@ std::vector<int> merge_collapsed_lines(const NurbsPatch& patch) {
   return rep;
 }
 
+// The same for a body: each patch's collapsed lines, in body numbering.
+std::vector<int> merge_collapsed_lines(const Body& body) {
+  if (body.num_patches() == 1) return merge_collapsed_lines(body.patch(0));
+  std::vector<int> rep(body.num_control_points());
+  for (int i = 0; i < int(rep.size()); ++i) rep[i] = i;
+  auto find = [&](int i) {
+    while (rep[i] != i) i = rep[i] = rep[rep[i]];
+    return i;
+  };
+  for (int k = 0; k < body.num_patches(); ++k) {
+    const std::vector<int> local = merge_collapsed_lines(body.patch(k));
+    const std::vector<int>& to_body = body.body_cps(k);
+    for (size_t i = 0; i < local.size(); ++i) {
+      const int a = find(to_body[i]), b = find(to_body[local[i]]);
+      if (a != b) rep[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  for (int i = 0; i < int(rep.size()); ++i) rep[i] = find(i);
+  return rep;
+}
+
 }  // namespace
 
-DofMap::DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& conditions)
-    : dim_(patch.space_dim()) {
-  const int n = patch.num_control_points() * dim_;
-  const std::vector<int> rep = merge_collapsed_lines(patch);
+DofMap::DofMap(const Body& body, const std::vector<DirichletCondition>& conditions)
+    : dim_(body.space_dim()) {
+  const int n = body.num_control_points() * dim_;
+  const std::vector<int> rep = merge_collapsed_lines(body);
   auto rep_dof = [&](int cp, int c) { return rep[cp] * dim_ + c; };
   equation_.assign(n, 0);
   value_.assign(n, 0.0);
@@ -61,7 +82,7 @@ DofMap::DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& c
     if (c.component < 0 || c.component >= dim_)
       throw std::invalid_argument(fmt::format("Dirichlet component {} out of range", c.component));
     for (const auto& f : c.faces)
-      for (int cp : patch.face_control_points(f)) {
+      for (int cp : body.side_control_points(f)) {
         equation_[rep_dof(cp, c.component)] = -1;
         value_[rep_dof(cp, c.component)] = c.value;
       }
@@ -83,15 +104,15 @@ Eigen::MatrixXd DofMap::expand(const Eigen::VectorXd& free) const {
   return u;
 }
 
-PatchQuadrature face_quadrature(const NurbsPatch& patch, const Face& f, int points) {
-  return PatchQuadrature(patch.face_patch(f), points, f, patch.face_control_points(f));
+PatchQuadrature face_quadrature(const Body& body, const PatchSide& side, int points) {
+  return body.side_quadrature(side, points);
 }
 
 namespace {
 
 // Sparsity pattern of the stiffness matrix in the free numbering: equations
 // are coupled when their control points share an element.  Values are zero.
-Eigen::SparseMatrix<double> stiffness_pattern(const PatchQuadrature& quad, const DofMap& dofs) {
+Eigen::SparseMatrix<double> stiffness_pattern(const BodyQuadrature& quad, const DofMap& dofs) {
   const int dim = dofs.dim(), n_free = dofs.num_free();
   const int n_cp = dofs.num_dofs() / dim;
   // node adjacency through elements (nodes = representative control points,
@@ -137,12 +158,10 @@ Eigen::SparseMatrix<double> stiffness_pattern(const PatchQuadrature& quad, const
 
 }  // namespace
 
-LinearSystem assemble_linear_elasticity(const NurbsPatch& patch, const DofMap& dofs,
+LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& mat, const Eigen::VectorXd& body_force) {
-  const int dim = patch.space_dim();
-  int max_degree = 0;
-  for (int d = 0; d < patch.param_dim(); ++d) max_degree = std::max(max_degree, patch.degree(d));
-  const PatchQuadrature quad(patch, gauss_points_for(max_degree));
+  const int dim = body.space_dim();
+  const BodyQuadrature quad(body, gauss_points_for(body.degree()));
   const int n_el = quad.num_elements();
   const double lambda = mat.lambda(), mu = mat.mu();
   const int n_free = dofs.num_free();
@@ -241,11 +260,11 @@ LinearSystem assemble_linear_elasticity(const NurbsPatch& patch, const DofMap& d
   return s;
 }
 
-void add_pressure_load(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces,
+void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f) {
-  const int dim = patch.space_dim();
-  for (const Face& face : faces) {
-    const PatchQuadrature quad = face_quadrature(patch, face, gauss_points_for(patch.degree(0)));
+  const int dim = body.space_dim();
+  for (const PatchSide& face : faces) {
+    const PatchQuadrature quad = face_quadrature(body, face, gauss_points_for(body.degree()));
     ElementData ed;
     for (int e = 0; e < quad.num_elements(); ++e) {
       quad.evaluate(e, ed, false);

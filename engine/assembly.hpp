@@ -1,6 +1,8 @@
-// Degrees of freedom and the linear-elastic system of a patch.
+// Degrees of freedom and the linear-elastic system of a body (one or more
+// patches, engine/body.hpp).
 //
-// Unknowns are control-point displacements, dof = cp * dim + component.
+// Unknowns are control-point displacements, dof = cp * dim + component, cp
+// the body's control point number.
 // Dirichlet conditions fix one component on whole faces (with a value,
 // usually 0 for symmetry); fixed dofs are eliminated, so the matrix is the
 // SPD block K_ff and the prescribed values move to the right-hand side.
@@ -15,20 +17,21 @@
 #include <Eigen/Sparse>
 #include <vector>
 
+#include "engine/body.hpp"
 #include "engine/discretisation.hpp"
 #include "materials/linear_elastic.hpp"
 
 namespace igac {
 
 struct DirichletCondition {
-  std::vector<Face> faces;
+  std::vector<PatchSide> faces;
   int component = 0;
   double value = 0.0;
 };
 
 class DofMap {
  public:
-  DofMap(const NurbsPatch& patch, const std::vector<DirichletCondition>& conditions);
+  DofMap(const Body& body, const std::vector<DirichletCondition>& conditions);
   int dim() const { return dim_; }
   int num_dofs() const { return int(equation_.size()); }
   int num_free() const { return n_free_; }
@@ -45,8 +48,8 @@ class DofMap {
   std::vector<double> value_;
 };
 
-// Face quadrature: the face as its own patch, numbered by the parent's cps.
-PatchQuadrature face_quadrature(const NurbsPatch& patch, const Face& f, int points);
+// Face quadrature: the side as its own patch, numbered by the body's cps.
+PatchQuadrature face_quadrature(const Body& body, const PatchSide& side, int points);
 
 struct LinearSystem {
   Eigen::SparseMatrix<double> K;  // free x free, SPD when the body is held
@@ -56,11 +59,11 @@ struct LinearSystem {
 
 // Throws std::runtime_error when the geometry map folds (det J <= 0 at a
 // Gauss point).
-LinearSystem assemble_linear_elasticity(const NurbsPatch& patch, const DofMap& dofs,
+LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
                                         const Eigen::VectorXd& body_force);
 // Adds the work of a pressure P on the faces to f (free numbering).
-void add_pressure_load(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces,
+void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f);
 // The number of Gauss points per direction used everywhere for degree p.
 inline int gauss_points_for(int degree) { return degree + 1; }

@@ -1,6 +1,7 @@
 #include "engine/error_norms.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "engine/discretisation.hpp"
 
@@ -8,13 +9,13 @@ namespace igac {
 namespace {
 
 // Integrates |v - v_h|^2 and |grad(v - v_h)|^2 over the elements of `mesh`,
-// where `other(xi, X, J, v, grad)` gives the comparison field.
-using Other = std::function<void(const Eigen::VectorXd& xi, const Eigen::VectorXd& X, const Eigen::MatrixXd& J,
-                                 Eigen::VectorXd& v, Eigen::MatrixXd& grad)>;
+// where `other(patch, xi, X, v, grad)` gives the comparison field.
+using Other = std::function<void(int patch, const Eigen::VectorXd& xi, const Eigen::VectorXd& X, Eigen::VectorXd& v,
+                                 Eigen::MatrixXd& grad)>;
 
-ErrorNorms integrate(const NurbsPatch& mesh, const Eigen::MatrixXd& u, int points, const Other& other,
+ErrorNorms integrate(const Body& mesh, const Eigen::MatrixXd& u, int points, const Other& other,
                      bool mesh_field_is_reference) {
-  const PatchQuadrature quad(mesh, points);
+  const BodyQuadrature quad(mesh, points);
   const int dim = mesh.space_dim();
   double e0 = 0, e1 = 0, r0 = 0, r1 = 0;
 #pragma omp parallel reduction(+ : e0, e1, r0, r1)
@@ -32,10 +33,9 @@ ErrorNorms integrate(const NurbsPatch& mesh, const Eigen::MatrixXd& u, int point
           uh += ed.N(q, a) * u.row(ed.cps[a]).transpose();
           guh += u.row(ed.cps[a]).transpose() * ed.dN[q].row(a);
         }
-        // J is needed only by reference comparisons: rebuild it from dN
         const Eigen::VectorXd xi = ed.xi.row(q).transpose();
         const Eigen::VectorXd X = ed.X.row(q).transpose();
-        other(xi, X, Eigen::MatrixXd(), v, gv);
+        other(quad.patch_of(e), xi, X, v, gv);
         const double w = ed.JxW[q];
         e0 += (v - uh).squaredNorm() * w;
         e1 += (gv - guh).squaredNorm() * w;
@@ -54,22 +54,27 @@ ErrorNorms integrate(const NurbsPatch& mesh, const Eigen::MatrixXd& u, int point
 
 }  // namespace
 
-ErrorNorms errors_against_exact(const NurbsPatch& patch, const Eigen::MatrixXd& u, const ExactDisplacement& exact,
+ErrorNorms errors_against_exact(const Body& body, const Eigen::MatrixXd& u, const ExactDisplacement& exact,
                                 int points) {
-  return integrate(patch, u, points,
-                   [&](const Eigen::VectorXd&, const Eigen::VectorXd& X, const Eigen::MatrixXd&, Eigen::VectorXd& v,
-                       Eigen::MatrixXd& g) { exact(X, v, g); },
+  return integrate(body, u, points,
+                   [&](int, const Eigen::VectorXd&, const Eigen::VectorXd& X, Eigen::VectorXd& v, Eigen::MatrixXd& g) {
+                     exact(X, v, g);
+                   },
                    false);
 }
 
-ErrorNorms errors_against_reference(const NurbsPatch& coarse, const Eigen::MatrixXd& u_coarse,
-                                    const NurbsPatch& fine, const Eigen::MatrixXd& u_fine, int points) {
+ErrorNorms errors_against_reference(const Body& coarse, const Eigen::MatrixXd& u_coarse,
+                                    const Body& fine, const Eigen::MatrixXd& u_fine, int points) {
+  if (coarse.num_patches() != fine.num_patches())
+    throw std::invalid_argument("errors against a reference: the meshes have different patches");
+  std::vector<Eigen::MatrixXd> coarse_u;  // per patch
+  for (int k = 0; k < coarse.num_patches(); ++k) coarse_u.push_back(coarse.patch_field(k, u_coarse));
   return integrate(fine, u_fine, points,
-                   [&](const Eigen::VectorXd& xi, const Eigen::VectorXd&, const Eigen::MatrixXd&, Eigen::VectorXd& v,
+                   [&](int k, const Eigen::VectorXd& xi, const Eigen::VectorXd&, Eigen::VectorXd& v,
                        Eigen::MatrixXd& g) {
                      Eigen::MatrixXd dv;
-                     v = coarse.field(u_coarse, xi, &dv);
-                     const Eigen::MatrixXd J = coarse.jacobian(xi);
+                     v = coarse.patch(k).field(coarse_u[k], xi, &dv);
+                     const Eigen::MatrixXd J = coarse.patch(k).jacobian(xi);
                      g = dv * J.inverse();
                    },
                    true);

@@ -11,12 +11,6 @@ namespace igac {
 
 namespace {
 
-int max_degree(const NurbsPatch& patch) {
-  int p = 0;
-  for (int d = 0; d < patch.param_dim(); ++d) p = std::max(p, patch.degree(d));
-  return p;
-}
-
 // Orientation factor sigma of the outward area vector, written with the face
 // tangents t_0 (, t_1) in their parametric order (as face_area_vector):
 //   2D: a = sigma (t_0[1], -t_0[0]),  3D: a = sigma t_0 x t_1.
@@ -51,14 +45,14 @@ Eigen::Matrix<double, dim, 1> area_derivative(double sigma, const Eigen::Matrix<
 // of the current face (u given) or of the reference face (u null); when K is
 // given, K += p int N_A da/du dxi (= -d f_ext / du).
 template <int dim>
-void face_pressure(const NurbsPatch& patch, const DofMap& dofs, const Face& face, double p,
+void face_pressure(const Body& body, const DofMap& dofs, const PatchSide& side, double p,
                    const Eigen::MatrixXd* u, Eigen::VectorXd& f, Eigen::SparseMatrix<double>* K) {
   constexpr int pd = dim - 1;
-  const NurbsPatch fp = patch.face_patch(face);
-  const std::vector<int> parent = patch.face_control_points(face);
-  const GaussRule rule = gauss_legendre(gauss_points_for(max_degree(patch)));
+  const NurbsPatch fp = body.side_patch(side);
+  const std::vector<int> parent = body.side_control_points(side);
+  const GaussRule rule = gauss_legendre(gauss_points_for(body.degree()));
   const int nq1 = int(rule.points.size());
-  const double sigma = orientation(face, dim);
+  const double sigma = orientation(side.face, dim);
   std::array<UnivariateTable, 2> t;
   std::array<int, 2> np{1, 1}, n_el{1, 1}, nq{1, 1};
   for (int d = 0; d < pd; ++d) {
@@ -152,12 +146,12 @@ void face_pressure(const NurbsPatch& patch, const DofMap& dofs, const Face& face
     }
 }
 
-void check_shapes(const NurbsPatch& patch, const DofMap& dofs, const Eigen::VectorXd& f) {
-  const int dim = patch.space_dim();
-  if ((dim != 2 && dim != 3) || patch.param_dim() != dim)
-    throw std::invalid_argument("a pressure load needs a 2D or 3D volume patch");
-  if (dofs.dim() != dim || dofs.num_dofs() != patch.num_control_points() * dim)
-    throw std::invalid_argument("the dof map does not belong to the patch of the pressure load");
+void check_shapes(const Body& body, const DofMap& dofs, const Eigen::VectorXd& f) {
+  const int dim = body.space_dim();
+  if ((dim != 2 && dim != 3) || body.param_dim() != dim)
+    throw std::invalid_argument("a pressure load needs a 2D or 3D volume body");
+  if (dofs.dim() != dim || dofs.num_dofs() != body.num_control_points() * dim)
+    throw std::invalid_argument("the dof map does not belong to the body of the pressure load");
   if (f.size() != dofs.num_free())
     throw std::invalid_argument(
         fmt::format("pressure load: force vector has {} entries for {} free dofs", f.size(), dofs.num_free()));
@@ -165,34 +159,34 @@ void check_shapes(const NurbsPatch& patch, const DofMap& dofs, const Eigen::Vect
 
 }  // namespace
 
-void add_follower_pressure(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces, double p,
+void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                            const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K) {
-  check_shapes(patch, dofs, f_ext);
-  const int dim = patch.space_dim();
-  if (u.rows() != patch.num_control_points() || u.cols() != dim)
-    throw std::invalid_argument(fmt::format("follower pressure: displacement is {} x {}, the patch needs {} x {}",
-                                            u.rows(), u.cols(), patch.num_control_points(), dim));
+  check_shapes(body, dofs, f_ext);
+  const int dim = body.space_dim();
+  if (u.rows() != body.num_control_points() || u.cols() != dim)
+    throw std::invalid_argument(fmt::format("follower pressure: displacement is {} x {}, the body needs {} x {}",
+                                            u.rows(), u.cols(), body.num_control_points(), dim));
   if (K) {
     if (K->rows() != dofs.num_free() || K->cols() != dofs.num_free())
       throw std::invalid_argument("follower pressure: the tangent is not free x free");
     if (!K->isCompressed()) K->makeCompressed();
   }
-  for (const Face& face : faces) {
+  for (const PatchSide& face : faces) {
     if (dim == 2)
-      face_pressure<2>(patch, dofs, face, p, &u, f_ext, K);
+      face_pressure<2>(body, dofs, face, p, &u, f_ext, K);
     else
-      face_pressure<3>(patch, dofs, face, p, &u, f_ext, K);
+      face_pressure<3>(body, dofs, face, p, &u, f_ext, K);
   }
 }
 
-void add_dead_pressure(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces, double p,
+void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                        Eigen::VectorXd& f_ext) {
-  check_shapes(patch, dofs, f_ext);
-  for (const Face& face : faces) {
-    if (patch.space_dim() == 2)
-      face_pressure<2>(patch, dofs, face, p, nullptr, f_ext, nullptr);
+  check_shapes(body, dofs, f_ext);
+  for (const PatchSide& face : faces) {
+    if (body.space_dim() == 2)
+      face_pressure<2>(body, dofs, face, p, nullptr, f_ext, nullptr);
     else
-      face_pressure<3>(patch, dofs, face, p, nullptr, f_ext, nullptr);
+      face_pressure<3>(body, dofs, face, p, nullptr, f_ext, nullptr);
   }
 }
 

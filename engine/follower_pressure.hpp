@@ -1,4 +1,4 @@
-// Pressure loads on faces of a patch in large deformation: a follower load
+// Pressure loads on faces of a body in large deformation: a follower load
 // that acts on the deformed face (default) and a dead load on the reference
 // face (option).  Wriggers, Nonlinear FEM, sec. 4.2.5; Holzapfel sec. 8.4.
 //
@@ -45,12 +45,12 @@ namespace igac {
 // the load couples (the TotalLagrangianAssembler pattern does); it is
 // compressed if it is not.  Throws std::invalid_argument when u has the wrong
 // shape and std::logic_error when K lacks an entry.
-void add_follower_pressure(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces, double p,
+void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                            const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K);
 
 // Adds the external force of a dead pressure p (acting on the reference face
 // with its reference normal, independent of u: no load stiffness).
-void add_dead_pressure(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces, double p,
+void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                        Eigen::VectorXd& f_ext);
 
 }  // namespace igac

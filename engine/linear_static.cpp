@@ -5,13 +5,13 @@
 
 namespace igac {
 
-RigidModes free_rigid_modes(const NurbsPatch& patch, const DofMap& dofs) {
-  const int dim = patch.space_dim(), n_cp = patch.num_control_points();
+RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
+  const int dim = body.space_dim(), n_cp = body.num_control_points();
   const int n_modes = dim == 2 ? 3 : 6;
-  const Eigen::RowVectorXd centre = patch.points().colwise().mean();
+  const Eigen::RowVectorXd centre = body.points().colwise().mean();
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n_cp * dim, n_modes);
   for (int a = 0; a < n_cp; ++a) {
-    const Eigen::RowVectorXd x = patch.points().row(a) - centre;
+    const Eigen::RowVectorXd x = body.points().row(a) - centre;
     for (int i = 0; i < dim; ++i) M(a * dim + i, i) = 1.0;
     if (dim == 2) {
       M(a * 2 + 0, 2) = -x[1];

@@ -20,7 +20,7 @@ struct RigidModes {
   std::vector<int> pinned;   // k free equations where the modes are best conditioned
 };
 
-RigidModes free_rigid_modes(const NurbsPatch& patch, const DofMap& dofs);
+RigidModes free_rigid_modes(const Body& body, const DofMap& dofs);
 
 // K with the pinned equations replaced by identity rows and columns (SPD
 // when the only singularity of K is the rigid modes).

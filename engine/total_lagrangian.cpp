@@ -14,19 +14,13 @@ namespace igac {
 
 namespace {
 
-int max_degree(const NurbsPatch& patch) {
-  int p = 0;
-  for (int d = 0; d < patch.param_dim(); ++d) p = std::max(p, patch.degree(d));
-  return p;
-}
-
 // Sparsity pattern (free numbering, values zero): equations couple when their
 // control points share an element.  Built per node rather than per element
 // pair, so the temporary memory stays at the size of the result: a node is a
 // control point with its free equations, coincident control points of a
 // collapsed face (same equations) being one node, keyed by its first free
 // equation.  Symmetric, so column r's rows are row r's columns.
-Eigen::SparseMatrix<double> coupling_pattern(const PatchQuadrature& quad, const DofMap& dofs) {
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs) {
   const int dim = dofs.dim(), n_free = dofs.num_free();
   const int n_cp = dofs.num_dofs() / dim, n_el = quad.num_elements(), nl = quad.num_local();
 
@@ -92,7 +86,7 @@ Eigen::SparseMatrix<double> coupling_pattern(const PatchQuadrature& quad, const 
 // K and f_int, colour by colour: no per-thread copies of the matrix (whose
 // memory would grow with the thread count) and no reduction.  A tensor
 // mesh of degree p needs (p+1)^dim colours.
-std::vector<std::vector<int>> colour_elements(const PatchQuadrature& quad, const DofMap& dofs) {
+std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs) {
   const int dim = dofs.dim(), n_free = dofs.num_free(), n_el = quad.num_elements();
   // element -> the equations it writes (one per node: its first free one)
   std::vector<int> start(n_el + 1, 0), keys, cps;
@@ -158,9 +152,11 @@ struct ElementGeometry {
   std::vector<Eigen::Matrix<double, dim, 1>> X;  // control points
 };
 
+// Element e of the patch; control points in body numbering through
+// `to_body` (empty: the patch's own numbering).
 template <int dim>
-void evaluate_element(const NurbsPatch& patch, const std::array<UnivariateTable, 3>& t, int e,
-                      ElementGeometry<dim>& g) {
+void evaluate_element(const NurbsPatch& patch, const std::vector<int>& to_body,
+                      const std::array<UnivariateTable, 3>& t, int e, ElementGeometry<dim>& g) {
   std::array<int, dim> np, nq, ne, ei;
   int nl = 1, n_pts = 1;
   for (int d = 0; d < dim; ++d) {
@@ -188,7 +184,7 @@ void evaluate_element(const NurbsPatch& patch, const std::array<UnivariateTable,
       r /= np[d];
     }
     const int cp = patch.index(gi);
-    g.cps[a] = cp;
+    g.cps[a] = to_body.empty() ? cp : to_body[cp];
     g.w[a] = patch.weights()[cp];
     g.X[a] = patch.points().row(cp).transpose();
   }
@@ -327,8 +323,18 @@ bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool t
 
 constexpr int kElementsPerColourForThreads = 64;
 
+// Element e of the body: its patch's geometry and tables.
 template <int dim>
-bool assemble_dim(const NurbsPatch& patch, const std::array<UnivariateTable, 3>& tables, const DofMap& dofs, const HyperelasticLaw& law,
+void evaluate_body_element(const Body& body, const BodyQuadrature& quad,
+                           const std::vector<std::array<UnivariateTable, 3>>& tables, int e, ElementGeometry<dim>& g) {
+  const int k = body.num_patches() == 1 ? 0 : quad.patch_of(e);
+  static const std::vector<int> identity;
+  evaluate_element<dim>(body.patch(k), body.num_patches() == 1 ? identity : body.body_cps(k), tables[k],
+                        e - quad.first_element(k), g);
+}
+
+template <int dim>
+bool assemble_dim(const Body& body, const BodyQuadrature& quad, const std::vector<std::array<UnivariateTable, 3>>& tables, const DofMap& dofs, const HyperelasticLaw& law,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
                   const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
   const bool tangent = K != nullptr;
@@ -361,7 +367,7 @@ bool assemble_dim(const NurbsPatch& patch, const std::array<UnivariateTable, 3>&
 #pragma omp for schedule(dynamic, 16)
       for (int j = 0; j < n; ++j) {
         if (failed.load(std::memory_order_relaxed)) continue;
-        evaluate_element<dim>(patch, tables, colour[j], ws.geo);
+        evaluate_body_element<dim>(body, quad, tables, colour[j], ws.geo);
         if (!element_kernel<dim>(law, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
@@ -399,21 +405,23 @@ bool assemble_dim(const NurbsPatch& patch, const std::array<UnivariateTable, 3>&
 
 }  // namespace
 
-TotalLagrangianAssembler::TotalLagrangianAssembler(const NurbsPatch& patch, const DofMap& dofs,
+TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
                                                    const HyperelasticLaw& law)
-    : quad_(patch, gauss_points_for(max_degree(patch))), dofs_(dofs), law_(&law) {
-  const int dim = patch.space_dim();
-  if ((dim != 2 && dim != 3) || patch.param_dim() != dim)
+    : body_(body), quad_(body_, gauss_points_for(body_.degree())), dofs_(dofs), law_(&law) {
+  const int dim = body_.space_dim();
+  if ((dim != 2 && dim != 3) || body_.param_dim() != dim)
     throw std::invalid_argument(fmt::format(
-        "total-Lagrangian assembly needs a 2D or 3D volume patch, got {} parametric directions in R^{}",
-        patch.param_dim(), dim));
-  if (dofs.dim() != dim || dofs.num_dofs() != patch.num_control_points() * dim)
-    throw std::invalid_argument(fmt::format("the dof map ({} dofs in {}D) does not belong to this patch ({} control points in {}D)",
-                                            dofs.num_dofs(), dofs.dim(), patch.num_control_points(), dim));
+        "total-Lagrangian assembly needs a 2D or 3D volume body, got {} parametric directions in R^{}",
+        body_.param_dim(), dim));
+  if (dofs.dim() != dim || dofs.num_dofs() != body_.num_control_points() * dim)
+    throw std::invalid_argument(fmt::format("the dof map ({} dofs in {}D) does not belong to this body ({} control points in {}D)",
+                                            dofs.num_dofs(), dofs.dim(), body_.num_control_points(), dim));
   pattern_ = coupling_pattern(quad_, dofs_);
   colours_ = colour_elements(quad_, dofs_);
-  const GaussRule rule = gauss_legendre(gauss_points_for(max_degree(patch)));
-  for (int d = 0; d < dim; ++d) tables_[d] = tabulate(patch.knots(d), rule);
+  const GaussRule rule = gauss_legendre(gauss_points_for(body_.degree()));
+  tables_.resize(body_.num_patches());
+  for (int k = 0; k < body_.num_patches(); ++k)
+    for (int d = 0; d < dim; ++d) tables_[k][d] = tabulate(body_.patch(k).knots(d), rule);
   double min_det = std::numeric_limits<double>::infinity();
 #pragma omp parallel
   {
@@ -422,10 +430,10 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const NurbsPatch& patch, cons
 #pragma omp for schedule(dynamic, 64) reduction(min : min_det)
     for (int e = 0; e < quad_.num_elements(); ++e) {
       if (dim == 2) {
-        evaluate_element<2>(quad_.patch(), tables_, e, g2);
+        evaluate_body_element<2>(body_, quad_, tables_, e, g2);
         min_det = std::min(min_det, g2.min_det_J);
       } else {
-        evaluate_element<3>(quad_.patch(), tables_, e, g3);
+        evaluate_body_element<3>(body_, quad_, tables_, e, g3);
         min_det = std::min(min_det, g3.min_det_J);
       }
     }
@@ -439,10 +447,10 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                         Eigen::SparseMatrix<double>* K) const {
   const int dim = dofs_.dim();
   if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
-    throw std::invalid_argument(fmt::format("displacement is {} x {}, the patch needs {} x {}", u.rows(), u.cols(),
+    throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
                                             dofs_.num_dofs() / dim, dim));
-  return dim == 2 ? assemble_dim<2>(quad_.patch(), tables_, dofs_, *law_, colours_, pattern_, u, f_int, K)
-                  : assemble_dim<3>(quad_.patch(), tables_, dofs_, *law_, colours_, pattern_, u, f_int, K);
+  return dim == 2 ? assemble_dim<2>(body_, quad_, tables_, dofs_, *law_, colours_, pattern_, u, f_int, K)
+                  : assemble_dim<3>(body_, quad_, tables_, dofs_, *law_, colours_, pattern_, u, f_int, K);
 }
 
 }  // namespace igac

@@ -1,4 +1,4 @@
-// Total-Lagrangian kinematics of a hyperelastic body on one NURBS patch: the
+// Total-Lagrangian kinematics of a hyperelastic body of NURBS patches: the
 // internal force and its consistent tangent, integrated over the reference
 // configuration (Holzapfel, Nonlinear Solid Mechanics, ch. 8; Wriggers,
 // Nonlinear Finite Element Methods, ch. 4).
@@ -50,7 +50,7 @@ class TotalLagrangianAssembler {
   // scratch, so it may be shared).  Throws std::invalid_argument unless the
   // patch is a 2D or 3D volume patch matching the dof map, and
   // std::runtime_error when the geometry map folds.
-  TotalLagrangianAssembler(const NurbsPatch& patch, const DofMap& dofs, const HyperelasticLaw& law);
+  TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law);
 
   // u: displacement per control point (n_cp x dim), prescribed values
   // included (e.g. DofMap::expand of the free values).  Fills f_int (free
@@ -73,8 +73,9 @@ class TotalLagrangianAssembler {
   double min_det_J() const { return min_det_J_; }
 
  private:
-  PatchQuadrature quad_;                   // the patch, element numbering, control points
-  std::array<UnivariateTable, 3> tables_;  // Gauss-point B-spline values per direction
+  Body body_;
+  BodyQuadrature quad_;                                  // element numbering, control points
+  std::vector<std::array<UnivariateTable, 3>> tables_;  // per patch: Gauss-point B-spline values per direction
   DofMap dofs_;
   const HyperelasticLaw* law_;
   Eigen::SparseMatrix<double> pattern_;

@@ -185,7 +185,7 @@ CaseSpec read_case(const std::string& path) {
   std::set<std::string> geo_keys{"shape", "file"};
   if (kind)
     for (const ShapeKey& k : kind->keys) geo_keys.insert(std::string(k.key));
-  if (gt.contains("file")) geo_keys.insert("radius");
+  if (gt.contains("file")) geo_keys.insert({"radius", "inner_radius", "outer_radius"});
   if (!kind && !gt.contains("file"))
     for (const ShapeType* t : shape_types())
       for (const ShapeKey& k : t->keys) geo_keys.insert(std::string(k.key));
@@ -195,15 +195,16 @@ CaseSpec read_case(const std::string& path) {
     const std::filesystem::path f = geo.string("file");
     c.geometry_file = (f.is_absolute() ? f : std::filesystem::path(path).parent_path() / f).lexically_normal().string();
     const MultiPatch body = read_gismo_xml(c.geometry_file);  // one-line errors naming the file's line
-    if (body.patches.size() != 1)
-      geo.fail("file", fmt::format("{} holds {} patches; igac reads single-patch bodies (multi-patch bodies are "
-                                   "not supported yet)", c.geometry_file, body.patches.size()));
     c.dimension = body.patches.front().space_dim();
     if (body.patches.front().param_dim() != c.dimension)
       geo.fail("file", fmt::format("{}: a {}D patch in {}D space is not a solid body", c.geometry_file,
                                    body.patches.front().param_dim(), c.dimension));
     c.shape = "file";
     c.radius = geo.has("radius") ? geo.scale("radius", "the radius a Hertz reference uses") : 0.0;
+    c.inner_radius = geo.has("inner_radius") ? geo.scale("inner_radius", "the inner radius a Lame reference uses") : 0.0;
+    c.outer_radius = geo.has("outer_radius") ? geo.scale("outer_radius", "the outer radius a Lame reference uses") : 0.0;
+    if (c.inner_radius > 0 && c.outer_radius > 0 && !(c.outer_radius > c.inner_radius))
+      geo.fail("outer_radius", "must be larger than inner_radius");
   } else {
     c.shape = geo.string("shape");
     if (kind) c.dimension = kind->dim;
@@ -382,8 +383,8 @@ CaseSpec read_case(const std::string& path) {
     const bool round = c.shape == "quarter_disc" || c.shape == "sphere_octant" || (c.shape == "file" && c.radius > 0);
     if (c.reference == "hertz" && (c.contacts.size() != 1 || !round))
       s.fail("solution", "hertz needs a quarter_disc or sphere_octant (or a geometry file with its radius) with one [contact]");
-    if (c.reference == "lame" && c.shape != "quarter_annulus")
-      s.fail("solution", "lame needs shape = \"quarter_annulus\"");
+    if (c.reference == "lame" && c.shape != "quarter_annulus" && !(c.shape == "file" && c.inner_radius > 0 && c.outer_radius > 0))
+      s.fail("solution", "lame needs shape = \"quarter_annulus\" (or a geometry file with inner_radius and outer_radius)");
   }
   if (root.contains("loading")) {
     const Section s(path, "loading", top.sub("loading"),

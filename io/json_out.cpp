@@ -41,12 +41,13 @@ bool has_null_value(const Json& j) {
 }
 
 Json run_summary(const Model& m, const RunResult& r) {
-  const NurbsPatch& patch = m.geometry.patch;
+  const Body& body = m.body;
   Json j;
   j["case"] = m.spec.name;
-  j["dim"] = patch.space_dim();
-  j["degree"] = patch.degree(0);
-  j["elements"] = patch.num_elements();
+  j["dim"] = body.space_dim();
+  j["degree"] = body.degree();
+  j["elements"] = body.num_elements();
+  j["patches"] = body.num_patches();
   j["dofs"] = m.dofs->num_free();
   j["multipliers"] = m.num_multipliers();
   j["mesh_size"] = m.mesh_size;
@@ -90,7 +91,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     c["total_force"] = finite_or_null(rep.total_force);
     c["applied_force"] = finite_or_null(r.applied_force);
     if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
-    c["model_part"] = patch.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
+    c["model_part"] = body.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
                                              : "modelled part (symmetry)";
     c["obstacle"] = m.contacts.front().obstacle->describe();
     j["contact"] = c;

@@ -5,6 +5,7 @@
 // here (json_out, vtk_output) put them in files.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,7 +23,10 @@ namespace igac {
 
 struct Model {
   CaseSpec spec;
-  Geometry geometry;  // geometry.patch is the refined patch
+  Body body;  // the refined patches, joined C0 across their interfaces
+  // Named faces: the built-in shape's names (on patch 0) and the case's
+  // [faces] sets; "PATCH:SIDE" and u0 ... w1 are found by find_faces.
+  std::map<std::string, std::vector<PatchSide>> faces;
   std::unique_ptr<DofMap> dofs;
   LinearElastic material{1.0, 0.0};
   std::unique_ptr<HyperelasticLaw> law;  // the case's law (small strain too: the ParaView stress)
@@ -40,7 +44,7 @@ struct Model {
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
   int num_multipliers() const {
     int m = 0;
-    for (const auto& c : contacts) m += c.face->space.size();
+    for (const auto& c : contacts) m += c.face->num_multipliers();
     return m;
   }
 };

@@ -242,11 +242,12 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& dir, const std::st
 
 // Body: Bezier cells with displacement and recovered stress.
 vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResult& r) {
-  const NurbsPatch& patch = model.geometry.patch;
-  if (r.u.rows() != patch.num_control_points() || r.u.cols() != patch.space_dim())
-    throw std::runtime_error(fmt::format("VTK output: displacement is {} x {} for {} control points in {}D",
-                                         r.u.rows(), r.u.cols(), patch.num_control_points(), patch.space_dim()));
-  const BezierMesh mesh(patch, {r.u});
+  const Body& body = model.body;
+  if (r.u.rows() != body.num_control_points() || r.u.cols() != body.space_dim())
+    throw std::runtime_error(fmt::format("VTK output: displacement is {} x {} for {} control points in {}D", r.u.rows(),
+                                         r.u.cols(), body.num_control_points(), body.space_dim()));
+  BezierMesh mesh;  // every patch's elements, one after the other
+  for (int k = 0; k < body.num_patches(); ++k) mesh.append(BezierMesh(body.patch(k), {body.patch_field(k, r.u)}));
   auto grid = bezier_grid(mesh);
   // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
   // (plane strain in 2D is the 3D law with F_33 = 1).
@@ -278,9 +279,15 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
 vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r) {
   const ContactFace& cf = *model.contacts.front().face;
   const ContactSolution& sol = r.contact->solution;
-  Eigen::MatrixXd u_face(cf.face_cps.size(), r.u.cols());
-  for (size_t i = 0; i < cf.face_cps.size(); ++i) u_face.row(i) = r.u.row(cf.face_cps[i]);
-  const BezierMesh mesh(cf.face_patch, {u_face});
+  BezierMesh mesh;                          // every side's elements, one after the other
+  std::vector<const ContactSide*> side_of;  // per element
+  for (const ContactSide& side : cf.sides) {
+    Eigen::MatrixXd u_face(side.face_cps.size(), r.u.cols());
+    for (size_t i = 0; i < side.face_cps.size(); ++i) u_face.row(i) = r.u.row(side.face_cps[i]);
+    const BezierMesh part(side.face_patch, {u_face});
+    side_of.insert(side_of.end(), part.num_elements(), &side);
+    mesh.append(part);
+  }
   auto grid = bezier_grid(mesh);
   const int nl = mesh.num_local(), ne = mesh.num_elements();
   auto p_point = make_array("pressure", 1, mesh.num_points());
@@ -303,7 +310,8 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
     for (size_t q = 0; q < rule.s.size(); ++q) {
       mesh.basis(el, rule.s[q], R, &dR);
       const double wt = rule.w[q] * measure(el.points.transpose() * dR);
-      cf.space.basis(el.parameter(rule.s[q]), idx, val);
+      side_of[e]->space.basis(el.parameter(rule.s[q]), idx, val);
+      for (int& K : idx) K += side_of[e]->first_multiplier;
       double p = 0, g = 0;
       for (size_t k = 0; k < idx.size(); ++k) {
         p -= sol.lambda[idx[k]] * val[k];
@@ -334,9 +342,7 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
 vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r) {
   const ContactFace& cf = *model.contacts.front().face;
   const ContactSolution& sol = r.contact->solution;
-  const int m = cf.space.size(), sd = cf.face_patch.space_dim();
-  Eigen::MatrixXd u_face(cf.face_cps.size(), r.u.cols());
-  for (size_t i = 0; i < cf.face_cps.size(); ++i) u_face.row(i) = r.u.row(cf.face_cps[i]);
+  const int m = cf.num_multipliers(), sd = model.body.space_dim();
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
@@ -348,20 +354,25 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
   auto weight = make_array("weight", 1, m);
   auto disp = make_array("displacement", 3, m);
   grid->Allocate(m);
-  for (int K = 0; K < m; ++K) {
-    const Eigen::VectorXd xi = cf.space.anchor(K);
-    const Eigen::VectorXd X = cf.face_patch.point(xi), u = cf.face_patch.field(u_face, xi);
-    double x[3] = {0, 0, 0}, d[3] = {0, 0, 0};
-    for (int c = 0; c < sd; ++c) x[c] = X[c], d[c] = u[c];
-    pts->SetPoint(K, x);
-    disp->SetTuple(K, d);
-    lambda->SetValue(K, sol.lambda[K]);
-    pressure->SetValue(K, -sol.lambda[K]);
-    gap->SetValue(K, sol.weighted_gap[K]);
-    active->SetValue(K, sol.active[K] ? 1.0 : 0.0);
-    weight->SetValue(K, r.contact->op.weights[K]);
-    const vtkIdType id = K;
-    grid->InsertNextCell(VTK_VERTEX, 1, &id);
+  for (const ContactSide& side : cf.sides) {
+    Eigen::MatrixXd u_face(side.face_cps.size(), r.u.cols());
+    for (size_t i = 0; i < side.face_cps.size(); ++i) u_face.row(i) = r.u.row(side.face_cps[i]);
+    for (int k = 0; k < side.space.size(); ++k) {
+      const int K = side.first_multiplier + k;
+      const Eigen::VectorXd xi = side.space.anchor(k);
+      const Eigen::VectorXd X = side.face_patch.point(xi), u = side.face_patch.field(u_face, xi);
+      double x[3] = {0, 0, 0}, d[3] = {0, 0, 0};
+      for (int c = 0; c < sd; ++c) x[c] = X[c], d[c] = u[c];
+      pts->SetPoint(K, x);
+      disp->SetTuple(K, d);
+      lambda->SetValue(K, sol.lambda[K]);
+      pressure->SetValue(K, -sol.lambda[K]);
+      gap->SetValue(K, sol.weighted_gap[K]);
+      active->SetValue(K, sol.active[K] ? 1.0 : 0.0);
+      weight->SetValue(K, r.contact->op.weights[K]);
+      const vtkIdType id = K;
+      grid->InsertNextCell(VTK_VERTEX, 1, &id);
+    }
   }
   grid->SetPoints(pts);
   for (auto* a : {lambda.Get(), pressure.Get(), gap.Get(), active.Get(), weight.Get(), disp.Get()})

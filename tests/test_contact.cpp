@@ -81,9 +81,9 @@ double derivative_mismatch(const Eigen::MatrixXd& J, const NurbsPatch& patch, co
   for (int j = 0; j < n; ++j) {
     Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
     u[j] = kFdStep;
-    const Eigen::VectorXd gp = exact_weighted_gaps(patch, dofs.expand(u), cf, obstacle);
+    const Eigen::VectorXd gp = exact_weighted_gaps(dofs.expand(u), cf, obstacle);
     u[j] = -kFdStep;
-    const Eigen::VectorXd gm = exact_weighted_gaps(patch, dofs.expand(u), cf, obstacle);
+    const Eigen::VectorXd gm = exact_weighted_gaps(dofs.expand(u), cf, obstacle);
     const Eigen::VectorXd fd = (gp - gm) / (2 * kFdStep);
     worst = std::max(worst, (fd - J.col(j)).cwiseAbs().maxCoeff());
   }
@@ -98,15 +98,15 @@ TEST(ContactMultipliers, DimensionIsFaceElementsPlusPMinus2) {
     for (int n_el : {1, 5, 8}) {
       const NurbsPatch patch = quarter_disc_mesh(p, n_el, 2);
       const ContactFace cf(patch, kArc);
-      EXPECT_EQ(cf.space.degree(), p - 2) << "p = " << p;
-      EXPECT_EQ(cf.space.size(), n_el + p - 2) << "p = " << p << ", " << n_el << " face elements";
-      EXPECT_EQ(cf.face_patch.num_elements(), n_el);
+      EXPECT_EQ(cf.sides[0].space.degree(), p - 2) << "p = " << p;
+      EXPECT_EQ(cf.sides[0].space.size(), n_el + p - 2) << "p = " << p << ", " << n_el << " face elements";
+      EXPECT_EQ(cf.sides[0].face_patch.num_elements(), n_el);
     }
   }
   // Graded knots change nothing in the count.
   NurbsPatch graded = elevate_to(quarter_disc(1.0).patch, 2);
   graded = refine_to(graded, 1, KnotVector::graded(2, 12, 0.8, 0.1, true));
-  EXPECT_EQ(ContactFace(graded, Face{0, true}).space.size(), 12);
+  EXPECT_EQ(ContactFace(graded, Face{0, true}).num_multipliers(), 12);
 }
 
 TEST(ContactMultipliers, DegreeOneIsRefused) {
@@ -125,7 +125,7 @@ TEST(ContactMultipliers, InteriorMultiplicityFollowsTheDisplacement) {
   const NurbsPatch base = quarter_disc_mesh(3, 4, 1);
   const NurbsPatch doubled = insert_knots(base, 0, {0.5}).patch;
   const ContactFace cf(doubled, kArc);
-  EXPECT_EQ(cf.space.size(), 4 + 1 + 1);
+  EXPECT_EQ(cf.sides[0].space.size(), 4 + 1 + 1);
   const NurbsPatch tripled = insert_knots(doubled, 0, {0.5}).patch;
   EXPECT_THROW(ContactFace(tripled, kArc), SplineError);
 }
@@ -137,15 +137,15 @@ TEST(ContactMultipliers, PartitionOfUnity) {
     NurbsPatch patch = elevate_to(quarter_disc(1.0).patch, p);
     patch = refine_to(patch, 0, KnotVector::graded(p, 10, 0.8, 0.1, true));
     const ContactFace cf(patch, kArc);
-    const auto breaks = cf.face_patch.knots(0).breakpoints();
+    const auto breaks = cf.sides[0].face_patch.knots(0).breakpoints();
     std::vector<double> xs(breaks.begin(), breaks.end());
     for (int i = 0; i <= 200; ++i) xs.push_back(i / 200.0);
     for (double x : xs) {
-      cf.space.basis(Eigen::VectorXd::Constant(1, x), idx, val);
+      cf.sides[0].space.basis(Eigen::VectorXd::Constant(1, x), idx, val);
       double sum = 0;
       for (size_t k = 0; k < idx.size(); ++k) {
         EXPECT_GE(idx[k], 0);
-        EXPECT_LT(idx[k], cf.space.size());
+        EXPECT_LT(idx[k], cf.sides[0].space.size());
         EXPECT_GE(val[k], -kRoundOff) << "B-splines are non-negative";
         sum += val[k];
       }
@@ -157,16 +157,16 @@ TEST(ContactMultipliers, PartitionOfUnity) {
   b = refine_to(b, 0, KnotVector::uniform(3, 3));
   b = refine_to(b, 1, KnotVector::uniform(3, 2));
   const ContactFace cf3(b, Face{2, false});
-  EXPECT_EQ(cf3.space.size(), (3 + 1) * (2 + 1));
+  EXPECT_EQ(cf3.sides[0].space.size(), (3 + 1) * (2 + 1));
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   for (int i = 0; i < 100; ++i) {
     Eigen::VectorXd xi(2);
     xi << U(rng), U(rng);
-    cf3.space.basis(xi, idx, val);
+    cf3.sides[0].space.basis(xi, idx, val);
     double sum = 0;
     for (size_t k = 0; k < idx.size(); ++k) {
-      EXPECT_LT(idx[k], cf3.space.size());
+      EXPECT_LT(idx[k], cf3.sides[0].space.size());
       sum += val[k];
     }
     EXPECT_NEAR(sum, 1.0, kRoundOff);
@@ -187,15 +187,15 @@ TEST(ContactWeights, SumToTheLengthOfTheFace) {
     patch = refine_to(patch, 1, KnotVector::uniform(p, 2));
     const DofMap dofs(patch, disc_symmetry());
     const ContactFace cf(patch, kArc);
-    const WeightedGapOperator op = assemble_weighted_gaps(patch, dofs, cf, plane);
+    const WeightedGapOperator op = assemble_weighted_gaps(dofs, cf, plane);
     EXPECT_NEAR(op.weights.sum(), std::numbers::pi / 2, kRoundOff) << "p = " << p;
     EXPECT_GT(op.weights.minCoeff(), 0.0);
     if (p == 2) {
       // N2/S0: K_K is the arc length of face element K, R times its angle.
-      const auto b = cf.face_patch.knots(0).breakpoints();
-      for (int K = 0; K < cf.space.size(); ++K) {
-        const Eigen::VectorXd x0 = cf.face_patch.point(Eigen::VectorXd::Constant(1, b[K]));
-        const Eigen::VectorXd x1 = cf.face_patch.point(Eigen::VectorXd::Constant(1, b[K + 1]));
+      const auto b = cf.sides[0].face_patch.knots(0).breakpoints();
+      for (int K = 0; K < cf.sides[0].space.size(); ++K) {
+        const Eigen::VectorXd x0 = cf.sides[0].face_patch.point(Eigen::VectorXd::Constant(1, b[K]));
+        const Eigen::VectorXd x1 = cf.sides[0].face_patch.point(Eigen::VectorXd::Constant(1, b[K + 1]));
         const double angle = std::acos(std::clamp(x0.dot(x1), -1.0, 1.0));
         EXPECT_NEAR(op.weights[K], angle, 1e-12) << "element " << K;
       }
@@ -206,7 +206,7 @@ TEST(ContactWeights, SumToTheLengthOfTheFace) {
   block = refine_to(block, 0, KnotVector::uniform(3, 5));
   const DofMap dofs(block, {});
   const ContactFace cf(block, Face{1, false});
-  const WeightedGapOperator op = assemble_weighted_gaps(block, dofs, cf, RigidPlane(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 1)));
+  const WeightedGapOperator op = assemble_weighted_gaps(dofs, cf, RigidPlane(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 1)));
   EXPECT_NEAR(op.weights.sum(), 1.5, kRoundOff);
 }
 
@@ -223,14 +223,14 @@ TEST(ContactWeightedGap, PlaneOperatorIsExact) {
     const DofMap dofs(patch, disc_symmetry());
     const ContactFace cf(patch, kArc);
     const RigidPlane plane(Eigen::Vector2d(0.3, -1.0), Eigen::Vector2d(0.2, 1.0));  // tilted
-    const WeightedGapOperator op = assemble_weighted_gaps(patch, dofs, cf, plane);
+    const WeightedGapOperator op = assemble_weighted_gaps(dofs, cf, plane);
     for (int trial = 0; trial < 3; ++trial) {
       Eigen::VectorXd u(dofs.num_free());
       for (int i = 0; i < u.size(); ++i) u[i] = U(rng);
-      const Eigen::VectorXd exact = exact_weighted_gaps(patch, dofs.expand(u), cf, plane);
+      const Eigen::VectorXd exact = exact_weighted_gaps(dofs.expand(u), cf, plane);
       EXPECT_LT((exact - op.weighted_gaps(u)).cwiseAbs().maxCoeff(), kRoundOff);
     }
-    EXPECT_LT((exact_weighted_gaps(patch, dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), cf, plane) -
+    EXPECT_LT((exact_weighted_gaps(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), cf, plane) -
                op.g0.cwiseQuotient(op.weights))
                   .cwiseAbs()
                   .maxCoeff(),
@@ -244,11 +244,11 @@ TEST(ContactWeightedGap, PlaneOperatorIsExact) {
     const DofMap dofs(block, {{{Face{0, false}}, 1, 0.02}});
     const ContactFace cf(block, Face{1, false});
     const RigidPlane plane(Eigen::Vector2d(0, -0.01), Eigen::Vector2d(0, 1));
-    const WeightedGapOperator op = assemble_weighted_gaps(block, dofs, cf, plane);
+    const WeightedGapOperator op = assemble_weighted_gaps(dofs, cf, plane);
     for (int trial = 0; trial < 3; ++trial) {
       Eigen::VectorXd u(dofs.num_free());
       for (int i = 0; i < u.size(); ++i) u[i] = U(rng);
-      const Eigen::VectorXd exact = exact_weighted_gaps(block, dofs.expand(u), cf, plane);
+      const Eigen::VectorXd exact = exact_weighted_gaps(dofs.expand(u), cf, plane);
       EXPECT_LT((exact - op.weighted_gaps(u)).cwiseAbs().maxCoeff(), kRoundOff);
     }
   }
@@ -261,10 +261,10 @@ TEST(ContactWeightedGap, CircleObstacleDerivativeMatchesFiniteDifferences) {
   const DofMap dofs(patch, disc_symmetry());
   const ContactFace cf(patch, kArc);
   const RigidSphere circle(Eigen::Vector2d(0.0, -3.0), 2.0);
-  const WeightedGapOperator op = assemble_weighted_gaps(patch, dofs, cf, circle);
+  const WeightedGapOperator op = assemble_weighted_gaps(dofs, cf, circle);
   const Eigen::MatrixXd J = weighted_gap_jacobian(op);
   // The constant part is the exact weighted gap at u = 0.
-  const Eigen::VectorXd g_exact = exact_weighted_gaps(patch, dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), cf, circle);
+  const Eigen::VectorXd g_exact = exact_weighted_gaps(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), cf, circle);
   EXPECT_LT((g_exact - op.g0.cwiseQuotient(op.weights)).cwiseAbs().maxCoeff(), kRoundOff);
   const double mismatch = derivative_mismatch(J, patch, dofs, cf, circle);
   EXPECT_LT(mismatch, kFdTolerance);
@@ -278,7 +278,7 @@ TEST(ContactWeightedGap, CircleObstacleDerivativeMatchesFiniteDifferences) {
   EXPECT_GT(derivative_mismatch(J_bad, patch, dofs, cf, circle), 100 * kFdTolerance);
   // ... and the plane's constant normal used for the circle.
   const RigidPlane tangent_plane(Eigen::Vector2d(0, -1), Eigen::Vector2d(0, 1));
-  const Eigen::MatrixXd J_plane = weighted_gap_jacobian(assemble_weighted_gaps(patch, dofs, cf, tangent_plane));
+  const Eigen::MatrixXd J_plane = weighted_gap_jacobian(assemble_weighted_gaps(dofs, cf, tangent_plane));
   EXPECT_GT(derivative_mismatch(J_plane, patch, dofs, cf, circle), 100 * kFdTolerance);
 }
 
@@ -291,7 +291,7 @@ TEST(ContactWeightedGap, SphereObstacleDerivativeMatchesFiniteDifferences3D) {
   const DofMap dofs(b, {});
   const ContactFace cf(b, Face{2, false});
   const RigidSphere ball(Eigen::Vector3d(0.4, 0.5, -2.0), 2.0);
-  const WeightedGapOperator op = assemble_weighted_gaps(b, dofs, cf, ball);
+  const WeightedGapOperator op = assemble_weighted_gaps(dofs, cf, ball);
   EXPECT_NEAR(op.weights.sum(), 1.0, kRoundOff);
   const Eigen::MatrixXd J = weighted_gap_jacobian(op);
   const double mismatch = derivative_mismatch(J, b, dofs, cf, ball);
@@ -343,7 +343,7 @@ void expect_uniform_block_solution(const FlatBlockRun& run, double plane_y, doub
   // eps_yy = -(1 - nu^2) P / E; the bottom sits on the plane.  The control
   // points of a linear field are the field at the control points.
   const double exx = s.nu * (1 + s.nu) * P / s.E, eyy = -(1 - s.nu * s.nu) * P / s.E;
-  const Eigen::MatrixXd& X = run.model.geometry.patch.points();
+  const Eigen::MatrixXd& X = run.model.body.patch(0).points();
   ASSERT_EQ(r.u.rows(), X.rows());
   const double u_scale = P / s.E * std::max(s.size[0], s.size[1]);
   for (int a = 0; a < X.rows(); ++a) {
@@ -387,11 +387,11 @@ struct BlockSystem {
 BlockSystem assemble_flat_block(double pressure) {
   CaseSpec spec = read_case(case_path("tests/data/contact_flat_block.toml"));
   BlockSystem b{build_model(spec), {}, {}, {}};
-  const NurbsPatch& patch = b.model.geometry.patch;
+  const NurbsPatch& patch = b.model.body.patch(0);
   b.sys = assemble_linear_elasticity(patch, *b.model.dofs, b.model.material, Eigen::VectorXd::Zero(2));
-  add_pressure_load(patch, *b.model.dofs, *find_faces(b.model.geometry, "top"), pressure, b.sys.f);
+  add_pressure_load(patch, *b.model.dofs, *find_faces(b.model, "top"), pressure, b.sys.f);
   b.modes = free_rigid_modes(patch, *b.model.dofs);
-  b.op = assemble_weighted_gaps(patch, *b.model.dofs, *b.model.contacts.front().face, *b.model.contacts.front().obstacle);
+  b.op = assemble_weighted_gaps(*b.model.dofs, *b.model.contacts.front().face, *b.model.contacts.front().obstacle);
   return b;
 }
 
@@ -495,9 +495,9 @@ TEST(ContactHertzEquilibrium, ForceBalanceAndComplementarity) {
   EXPECT_LT((r.contact->op.weighted_gaps(sol.u) - gap).cwiseAbs().maxCoeff(), kGapTolerance);
   // Saddle-point equilibrium K u + G^T lambda = f (the stiffness assembled
   // here, independently of the solver).
-  const NurbsPatch& patch = run.model.geometry.patch;
+  const NurbsPatch& patch = run.model.body.patch(0);
   LinearSystem sys = assemble_linear_elasticity(patch, *run.model.dofs, run.model.material, Eigen::VectorXd::Zero(2));
-  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model.geometry, "top"), P, sys.f);
+  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model, "top"), P, sys.f);
   const Eigen::VectorXd res = sys.K * sol.u + r.contact->op.G.transpose() * lam - sys.f;
   EXPECT_LT(res.norm(), kResidualTolerance * sys.f.norm());
   // sum_K lambda_K K_K is the resultant of the contact stress: G^T lambda
@@ -512,13 +512,13 @@ TEST(ContactHertzEquilibrium, SolutionDoesNotDependOnTheComplementarityConstant)
   // c_n only steers the active-set iteration; the converged (lambda, u) is
   // the unique solution of the discrete problem.
   const HertzRun run = run_hertz2d();
-  const NurbsPatch& patch = run.model.geometry.patch;
+  const NurbsPatch& patch = run.model.body.patch(0);
   const double P = 0.003;
   LinearSystem sys = assemble_linear_elasticity(patch, *run.model.dofs, run.model.material, Eigen::VectorXd::Zero(2));
-  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model.geometry, "top"), P, sys.f);
+  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model, "top"), P, sys.f);
   const RigidModes modes = free_rigid_modes(patch, *run.model.dofs);
   ASSERT_EQ(modes.modes.cols(), 1) << "the vertical translation is held by contact alone";
-  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contacts.front().face, *run.model.contacts.front().obstacle);
+  const WeightedGapOperator op = assemble_weighted_gaps(*run.model.dofs, *run.model.contacts.front().face, *run.model.contacts.front().obstacle);
   const Eigen::VectorXd& lam_ref = run.result.contact->solution.lambda;
   const double p0 = hertz_cylinder(1.0, P, 1.0, 0.3).p0;
   for (double scale : {0.01, 1.0, 100.0}) {
@@ -564,12 +564,12 @@ TEST(ContactHertzEquilibrium, SchurFromTheFactorEqualsColumnBySolves) {
   // problem: same active set, multipliers equal to round-off.
   constexpr double kRoundOff = 1e-10;  // relative to p0; both paths are direct
   const HertzRun run = run_hertz2d();
-  const NurbsPatch& patch = run.model.geometry.patch;
+  const NurbsPatch& patch = run.model.body.patch(0);
   const double P = 0.003;
   LinearSystem sys = assemble_linear_elasticity(patch, *run.model.dofs, run.model.material, Eigen::VectorXd::Zero(2));
-  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model.geometry, "top"), P, sys.f);
+  add_pressure_load(patch, *run.model.dofs, *find_faces(run.model, "top"), P, sys.f);
   const RigidModes modes = free_rigid_modes(patch, *run.model.dofs);
-  const WeightedGapOperator op = assemble_weighted_gaps(patch, *run.model.dofs, *run.model.contacts.front().face, *run.model.contacts.front().obstacle);
+  const WeightedGapOperator op = assemble_weighted_gaps(*run.model.dofs, *run.model.contacts.front().face, *run.model.contacts.front().obstacle);
   ContactSolverOptions opt;
   opt.complementarity_scale = 1.0 / run.model.mesh_size;
   SparseCholesky c1, c2;

@@ -171,10 +171,10 @@ TEST(ElasticPatchTest, UniformTractionGivesUniformStress) {
       igac::Model m = igac::build_model(traction_case(dim, p, E, nu, t));
       // Curve the elements (faces keep their control points, hence stay
       // flat) where the quadrature stays exact: 2D any p, 3D p = 2.
-      if (dim == 2 || p == 2) m.geometry.patch = distort_interior(m.geometry.patch, 0.03, 11 * p + dim);
+      if (dim == 2 || p == 2) m.body = igac::Body(distort_interior(m.body.patch(0), 0.03, 11 * p + dim));
       const igac::RunResult r = igac::solve_model(m);
       ASSERT_EQ(r.status, "converged");
-      const NurbsPatch& patch = m.geometry.patch;
+      const NurbsPatch& patch = m.body.patch(0);
       // sigma = t e_x e_x: plane strain (eps_zz = 0) in 2D, sigma_zz = 0 in 3D.
       Eigen::VectorXd strain(dim);  // principal strains along x, y, z
       if (dim == 2) {

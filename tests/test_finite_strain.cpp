@@ -29,13 +29,13 @@ Model model_of(const std::string& path, int refine = 0) {
 
 FiniteStrainSetup setup_of(const Model& m) {
   FiniteStrainSetup s;
-  s.patch = &m.geometry.patch;
+  s.body = &m.body;
   s.dofs = m.dofs.get();
   s.law = m.law.get();
   for (const auto& p : m.spec.pressure) {
     PressureLoad pl;
     for (const auto& n : p.faces) {
-      const auto f = *find_faces(m.geometry, n);
+      const auto f = *find_faces(m, n);
       pl.faces.insert(pl.faces.end(), f.begin(), f.end());
     }
     pl.value = p.value;

@@ -89,7 +89,7 @@ TEST(Geometry, QuarterDiscArcIsACircleBeforeAndAfterRefinement) {
     const Geometry g = igac::quarter_disc(R);
     const auto curved = igac::find_faces(g, "curved");
     ASSERT_TRUE(curved && curved->size() == 1);
-    const Face arc = curved->front();
+    const Face arc = curved->front().face;
     EXPECT_EQ(arc, (Face{1, false}));
     // Ends of the arc: A = (0, -R) at u = 0, B = (R, 0) at u = 1.
     EXPECT_LE((g.patch.point(Eigen::Vector2d(0, 0)) - Eigen::Vector2d(0, -R)).norm(), kOnCircle * R);
@@ -104,7 +104,7 @@ TEST(Geometry, QuarterDiscArcIsACircleBeforeAndAfterRefinement) {
 TEST(Geometry, QuarterAnnulusCirclesBeforeAndAfterRefinement) {
   const double a = 1.0, b = 2.0;
   const Geometry g = igac::quarter_annulus(a, b);
-  const Face inner = igac::find_faces(g, "inner")->front(), outer = igac::find_faces(g, "outer")->front();
+  const Face inner = igac::find_faces(g, "inner")->front().face, outer = igac::find_faces(g, "outer")->front().face;
   for (const auto& [what, patch] : refinements(g.patch)) {
     SCOPED_TRACE(what);
     EXPECT_LE(circle_error(patch, inner, a), kOnCircle * b);
@@ -121,7 +121,7 @@ TEST(Geometry, RefinedQuarterDiscHasPositiveJacobianAtEveryGaussPoint) {
       igac::CaseSpec spec = igac::read_case(IGAC_SOURCE_DIR "/cases/hertz2d.toml");
       igac::apply_overrides(spec, p, refine);
       const igac::Model m = igac::build_model(spec);
-      const NurbsPatch& patch = m.geometry.patch;
+      const NurbsPatch& patch = m.body.patch(0);
       EXPECT_EQ(patch.degree(0), p);
       EXPECT_EQ(patch.num_elements(), 64 * 16 << (2 * refine));
       const igac::PatchQuadrature quad(patch, igac::gauss_points_for(p));
@@ -235,8 +235,8 @@ TEST(Geometry, QuarterDiscArcLengthAndNormal) {
 TEST(Geometry, QuarterDiscArcLengthWithAssemblyQuadrature) {
   igac::CaseSpec spec = igac::read_case(IGAC_SOURCE_DIR "/cases/hertz2d.toml");
   const igac::Model m = igac::build_model(spec);
-  const NurbsPatch& patch = m.geometry.patch;
-  const auto arc = igac::find_faces(m.geometry, "curved")->front();
+  const NurbsPatch& patch = m.body.patch(0);
+  const auto arc = igac::find_faces(m, "curved")->front();
   const igac::PatchQuadrature q = igac::face_quadrature(patch, arc, igac::gauss_points_for(patch.degree(0)));
   igac::ElementData ed;
   double length = 0;

@@ -167,7 +167,7 @@ std::vector<StudyLevel> hertz_study(CaseSpec spec, int levels) {
     runs.push_back(std::move(run));
   }
   const CaseRun& ref = runs.back();
-  const NurbsPatch& ref_patch = ref.model.geometry.patch;
+  const NurbsPatch& ref_patch = ref.model.body.patch(0);
   const ContactPressure& p_ref = *ref.result.contact->pressure;
   std::vector<StudyLevel> out;
   for (int l = 0; l + 1 < levels; ++l) {
@@ -176,12 +176,12 @@ std::vector<StudyLevel> hertz_study(CaseSpec spec, int levels) {
     s.h = r.model.mesh_size;
     s.dofs = r.model.dofs->num_free();
     s.seconds = r.result.timing.total;
-    s.displacement = errors_against_reference(r.model.geometry.patch, r.result.u, ref_patch, ref.result.u,
+    s.displacement = errors_against_reference(r.model.body.patch(0), r.result.u, ref_patch, ref.result.u,
                                               ref_patch.degree(0) + 1);
     s.pressure_vs_reference =
         r.result.contact->pressure
             ->l2_error(*ref.model.contacts.front().face,
-                       [&](const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return p_ref.pressure_at(xi); },
+                       [&](int side, const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return p_ref.pressure_at(side, xi); },
                        ref_patch.degree(0) + 2)
             .first;
     s.pressure_vs_hertz = r.result.pressure_error->first;

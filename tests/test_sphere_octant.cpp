@@ -50,7 +50,7 @@ TEST(SphereOctant, ContactPointIsARegularCornerOfTheContactFace) {
 
 TEST(SphereOctant, JacobianIsPositiveAtEveryGaussPointOfTheShippedMesh) {
   const Model m = build_model(read_case(std::string(IGAC_SOURCE_DIR) + "/cases/hertz3d.toml"));
-  const PatchQuadrature q(m.geometry.patch, 3);
+  const PatchQuadrature q(m.body.patch(0), 3);
   ElementData ed;
   double min_det = 1e300;
   for (int e = 0; e < q.num_elements(); ++e) {

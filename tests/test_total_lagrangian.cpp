@@ -272,7 +272,7 @@ TEST(TotalLagrangian, WrongShapeThrows) {
 
 // ----- pressure loads -----
 
-double follower_fd_error(const NurbsPatch& patch, const DofMap& dofs, const std::vector<Face>& faces,
+double follower_fd_error(const NurbsPatch& patch, const DofMap& dofs, const std::vector<PatchSide>& faces,
                          const Eigen::VectorXd& free) {
   const double P = 0.3;
   const auto law = make_law("neo_hookean", kMaterial);
@@ -310,7 +310,7 @@ TEST(FollowerPressure, LoadStiffnessMatchesFiniteDifferences) {
     EXPECT_LE(follower_fd_error(patch, dofs, g.faces.at("top"), random_state(patch, dofs, 0.05, 23)),
               kFiniteDifference);
     // every orientation (s and face direction) at once
-    std::vector<Face> all;
+    std::vector<PatchSide> all;
     for (int d = 0; d < 3; ++d)
       for (bool e : {false, true}) all.push_back(Face{d, e});
     const DofMap none(patch, {});
@@ -356,7 +356,7 @@ TEST(FollowerPressure, DeadLoadIsTheReferenceLoad) {
     const DofMap dofs(patch, {{{Face{0, false}}, 0, 0.0}});
     for (int d = 0; d < dim; ++d)
       for (bool e : {false, true}) {
-        const std::vector<Face> faces{Face{d, e}};
+        const std::vector<PatchSide> faces{Face{d, e}};
         Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(dofs.num_free()), f_dead = f_ref, f_fol = f_ref;
         add_pressure_load(patch, dofs, faces, 0.7, f_ref);
         add_dead_pressure(patch, dofs, faces, 0.7, f_dead);
@@ -372,7 +372,7 @@ TEST(FollowerPressure, DeadLoadIsTheReferenceLoad) {
 // Resultant sum_A f_A = -P int n da: on a rigidly rotated (and translated)
 // body it is Q times the reference resultant; the dead load does not turn.
 template <int dim>
-void expect_resultant_rotates(const Geometry& g, const std::vector<Face>& faces,
+void expect_resultant_rotates(const Geometry& g, const std::vector<PatchSide>& faces,
                               const Eigen::Matrix<double, dim, dim>& Q) {
   const NurbsPatch patch = refined(g.patch, 2, 3);
   const DofMap dofs(patch, {});  // all free: f_ext's rows are the control points' forces

@@ -297,7 +297,7 @@ TEST(VtkOutput, HertzFilesReadBackExactly) {
   series.write_step(model, r, 1.0);
   expect_files_sound(dir, 2);
 
-  const NurbsPatch& patch = model.geometry.patch;
+  const NurbsPatch& patch = model.body.patch(0);
   const BezierMesh body(patch);
   auto g = read_vtu(dir + "/solution_0001.vtu");
   ASSERT_EQ(g->GetNumberOfPoints(), body.num_points());
@@ -335,7 +335,7 @@ TEST(VtkOutput, HertzFilesReadBackExactly) {
   // The contact face: Bezier curves on the same circle, one per face element;
   // pressure cell data = -lambda_K for S0 (p = 2), active flags as solved.
   const ContactFace& cf = *model.contacts.front().face;
-  const BezierMesh face(cf.face_patch);
+  const BezierMesh face(cf.sides[0].face_patch);
   auto c = read_vtu(dir + "/contact_0001.vtu");
   ASSERT_EQ(c->GetNumberOfPoints(), face.num_points());
   ASSERT_EQ(c->GetNumberOfCells(), face.num_elements());
@@ -346,20 +346,20 @@ TEST(VtkOutput, HertzFilesReadBackExactly) {
       worst_circle = std::max(worst_circle, std::abs(vtk_evaluate(c, cell, e, {s, 0, 0}, w).head<2>().norm() - R));
   }
   EXPECT_LT(worst_circle, kOnCircle);
-  ASSERT_EQ(cf.space.size(), face.num_elements());  // S0: one multiplier per face element
+  ASSERT_EQ(cf.sides[0].space.size(), face.num_elements());  // S0: one multiplier per face element
   const auto& sol = r.contact->solution;
   vtkDataArray* p = c->GetCellData()->GetArray("pressure");
   vtkDataArray* a = c->GetCellData()->GetArray("active");
   vtkDataArray* gap = c->GetCellData()->GetArray("weighted_gap");
   ASSERT_TRUE(p && a && gap);
   const double pscale = std::max(1e-300, r.contact->report.max_pressure);
-  for (int K = 0; K < cf.space.size(); ++K) {
+  for (int K = 0; K < cf.sides[0].space.size(); ++K) {
     EXPECT_NEAR(p->GetComponent(K, 0), -sol.lambda[K], 1e-12 * pscale) << K;
     EXPECT_EQ(a->GetComponent(K, 0), sol.active[K] ? 1.0 : 0.0) << K;
     EXPECT_NEAR(gap->GetComponent(K, 0), sol.weighted_gap[K], 1e-12 + 1e-10 * std::abs(sol.weighted_gap[K])) << K;
   }
   auto m = read_vtu(dir + "/multipliers_0001.vtu");
-  EXPECT_EQ(m->GetNumberOfPoints(), cf.space.size());
+  EXPECT_EQ(m->GetNumberOfPoints(), cf.sides[0].space.size());
   fs::remove_all(dir);
 }
 
@@ -369,9 +369,9 @@ TEST(VtkOutput, HertzFilesReadBackExactly) {
 TEST(VtkOutput, CurvedHexahedraReadBackExactly) {
   std::mt19937 rng(13);
   Model model;
-  model.geometry.patch = random_patch(rng, {3, 3, 3});
+  model.body = Body(random_patch(rng, {3, 3, 3}));
   model.material = LinearElastic(1.0, 0.3);
-  const NurbsPatch& patch = model.geometry.patch;
+  const NurbsPatch& patch = model.body.patch(0);
   Eigen::Matrix3d A;
   A << 0.01, -0.02, 0.005, 0.03, -0.015, 0.002, -0.004, 0.006, 0.02;
   RunResult r;
@@ -409,10 +409,10 @@ TEST(VtkOutput, CurvedHexahedraReadBackExactly) {
 
 TEST(VtkOutput, NaNIsNeverWritten) {
   Model model;
-  model.geometry.patch = subdivide(elevate_to(quarter_disc(1.0).patch, 2), 2);
+  model.body = Body(subdivide(elevate_to(quarter_disc(1.0).patch, 2), 2));
   model.material = LinearElastic(1.0, 0.3);
   RunResult r;
-  r.u = Eigen::MatrixXd::Zero(model.geometry.patch.num_control_points(), 2);
+  r.u = Eigen::MatrixXd::Zero(model.body.patch(0).num_control_points(), 2);
   r.u(3, 1) = std::nan("");
   const std::string dir = fresh_dir("nan");
   EXPECT_THROW(write_vtk(dir, model, r, 0, 1.0), std::runtime_error);

@@ -19,6 +19,10 @@ namespace igac {
 struct PatchSide {
   int patch = 0;
   Face face;
+  PatchSide() = default;
+  PatchSide(int patch_index, Face f) : patch(patch_index), face(f) {}
+  // A face of a one-patch body (patch 0).
+  PatchSide(Face f) : face(f) {}  // NOLINT: implicit on purpose
   bool operator==(const PatchSide& o) const { return patch == o.patch && face == o.face; }
 };
 

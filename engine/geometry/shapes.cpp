@@ -24,7 +24,7 @@ const ShapeType* find_shape_type(std::string_view name) {
   return nullptr;
 }
 
-std::optional<std::vector<Face>> find_faces(const Geometry& g, const std::string& name) {
+std::optional<std::vector<PatchSide>> find_faces(const Geometry& g, const std::string& name) {
   if (auto it = g.faces.find(name); it != g.faces.end()) return it->second;
   static const char* dirs = "uvw";
   static const char* sides[] = {"west", "east", "south", "north", "front", "back"};  // G+Smo's sides 1..6
@@ -33,7 +33,7 @@ std::optional<std::vector<Face>> find_faces(const Geometry& g, const std::string
       const std::string parametric = fmt::format("{}{}", dirs[d], e);
       // u0 ... w1, and PATCH:SIDE as in geometry files (the body is patch 0)
       if (name == parametric || name == "0:" + parametric || name == std::string("0:") + sides[2 * d + e])
-        return std::vector<Face>{Face{d, e == 1}};
+        return std::vector<PatchSide>{PatchSide{0, Face{d, e == 1}}};
     }
   return std::nullopt;
 }

@@ -31,13 +31,14 @@
 #include <string>
 #include <vector>
 
+#include "engine/geometry/multipatch.hpp"
 #include "engine/spline/nurbs_patch.hpp"
 
 namespace igac {
 
 struct Geometry {
   NurbsPatch patch;
-  std::map<std::string, std::vector<Face>> faces;  // named boundary parts
+  std::map<std::string, std::vector<PatchSide>> faces;  // named boundary parts (sides of patch 0)
 };
 
 Geometry quarter_disc(double radius);
@@ -72,7 +73,7 @@ const ShapeType& box_shape();
 
 // The faces a name stands for on this geometry (named or parametric), or
 // nothing when the name is unknown.
-std::optional<std::vector<Face>> find_faces(const Geometry& g, const std::string& name);
+std::optional<std::vector<PatchSide>> find_faces(const Geometry& g, const std::string& name);
 // All accepted face names, for error messages.
 std::vector<std::string> face_names(const Geometry& g);
 

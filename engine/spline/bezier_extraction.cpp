@@ -138,4 +138,14 @@ Eigen::VectorXd BezierMesh::field(int e, int f, const Eigen::VectorXd& s) const 
   return elements_[e].fields[f].transpose() * R;
 }
 
+void BezierMesh::append(const BezierMesh& other) {
+  if (elements_.empty()) {
+    *this = other;
+    return;
+  }
+  if (other.param_dim_ != param_dim_ || other.space_dim_ != space_dim_ || other.degree_ != degree_)
+    throw SplineError("Bezier meshes of different dimensions or degrees cannot be joined");
+  elements_.insert(elements_.end(), other.elements_.begin(), other.elements_.end());
+}
+
 }  // namespace igac

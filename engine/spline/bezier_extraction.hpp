@@ -50,6 +50,11 @@ class BezierMesh {
   // are carried along.  Throws SplineError when a field has the wrong size.
   explicit BezierMesh(const NurbsPatch& patch, const std::vector<Eigen::MatrixXd>& fields = {});
 
+  // Adds the elements of `other` after this mesh's (the patches of a
+  // multi-patch body as one mesh).  Throws SplineError unless both have the
+  // same dimensions and degrees.
+  void append(const BezierMesh& other);
+
   int param_dim() const { return param_dim_; }
   int space_dim() const { return space_dim_; }
   // Degree of direction d (0 for d >= param_dim).
