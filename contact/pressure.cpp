@@ -63,8 +63,8 @@ PressureReport ContactPressure::report() const {
   // breakpoints, and the P1 re-interpolation.
   int side = 0;
   std::array<bool, 2> at_end{false, false};  // which corner of the side holds X0
+  double best = std::numeric_limits<double>::infinity();
   {
-    double best = std::numeric_limits<double>::infinity();
     for (int si = 0; si < int(cf_.sides.size()); ++si) {
       const NurbsPatch& fp = cf_.sides[si].face_patch;
       const int fd = fp.param_dim();
@@ -79,6 +79,19 @@ PressureReport ContactPressure::report() const {
         }
       }
     }
+  }
+  // X0 inside a side (not at a corner: no symmetry plane through it): no
+  // profile; the half width is the largest r of a pressed multiplier.
+  double extent = 0, size = 0;
+  for (const ContactSide& s : cf_.sides) {
+    size = std::max(size, (s.face_patch.points().colwise().maxCoeff() - s.face_patch.points().colwise().minCoeff()).norm());
+    for (int k = 0; k < s.space.size(); ++k)
+      if (-lambda_[s.first_multiplier + k] > 1e-6 * rep.max_pressure && rep.max_pressure > 0)
+        extent = std::max(extent, r_of(s.face_patch.point(s.space.anchor(k))));
+  }
+  if (best > 1e-8 * size) {
+    rep.half_width = extent;
+    return rep;
   }
   const ContactSide& cs = cf_.sides[side];
   const NurbsPatch& fp = cs.face_patch;

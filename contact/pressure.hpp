@@ -35,7 +35,9 @@ struct PressureReport {
   double total_force = 0;                    // sum_K -lambda_K K_K
   double half_width = 0;                     // extent of the contact zone in r (along the
                                              // face edge through X0 in 3D: a symmetry plane),
-                                             // on the side that holds X0
+                                             // on the side that holds X0 at a corner; where
+                                             // X0 lies inside a side, the largest r of a
+                                             // pressed multiplier's anchor
   int active = 0;
 };
 
