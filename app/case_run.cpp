@@ -23,6 +23,13 @@ std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::stri
     if (!f)
       throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})", m.spec.path, section, n,
                                    m.spec.shape, fmt::join(face_names(m), ", ")));
+    for (const PatchSide& side : *f)
+      for (const PatchInterface& itf : m.body.interfaces())
+        if (side == itf.first || side == itf.second)
+          throw InputError(fmt::format("{}: [{}] faces: '{}' is the interface {} - {} inside the body, not a face on "
+                                       "its boundary",
+                                       m.spec.path, section, n, m.body.describe(itf.first),
+                                       m.body.describe(itf.second)));
     out.insert(out.end(), f->begin(), f->end());
   }
   return out;

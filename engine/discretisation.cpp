@@ -1,5 +1,7 @@
 #include "engine/discretisation.hpp"
 
+#include "engine/spline/rational_basis.hpp"
+
 #include <Eigen/LU>
 #include <fmt/format.h>
 
@@ -102,39 +104,23 @@ void PatchQuadrature::evaluate(int e, ElementData& out, bool gradients) const {
     P.row(a) = patch_.points().row(own);
   }
 
-  Eigen::VectorXd B(n_loc);
-  Eigen::MatrixXd dB(n_loc, pd), dR(n_loc, pd);
+  std::vector<double> R(n_loc), dRv(size_t(n_loc) * pd);
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const Eigen::Map<const RowMajor> dR(dRv.data(), n_loc, pd);  // dR_a / dxi_d
   Eigen::MatrixXd J(sd, pd);
   for (int q = 0; q < n_q; ++q) {
     const std::array<int, 3> qi{q % nq[0], (q / nq[0]) % nq[1], q / (nq[0] * nq[1])};
     double wq = 1;
-    std::array<int, 3> row{0, 0, 0};
+    std::array<const double*, 3> Nd{}, dNd{};
     for (int d = 0; d < pd; ++d) {
-      row[d] = ei[d] * nq[d] + qi[d];
-      wq *= tables_[d].weight[row[d]];
-      out.xi(q, d) = tables_[d].xi[row[d]];
+      const int row = ei[d] * nq[d] + qi[d];
+      wq *= tables_[d].weight[row];
+      out.xi(q, d) = tables_[d].xi[row];
+      Nd[d] = tables_[d].value.data() + size_t(row) * np[d];
+      dNd[d] = tables_[d].deriv.data() + size_t(row) * np[d];
     }
-    double W = 0;
-    Eigen::Vector3d dW = Eigen::Vector3d::Zero();
-    for (int a = 0; a < n_loc; ++a) {
-      const std::array<int, 3> loc{a % np[0], (a / np[0]) % np[1], a / (np[0] * np[1])};
-      double v = w[a];
-      for (int d = 0; d < pd; ++d) v *= tables_[d].value[row[d] * np[d] + loc[d]];
-      B[a] = v;
-      W += v;
-      for (int d = 0; d < pd; ++d) {
-        double g = w[a];
-        for (int c = 0; c < pd; ++c)
-          g *= c == d ? tables_[c].deriv[row[c] * np[c] + loc[c]] : tables_[c].value[row[c] * np[c] + loc[c]];
-        dB(a, d) = g;
-        dW[d] += g;
-      }
-    }
-    const double iW = 1.0 / W;
-    for (int a = 0; a < n_loc; ++a) {
-      out.N(q, a) = B[a] * iW;
-      for (int d = 0; d < pd; ++d) dR(a, d) = (dB(a, d) - out.N(q, a) * dW[d]) * iW;
-    }
+    rational_basis_values(pd, np.data(), Nd.data(), dNd.data(), w.data(), R.data(), dRv.data());
+    for (int a = 0; a < n_loc; ++a) out.N(q, a) = R[a];
     out.X.row(q) = out.N.row(q) * P;
     J.noalias() = P.transpose() * dR;  // sd x pd
     if (face_) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "engine/quadrature.hpp"
+#include "engine/spline/rational_basis.hpp"
 
 namespace igac {
 
@@ -64,8 +65,8 @@ void face_pressure(const Body& body, const DofMap& dofs, const PatchSide& side, 
   const int nl = np[0] * np[1], n_pts = nq[0] * nq[1];
 
   std::vector<int> eq(nl * dim);
-  Eigen::VectorXd wt(nl), B(nl), R(nl);
-  Eigen::Matrix<double, Eigen::Dynamic, pd> dB(nl, pd), dR(nl, pd);
+  Eigen::VectorXd wt(nl), R(nl), dRv(nl * pd);
+  Eigen::Matrix<double, Eigen::Dynamic, pd> dR(nl, pd);
   Eigen::Matrix<double, Eigen::Dynamic, dim> x(nl, dim);  // current (or reference) control points
   Eigen::Matrix<double, dim, pd> T;
   std::vector<Eigen::Matrix<double, dim, 1>> da(nl * dim);
@@ -94,26 +95,14 @@ void face_pressure(const Body& body, const DofMap& dofs, const PatchSide& side, 
           wq *= t[d].weight[row[d]];
         }
         // rational basis and its parametric derivatives
-        double W = 0;
-        Eigen::Matrix<double, pd, 1> dW = Eigen::Matrix<double, pd, 1>::Zero();
-        for (int a = 0; a < nl; ++a) {
-          const std::array<int, 2> loc{a % np[0], a / np[0]};
-          double v = wt[a];
-          for (int d = 0; d < pd; ++d) v *= t[d].value[row[d] * np[d] + loc[d]];
-          B[a] = v;
-          W += v;
-          for (int d = 0; d < pd; ++d) {
-            double g = wt[a];
-            for (int c = 0; c < pd; ++c)
-              g *= c == d ? t[c].deriv[row[c] * np[c] + loc[c]] : t[c].value[row[c] * np[c] + loc[c]];
-            dB(a, d) = g;
-            dW[d] += g;
-          }
+        std::array<const double*, pd> Nd, dNd;
+        for (int d = 0; d < pd; ++d) {
+          Nd[d] = t[d].value.data() + size_t(row[d]) * np[d];
+          dNd[d] = t[d].deriv.data() + size_t(row[d]) * np[d];
         }
-        for (int a = 0; a < nl; ++a) {
-          R[a] = B[a] / W;
-          for (int d = 0; d < pd; ++d) dR(a, d) = (dB(a, d) - R[a] * dW[d]) / W;
-        }
+        rational_basis_values<pd>(np.data(), Nd.data(), dNd.data(), wt.data(), R.data(), dRv.data());
+        for (int a = 0; a < nl; ++a)
+          for (int d = 0; d < pd; ++d) dR(a, d) = dRv[a * pd + d];
         T.noalias() = x.transpose() * dR;
         const Eigen::Matrix<double, dim, 1> area = area_vector<dim>(sigma, T);
         const double pw = p * wq;

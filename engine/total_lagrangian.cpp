@@ -1,6 +1,7 @@
 #include "engine/total_lagrangian.hpp"
 
 #include "engine/quadrature.hpp"
+#include "engine/spline/rational_basis.hpp"
 
 #include <algorithm>
 #include <array>
@@ -148,7 +149,7 @@ struct ElementGeometry {
   std::vector<double> JxW;      // per point
   double min_det_J = 0;
   // scratch
-  std::vector<double> w, B, dB;  // weights; B_a, dB_a/dxi_d ([a * dim + d]) per point
+  std::vector<double> w, B, dB;  // weights; R_a, dR_a/dxi_d ([a * dim + d]) per point
   std::vector<Eigen::Matrix<double, dim, 1>> X;  // control points
 };
 
@@ -197,39 +198,16 @@ void evaluate_element(const NurbsPatch& patch, const std::vector<int>& to_body,
       r /= nq[d];
       wq *= t[d].weight[row[d]];
     }
-    // B_a = w_a prod_d N_d, dB_a/dxi_d with N_d replaced by its derivative
-    double W = 0;
-    Eigen::Matrix<double, dim, 1> dW = Eigen::Matrix<double, dim, 1>::Zero();
-    for (int a = 0; a < nl; ++a) {
-      std::array<double, dim> v, dv;
-      for (int d = 0, r = a; d < dim; ++d) {
-        const int k = row[d] * np[d] + r % np[d];
-        r /= np[d];
-        v[d] = t[d].value[k];
-        dv[d] = t[d].deriv[k];
-      }
-      double b = g.w[a];
-      for (int d = 0; d < dim; ++d) b *= v[d];
-      g.B[a] = b;
-      W += b;
-      for (int d = 0; d < dim; ++d) {
-        double db = g.w[a];
-        for (int c = 0; c < dim; ++c) db *= c == d ? dv[c] : v[c];
-        g.dB[a * dim + d] = db;
-        dW[d] += db;
-      }
+    // rational basis and dR_a/dxi (in g.B, g.dB), then J = dX/dxi
+    std::array<const double*, dim> Nd, dNd;
+    for (int d = 0; d < dim; ++d) {
+      Nd[d] = t[d].value.data() + size_t(row[d]) * np[d];
+      dNd[d] = t[d].deriv.data() + size_t(row[d]) * np[d];
     }
-    // rational derivatives dR_a/dxi (stored in dB) and J = dX/dxi
-    const double iW = 1.0 / W;
+    rational_basis_values<dim>(np.data(), Nd.data(), dNd.data(), g.w.data(), g.B.data(), g.dB.data());
     Eigen::Matrix<double, dim, dim> J = Eigen::Matrix<double, dim, dim>::Zero();
-    for (int a = 0; a < nl; ++a) {
-      const double R = g.B[a] * iW;
-      for (int d = 0; d < dim; ++d) {
-        const double dR = (g.dB[a * dim + d] - R * dW[d]) * iW;
-        g.dB[a * dim + d] = dR;
-        J.col(d) += dR * g.X[a];
-      }
-    }
+    for (int a = 0; a < nl; ++a)
+      for (int d = 0; d < dim; ++d) J.col(d) += g.dB[a * dim + d] * g.X[a];
     const double det = J.determinant();
     g.min_det_J = std::min(g.min_det_J, det);
     g.JxW[q] = det * wq;

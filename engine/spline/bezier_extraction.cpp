@@ -1,5 +1,7 @@
 #include "engine/spline/bezier_extraction.hpp"
 
+#include "engine/spline/rational_basis.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 
@@ -104,25 +106,15 @@ void BezierMesh::basis(const BezierElement& el, const Eigen::VectorXd& s, Eigen:
     }
   }
   R.resize(num_local_);
-  if (dR) dR->resize(num_local_, param_dim_);
-  for (int c = 0; c <= degree_[2]; ++c)
-    for (int b = 0; b <= degree_[1]; ++b)
-      for (int a = 0; a <= degree_[0]; ++a) {
-        const int l = local_index(a, b, c);
-        const double w = el.weights[l];
-        R[l] = w * v[0][a] * v[1][b] * v[2][c];
-        if (!dR) continue;
-        const double dd[3] = {dv[0][a] * v[1][b] * v[2][c], v[0][a] * dv[1][b] * v[2][c],
-                              v[0][a] * v[1][b] * dv[2][c]};
-        for (int d = 0; d < param_dim_; ++d) (*dR)(l, d) = w * dd[d];
-      }
-  // Quotient rule on wB: R = wB / W, dR = (d(wB) - R dW) / W.
-  const double W = R.sum();
-  R /= W;
+  std::vector<double> drv(dR ? size_t(num_local_) * param_dim_ : 0);
+  const int np[3] = {degree_[0] + 1, degree_[1] + 1, degree_[2] + 1};
+  const double* N[3] = {v[0], v[1], v[2]};
+  const double* dN[3] = {dv[0], dv[1], dv[2]};
+  rational_basis_values(param_dim_, np, N, dN, el.weights.data(), R.data(), dR ? drv.data() : nullptr);
   if (dR) {
-    double dW[3] = {0, 0, 0};
-    for (int d = 0; d < param_dim_; ++d) dW[d] = dR->col(d).sum();
-    for (int d = 0; d < param_dim_; ++d) dR->col(d) = (dR->col(d) - dW[d] * R) / W;
+    dR->resize(num_local_, param_dim_);
+    for (int l = 0; l < num_local_; ++l)
+      for (int d = 0; d < param_dim_; ++d) (*dR)(l, d) = drv[size_t(l) * param_dim_ + d];
   }
 }
 

@@ -1,5 +1,7 @@
 #include "engine/spline/nurbs_patch.hpp"
 
+#include "engine/spline/rational_basis.hpp"
+
 #include <cmath>
 #include <fmt/format.h>
 
@@ -51,35 +53,23 @@ void NurbsPatch::rational_basis(const Eigen::VectorXd& xi, std::vector<int>& ind
   const int n = np[0] * np[1] * np[2];
   indices.resize(n);
   values.resize(n);
-  derivs.resize(n, pd);
-  double W = 0;
-  Eigen::Vector3d dW = Eigen::Vector3d::Zero();
-  int a = 0;
-  for (int k = 0; k < np[2]; ++k)
-    for (int j = 0; j < np[1]; ++j)
-      for (int i = 0; i < np[0]; ++i, ++a) {
-        const std::array<int, 3> loc{i, j, k};
-        std::array<int, 3> gi{0, 0, 0};
-        double v = 1;
-        for (int d = 0; d < pd; ++d) {
-          gi[d] = span[d] - degree(d) + loc[d];
-          v *= b[d][0][loc[d]];
-        }
-        indices[a] = index(gi);
-        const double w = weights_[indices[a]];
-        values[a] = w * v;
-        W += w * v;
-        for (int d = 0; d < pd; ++d) {
-          double g = w;
-          for (int e = 0; e < pd; ++e) g *= b[e][e == d ? 1 : 0][loc[e]];
-          derivs(a, d) = g;
-          dW[d] += g;
-        }
-      }
-  for (a = 0; a < n; ++a) {
-    for (int d = 0; d < pd; ++d) derivs(a, d) = (derivs(a, d) * W - values[a] * dW[d]) / (W * W);
-    values[a] /= W;
+  std::vector<double> w(n), dR(size_t(n) * pd);
+  for (int a = 0; a < n; ++a) {
+    const std::array<int, 3> loc{a % np[0], (a / np[0]) % np[1], a / (np[0] * np[1])};
+    std::array<int, 3> gi{0, 0, 0};
+    for (int d = 0; d < pd; ++d) gi[d] = span[d] - degree(d) + loc[d];
+    indices[a] = index(gi);
+    w[a] = weights_[indices[a]];
   }
+  std::array<const double*, 3> N{}, dN{};
+  for (int d = 0; d < pd; ++d) {
+    N[d] = b[d][0].data();
+    dN[d] = b[d][1].data();
+  }
+  rational_basis_values(pd, np.data(), N.data(), dN.data(), w.data(), values.data(), dR.data());
+  derivs.resize(n, pd);
+  for (int a = 0; a < n; ++a)
+    for (int d = 0; d < pd; ++d) derivs(a, d) = dR[size_t(a) * pd + d];
 }
 
 Eigen::VectorXd NurbsPatch::field(const Eigen::MatrixXd& coefs, const Eigen::VectorXd& xi,
