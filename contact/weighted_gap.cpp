@@ -22,41 +22,35 @@ ContactFace::ContactFace(const Body& body, const std::vector<PatchSide>& list) :
 
 int ContactFace::quadrature_points() const { return gauss_points_for(degree) + 1; }
 
+ContactQuadrature::ContactQuadrature(const ContactFace& cf) : cf_(&cf) {
+  for (const ContactSide& side : cf.sides) quads_.push_back(side.quadrature(cf.quadrature_points()));
+}
+
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle) {
   const int dim = dofs.dim(), m = cf.num_multipliers();
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
   std::vector<Eigen::Triplet<double>> trip;
-  ElementData ed;
-  std::vector<int> kidx;
-  std::vector<double> kval;
-  for (const ContactSide& side : cf.sides) {
-    const PatchQuadrature quad = side.quadrature(cf.quadrature_points());
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q) {
-        side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
-        for (int& K : kidx) K += side.first_multiplier;
-        const ObstacleProbe pr = obstacle.probe(ed.X.row(q).transpose());
-        for (size_t k = 0; k < kidx.size(); ++k) {
-          const double bw = kval[k] * ed.JxW[q];
-          if (bw == 0.0) continue;
-          op.weights[kidx[k]] += bw;
-          op.g0[kidx[k]] += pr.gap * bw;
-          for (size_t a = 0; a < ed.cps.size(); ++a)
-            for (int i = 0; i < dim; ++i) {
-              const int dof = ed.cps[a] * dim + i;
-              const double v = bw * ed.N(q, a) * pr.normal[i];
-              if (dofs.equation(dof) >= 0)
-                trip.emplace_back(kidx[k], dofs.equation(dof), v);
-              else
-                op.g0[kidx[k]] += v * dofs.prescribed_value(dof);
-            }
+  ContactQuadrature(cf).for_each_point([&](const ElementData& ed, int q, const std::vector<int>& K,
+                                           const std::vector<double>& B) {
+    const ObstacleProbe pr = obstacle.probe(ed.X.row(q).transpose());
+    for (size_t k = 0; k < K.size(); ++k) {
+      const double bw = B[k] * ed.JxW[q];
+      if (bw == 0.0) continue;
+      op.weights[K[k]] += bw;
+      op.g0[K[k]] += pr.gap * bw;
+      for (size_t a = 0; a < ed.cps.size(); ++a)
+        for (int i = 0; i < dim; ++i) {
+          const int dof = ed.cps[a] * dim + i;
+          const double v = bw * ed.N(q, a) * pr.normal[i];
+          if (dofs.equation(dof) >= 0)
+            trip.emplace_back(K[k], dofs.equation(dof), v);
+          else
+            op.g0[K[k]] += v * dofs.prescribed_value(dof);
         }
-      }
     }
-  }
+  });
   op.G.resize(m, dofs.num_free());
   op.G.setFromTriplets(trip.begin(), trip.end());
   op.G.prune(0.0);
@@ -66,25 +60,16 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
 Eigen::VectorXd exact_weighted_gaps(const Eigen::MatrixXd& u, const ContactFace& cf, const Obstacle& obstacle) {
   const int m = cf.num_multipliers();
   Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
-  ElementData ed;
-  std::vector<int> kidx;
-  std::vector<double> kval;
-  for (const ContactSide& side : cf.sides) {
-    const PatchQuadrature quad = side.quadrature(cf.quadrature_points());
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q) {
-        Eigen::VectorXd x = ed.X.row(q).transpose();
-        for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
-        const double g = obstacle.probe(x).gap;
-        side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
-        for (size_t k = 0; k < kidx.size(); ++k) {
-          num[side.first_multiplier + kidx[k]] += g * kval[k] * ed.JxW[q];
-          den[side.first_multiplier + kidx[k]] += kval[k] * ed.JxW[q];
-        }
-      }
+  ContactQuadrature(cf).for_each_point([&](const ElementData& ed, int q, const std::vector<int>& K,
+                                           const std::vector<double>& B) {
+    Eigen::VectorXd x = ed.X.row(q).transpose();
+    for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
+    const double g = obstacle.probe(x).gap;
+    for (size_t k = 0; k < K.size(); ++k) {
+      num[K[k]] += g * B[k] * ed.JxW[q];
+      den[K[k]] += B[k] * ed.JxW[q];
     }
-  }
+  });
   return num.cwiseQuotient(den);
 }
 

@@ -41,6 +41,40 @@ struct ContactFace {
   int quadrature_points() const;
 };
 
+// The quadrature of the contact integrals over every side of a contact face,
+// tabulated once ((p+2) Gauss points per face direction): at each point the
+// element values (N, X, JxW, body control points) and the nonzero
+// multiplier functions B_K (K in the face's numbering).  The one face loop of
+// the weighted gaps, their linearisation and the large-deformation contact.
+// Keeps a pointer to `cf`, which must outlive it.
+class ContactQuadrature {
+ public:
+  explicit ContactQuadrature(const ContactFace& cf);
+  // visit(const ElementData& ed, int q, const std::vector<int>& K, const std::vector<double>& B)
+  template <class Visit>
+  void for_each_point(Visit&& visit) const {
+    ElementData ed;
+    std::vector<int> kidx;
+    std::vector<double> kval;
+    for (size_t s = 0; s < quads_.size(); ++s) {
+      const ContactSide& side = cf_->sides[s];
+      for (int e = 0; e < quads_[s].num_elements(); ++e) {
+        quads_[s].evaluate(e, ed, false);
+        for (int q = 0; q < ed.JxW.size(); ++q) {
+          side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
+          for (int& K : kidx) K += side.first_multiplier;
+          visit(static_cast<const ElementData&>(ed), q, static_cast<const std::vector<int>&>(kidx),
+                static_cast<const std::vector<double>&>(kval));
+        }
+      }
+    }
+  }
+
+ private:
+  const ContactFace* cf_;
+  std::vector<PatchQuadrature> quads_;
+};
+
 struct WeightedGapOperator {
   Eigen::SparseMatrix<double, Eigen::RowMajor> G;  // m x n_free
   Eigen::VectorXd weights;                         // K_K
