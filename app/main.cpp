@@ -208,9 +208,15 @@ int main(int argc, char** argv) {
   geometry->add_option("case", case_path, "case file (TOML)")->required();
   geometry->add_option("--out", out, "the XML file to write")->required();
 
-  // Errors: one line, from the first process only.
+  // Errors: one line, from the first process only (input errors are the
+  // same on every process); a failure may strike one process alone, so every
+  // process reports it, naming itself.
   const auto say = [](const std::string& line) {
     if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
+  };
+  const auto say_any = [](const std::string& line) {
+    if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
+    else fmt::print(stderr, "{} (process {})\n", line, process_rank());
   };
   try {
     app.parse(argc, argv);
@@ -241,10 +247,10 @@ int main(int argc, char** argv) {
     say(fmt::format("igac: error: {}: [material] {}", case_path, e.what()));
     return 2;
   } catch (const std::bad_alloc&) {
-    say(fmt::format("igac: error: {}: out of memory (reduce refine or degree)", case_path));
+    say_any(fmt::format("igac: error: {}: out of memory (reduce refine or degree)", case_path));
     return 1;
   } catch (const std::exception& e) {
-    say(fmt::format("igac: error: {}: {}", case_path, e.what()));
+    say_any(fmt::format("igac: error: {}: {}", case_path, e.what()));
     return 1;
   }
 }
