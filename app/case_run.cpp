@@ -9,6 +9,7 @@
 
 #include "engine/spline/refinement.hpp"
 #include "app/case_body.hpp"
+#include "app/petsc_run.hpp"
 #include "engine/spline/split.hpp"
 
 namespace igac {
@@ -373,14 +374,26 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
   Eigen::VectorXd bf = m.spec.body_force.empty()
                            ? Eigen::VectorXd::Zero(dim)
                            : Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim).eval();
-  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.material, bf);
+  // One process: every element.  PETSc on several: this process's block
+  // (the element loads summed over the processes, so f is whole everywhere).
+  const bool petsc = uses_petsc(m);
+  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.material, bf, process_elements(m));
+  sum_over_processes(sys.f);
   for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
   r.timing.assembly = since(t0);
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
   check_body_is_held(m, modes, sys.f);
-  if (m.contacts.empty()) {
+  if (m.contacts.empty() && petsc) {
+    WeightedGapOperator none;
+    none.G.resize(0, m.dofs->num_free());
+    const ContactSolution s = solve_with_petsc(m, sys, none, modes, ContactSolverOptions{}, r.linear_solver);
+    r.timing.factorization = s.factorize_s;
+    r.timing.linear_solve = s.iterations_s;
+    r.status = s.status;
+    r.u = m.dofs->expand(s.u);
+  } else if (m.contacts.empty()) {
     t0 = Clock::now();
     chol.factorize(sys.K);
     r.timing.factorization = since(t0);
@@ -395,7 +408,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
     t0 = Clock::now();
-    c->solution = solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
+    c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
+                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;
     r.timing.contact = since(t0) - c->solution.factorize_s;
     r.status = c->solution.status;

@@ -1,5 +1,7 @@
 // igac — command line.
 //   igac run CASE.toml [--out DIR] [--refine N] [--degree P] [--quiet] [--no-output]
+//            [--solver direct|petsc] [--petsc-options "-ksp_type cg ..."]
+//   mpirun -n N igac run CASE.toml --solver petsc   (scripts/mpirun.sh)
 //   igac study CASE.toml --levels N [--degree P] [--out DIR] [--quiet]
 //   igac geometry CASE.toml --out BODY.xml
 // Exit codes: 0 converged, 1 the solve failed (summary.json says why),
@@ -18,10 +20,39 @@
 #include "io/plots.hpp"
 #include "app/study.hpp"
 #include "io/vtk_output.hpp"
+#ifdef IGAC_WITH_PETSC
+#include "contact/petsc_contact.hpp"
+#endif
 
 using namespace igac;
 
 namespace {
+
+// Under mpirun every process runs this program; only the first one prints
+// and writes files.
+#ifdef IGAC_WITH_PETSC
+int process_rank() { return launcher_rank(); }
+int process_count() { return launcher_size(); }
+#else
+int process_rank() { return 0; }
+int process_count() { return 1; }
+#endif
+
+// [solver] from the case, then the command line's --solver and
+// --petsc-options (added after the case's options: they win).
+void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::string& petsc_options) {
+  if (!solver.empty()) spec.solver.type = solver;
+  if (!petsc_options.empty()) {
+    if (spec.solver.type != "petsc") throw InputError("--petsc-options: needs --solver petsc (or [solver] type = \"petsc\")");
+    spec.solver.options += " " + petsc_options;
+  }
+  if (spec.solver.type == "petsc" && spec.finite_strain())
+    throw InputError(fmt::format("{}: --solver petsc: the PETSc solver runs the small-deformation (linear_elastic) "
+                                 "contact solve only", spec.path));
+  if (process_count() > 1 && spec.solver.type != "petsc")
+    throw InputError(fmt::format("{}: {} processes (mpirun): the direct solver runs on one; use --solver petsc",
+                                 spec.path, process_count()));
+}
 
 std::string percent(double v, double ref) {
   return ref != 0 ? fmt::format("{:+.2f} %", 100 * (v - ref) / ref) : std::string("no relative difference to 0");
@@ -86,9 +117,18 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
 }
 
 int run_command(const std::string& path, std::string out, std::optional<int> refine, std::optional<int> degree,
-                bool quiet, bool no_output) {
+                bool quiet, bool no_output, const std::string& solver, const std::string& petsc_options) {
   CaseSpec spec = read_case(path);
+  apply_solver_options(spec, solver, petsc_options);
   apply_overrides(spec, degree, refine);
+  if (process_rank() > 0) {  // the first process writes and prints
+    no_output = true;
+    quiet = true;
+  }
+#ifdef IGAC_WITH_PETSC
+  std::optional<PetscSession> petsc;
+  if (spec.solver.type == "petsc") petsc.emplace(spec.solver.options);
+#endif
   if (no_output) out.clear();
   else if (out.empty()) out = "out/" + spec.name;
   // Checked (and staged) before anything is computed; the files appear in
@@ -145,6 +185,7 @@ int main(int argc, char** argv) {
   std::optional<int> refine, degree;
   bool quiet = false, no_output = false;
   int levels = 4;
+  std::string solver, petsc_options;
 
   auto* run = app.add_subcommand("run", "run one case");
   run->add_option("case", case_path, "case file (TOML)")->required();
@@ -153,6 +194,9 @@ int main(int argc, char** argv) {
   run->add_option("--degree", degree, "NURBS degree p (contact needs p >= 2)");
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--no-output", no_output, "write no files (and compute nothing only output needs)");
+  run->add_option("--solver", solver, "linear solver: direct (CHOLMOD, one process) or petsc (also under mpirun)")
+      ->check(CLI::IsMember({"direct", "petsc"}));
+  run->add_option("--petsc-options", petsc_options, "PETSc options, e.g. \"-ksp_type fgmres -pc_type fieldsplit\"");
 
   auto* study = app.add_subcommand("study", "refinement study on nested meshes");
   study->add_option("case", case_path, "case file (TOML)")->required();
@@ -165,36 +209,49 @@ int main(int argc, char** argv) {
   geometry->add_option("case", case_path, "case file (TOML)")->required();
   geometry->add_option("--out", out, "the XML file to write")->required();
 
+  // Errors: one line, from the first process only (input errors are the
+  // same on every process); a failure may strike one process alone, so every
+  // process reports it, naming itself.
+  const auto say = [](const std::string& line) {
+    if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
+  };
+  const auto say_any = [](const std::string& line) {
+    if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
+    else fmt::print(stderr, "{} (process {})\n", line, process_rank());
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    fmt::print(stderr, "igac: error: {} (see igac --help)\n", e.what());
+    say(fmt::format("igac: error: {} (see igac --help)", e.what()));
     return 2;
   }
   try {
-    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output);
+    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options);
     if (geometry->parsed()) {
       write_gismo_xml(case_body(read_case(case_path)), out);
       return 0;
     }
     CaseSpec spec = read_case(case_path);
     apply_overrides(spec, degree, {});
+    if (spec.solver.type == "petsc")
+      throw InputError(fmt::format("{}: [solver] type = \"petsc\": igac study runs the direct solver; use igac run "
+                                   "for PETSc", case_path));
     return run_study(spec, StudyOptions{levels, out, quiet});
   } catch (const InputError& e) {
-    fmt::print(stderr, "igac: error: {}\n", e.what());
+    say(fmt::format("igac: error: {}", e.what()));
     return 2;
   } catch (const SplineError& e) {
-    fmt::print(stderr, "igac: error: {}: {}\n", case_path, e.what());
+    say(fmt::format("igac: error: {}: {}", case_path, e.what()));
     return 2;
   } catch (const MaterialError& e) {
-    fmt::print(stderr, "igac: error: {}: [material] {}\n", case_path, e.what());
+    say(fmt::format("igac: error: {}: [material] {}", case_path, e.what()));
     return 2;
   } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "igac: error: {}: out of memory (reduce refine or degree)\n", case_path);
+    say_any(fmt::format("igac: error: {}: out of memory (reduce refine or degree)", case_path));
     return 1;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "igac: error: {}: {}\n", case_path, e.what());
+    say_any(fmt::format("igac: error: {}: {}", case_path, e.what()));
     return 1;
   }
 }

@@ -1,5 +1,6 @@
 #include "contact/small_strain_contact.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <fmt/format.h>
 #include <set>
@@ -9,6 +10,45 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 }  // namespace
+
+std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const ContactSolverOptions& opt) {
+  const int m = int(op.weights.size());
+  std::vector<char> active(m, 0);
+  const Eigen::VectorXd gap0 = op.g0.cwiseQuotient(op.weights);
+  for (int K_ = 0; K_ < m; ++K_) active[K_] = gap0[K_] <= opt.initial_gap_tolerance;
+  if (k > 0 && std::count(active.begin(), active.end(), 1) < k && m > 0) {
+    std::vector<int> order(m);
+    for (int i = 0; i < m; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return gap0[a] < gap0[b]; });
+    for (int i = 0; i < std::min(k, m); ++i) active[order[i]] = 1;
+  }
+  return active;
+}
+
+std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::VectorXd& gap,
+                                  const std::vector<char>& active, int k, double cn) {
+  const int m = int(lambda.size());
+  // Round-off guard: where |lambda_K + c_n g_K| is below round-off of the
+  // larger of the two terms, the multiplier keeps its state (at zero load
+  // both vanish and nothing changes).
+  const double scale = m ? std::max(lambda.cwiseAbs().maxCoeff(), cn * gap.cwiseAbs().maxCoeff()) : 0.0;
+  const double tol = 1e-12 * scale;
+  std::vector<char> next(m, 0);
+  for (int K_ = 0; K_ < m; ++K_) {
+    const double v = lambda[K_] + cn * gap[K_];
+    next[K_] = std::abs(v) <= tol ? active[K_] : v < 0;
+  }
+  if (k > 0 && std::count(next.begin(), next.end(), 1) < k) {
+    // A body held only by contact needs k active multipliers: keep the
+    // ones nearest to activation.
+    std::vector<int> order(m);
+    for (int i = 0; i < m; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return lambda[a] + cn * gap[a] < lambda[b] + cn * gap[b]; });
+    for (int i = 0; i < std::min(k, m); ++i) next[order[i]] = 1;
+  }
+  return next;
+}
 
 ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                            const WeightedGapOperator& op, const RigidModes& modes,
@@ -82,15 +122,8 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
 
   // Initial active set: closed initial gaps; a body not held otherwise
   // starts with the multipliers nearest to the obstacle.
-  std::vector<char> active(m, 0);
+  std::vector<char> active = initial_active_set(op, k, opt);
   const Eigen::VectorXd gap0 = op.g0.cwiseQuotient(op.weights);
-  for (int K_ = 0; K_ < m; ++K_) active[K_] = gap0[K_] <= opt.initial_gap_tolerance;
-  if (k > 0 && std::count(active.begin(), active.end(), 1) < k && m > 0) {
-    std::vector<int> order(m);
-    for (int i = 0; i < m; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return gap0[a] < gap0[b]; });
-    for (int i = 0; i < std::min(k, m); ++i) active[order[i]] = 1;
-  }
 
   std::set<std::vector<char>> seen;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), c = Eigen::VectorXd::Zero(k), Gu(m);
@@ -133,26 +166,7 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     Gu = Gvf + GR * c;
     for (int i = 0; i < na; ++i) Gu -= S.col(A[i]) * lambda[A[i]];
     const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
-    // Round-off guard: where |lambda_K + c_n g_K| is below round-off of the
-    // larger of the two terms, the multiplier keeps its state (at zero load
-    // both vanish and nothing changes).
-    const double cn = opt.complementarity_scale;
-    const double scale = std::max(lambda.cwiseAbs().maxCoeff(), cn * gap.cwiseAbs().maxCoeff());
-    const double tol = 1e-12 * scale;
-    std::vector<char> next(m, 0);
-    for (int K_ = 0; K_ < m; ++K_) {
-      const double v = lambda[K_] + cn * gap[K_];
-      next[K_] = std::abs(v) <= tol ? active[K_] : v < 0;
-    }
-    if (k > 0 && std::count(next.begin(), next.end(), 1) < k) {
-      // A body held only by contact needs k active multipliers: keep the
-      // ones nearest to activation.
-      std::vector<int> order(m);
-      for (int i = 0; i < m; ++i) order[i] = i;
-      std::sort(order.begin(), order.end(),
-                [&](int a, int b) { return lambda[a] + cn * gap[a] < lambda[b] + cn * gap[b]; });
-      for (int i = 0; i < std::min(k, m); ++i) next[order[i]] = 1;
-    }
+    const std::vector<char> next = next_active_set(lambda, gap, active, k, opt.complementarity_scale);
     sol.weighted_gap = gap;
     if (next == active) {
       sol.converged = true;

@@ -53,7 +53,23 @@ struct ContactSolution {
   std::string status;
   double factorize_s = 0, schur_s = 0, iterations_s = 0;
   int schur_columns = 0;             // sparse solves spent on S
+  // Iterative linear solvers (contact/petsc_contact): what ran, and the
+  // Krylov iterations of each active-set iteration's solve.
+  std::string linear_solver;
+  std::vector<int> linear_iterations;
+  int ranks = 1;
+  double peak_resident_all_ranks_gib = 0;  // summed over the processes
 };
+
+// The active set the iteration starts from: closed initial gaps; a body held
+// only by contact (k free rigid motions) starts with at least the k
+// multipliers nearest to the obstacle.
+std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const ContactSolverOptions& options);
+// The paper's rule (Appendix 1): K active when lambda_K + c_n (Pi g)_K < 0;
+// where that is zero to round-off, K keeps its state; and at least k
+// multipliers stay active.  The same rule for every linear solver.
+std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::VectorXd& gap,
+                                  const std::vector<char>& active, int k, double cn);
 
 ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                            const WeightedGapOperator& op, const RigidModes& modes,

@@ -112,14 +112,14 @@ namespace {
 
 // Sparsity pattern of the stiffness matrix in the free numbering: equations
 // are coupled when their control points share an element.  Values are zero.
-Eigen::SparseMatrix<double> stiffness_pattern(const BodyQuadrature& quad, const DofMap& dofs) {
+Eigen::SparseMatrix<double> stiffness_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
   const int dim = dofs.dim(), n_free = dofs.num_free();
   const int n_cp = dofs.num_dofs() / dim;
   // node adjacency through elements (nodes = representative control points,
   // identified by their first free equation or, if none, the cp itself)
   std::vector<std::vector<int>> adj(n_cp);
   std::vector<int> cps;
-  for (int e = 0; e < quad.num_elements(); ++e) {
+  for (int e = e_begin; e < e_end; ++e) {
     quad.control_points(e, cps);
     for (int a : cps)
       for (int b : cps) adj[a].push_back(b);
@@ -159,16 +159,18 @@ Eigen::SparseMatrix<double> stiffness_pattern(const BodyQuadrature& quad, const 
 }  // namespace
 
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
-                                        const LinearElastic& mat, const Eigen::VectorXd& body_force) {
+                                        const LinearElastic& mat, const Eigen::VectorXd& body_force,
+                                        ElementRange elements) {
   const int dim = body.space_dim();
   const BodyQuadrature quad(body, gauss_points_for(body.degree()));
-  const int n_el = quad.num_elements();
+  const int e_end = elements.end < 0 ? quad.num_elements() : std::min(elements.end, quad.num_elements());
+  const int e_begin = std::clamp(elements.begin, 0, e_end);
   const double lambda = mat.lambda(), mu = mat.mu();
   const int n_free = dofs.num_free();
   const bool has_body_force = body_force.size() == dim && body_force.norm() > 0;
 
   LinearSystem s;
-  s.K = stiffness_pattern(quad, dofs);
+  s.K = stiffness_pattern(quad, dofs, e_begin, e_end);
   const int* outer = s.K.outerIndexPtr();
   const int* inner = s.K.innerIndexPtr();
   const int nnz = int(s.K.nonZeros());
@@ -192,7 +194,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     std::array<std::array<Eigen::MatrixXd, 3>, 3> M;
     std::vector<int> eq;
 #pragma omp for schedule(dynamic, 64)
-    for (int e = 0; e < n_el; ++e) {
+    for (int e = e_begin; e < e_end; ++e) {
       quad.evaluate(e, ed, true);
       min_det[tid] = std::min(min_det[tid], ed.min_det_J);
       const int nl = int(ed.cps.size()), nq = int(ed.JxW.size()), nd = nl * dim;

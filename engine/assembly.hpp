@@ -57,11 +57,19 @@ struct LinearSystem {
   double min_det_J = 0;           // smallest Jacobian met at a Gauss point
 };
 
+// A contiguous block [begin, end) of the body's elements (end < 0: to the
+// last one).  A distributed solve gives each process its own block; the
+// matrices and loads of all blocks sum to those of the whole body.
+struct ElementRange {
+  int begin = 0, end = -1;
+};
+
 // Throws std::runtime_error when the geometry map folds (det J <= 0 at a
-// Gauss point).
+// Gauss point).  With `elements`, only those elements are assembled (K keeps
+// its full size, the other entries are structurally absent).
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
-                                        const Eigen::VectorXd& body_force);
+                                        const Eigen::VectorXd& body_force, ElementRange elements = {});
 // Adds the work of a pressure P on the faces to f (free numbering).
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f);

@@ -167,7 +167,7 @@ CaseSpec read_case(const std::string& path) {
   c.path = path;
   const Section top(path, "top level", root,
                     {"name", "description", "geometry", "mesh", "material", "dirichlet", "pressure", "body_force",
-                     "contact", "reference", "output", "loading", "faces"});
+                     "contact", "reference", "output", "loading", "faces", "solver"});
   c.name = top.string("name", std::filesystem::path(path).stem().string());
   // The name becomes a folder under out/: a plain file name, nothing that
   // climbs out of it or that a shell or a file system would read otherwise.
@@ -418,6 +418,18 @@ CaseSpec read_case(const std::string& path) {
     const Section s(path, "output", top.sub("output"), {"vtk"});
     c.write_vtk = s.boolean("vtk", true);
   }
+  if (root.contains("solver")) {
+    const Section s(path, "solver", top.sub("solver"), {"type", "options"});
+    c.solver.type = s.string("type", "direct");
+    if (c.solver.type != "direct" && c.solver.type != "petsc")
+      s.fail("type", fmt::format("unknown solver '{}' (direct: CHOLMOD on one process; petsc: PETSc, also under mpirun)",
+                                 c.solver.type));
+    c.solver.options = s.string("options", "");
+    if (!c.solver.options.empty() && c.solver.type != "petsc")
+      s.fail("options", "PETSc options need type = \"petsc\"");
+    if (c.solver.type == "petsc" && c.finite_strain())
+      s.fail("type", "the PETSc solver runs the small-deformation (linear_elastic) contact solve only");
+  }
   apply_overrides(c, {}, {});
   return c;
 }
@@ -438,6 +450,13 @@ double estimated_peak_bytes(const CaseSpec& c) {
   // 2D: the fill of nested dissection grows slowly (measured: +10 % per doubling of the dofs beyond 33k).
   const double fill = dim == 2 ? 10.0 * (1 + 0.1 * std::max(0.0, std::log2(std::max(dofs, 1.0) / 33000.0)))
                                : 8.0 * std::cbrt(std::max(dofs, 1.0) / 18000.0);
+  // PETSc with multigrid: no factor; the matrix, its copies (assembly,
+  // PETSc, the saddle-point matrix) and the multigrid hierarchy.  PETSc
+  // with a factorisation (MUMPS, the default): a factor as CHOLMOD's.
+  const std::string& o = c.solver.options;
+  const bool multigrid = o.find("gamg") != std::string::npos || o.find("hypre") != std::string::npos ||
+                         o.find("-pc_type ml") != std::string::npos;
+  if (c.solver.type == "petsc" && multigrid) return kBase + kCalibration * 4 * 12 * nnz;
   return kBase + kCalibration * (12 * nnz + 10 * fill * nnz / 2);
 }
 

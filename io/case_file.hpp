@@ -59,6 +59,15 @@ struct LoadingSpec {
   bool follower_pressure = true;  // false: dead load (reference normal)
 };
 
+// [solver]: who solves the small-deformation linear systems.  "direct":
+// CHOLMOD on one process (engine/cholesky); "petsc": PETSc on one or more
+// MPI processes (contact/petsc_contact), `options` passed to PETSc's
+// options database as on a PETSc command line ("-ksp_type cg -pc_type gamg").
+struct SolverSpec {
+  std::string type = "direct";
+  std::string options;
+};
+
 struct CaseSpec {
   std::string path, name, description;
   // geometry: a built-in shape, or a G+Smo XML file (one patch today)
@@ -86,6 +95,7 @@ struct CaseSpec {
   std::vector<ContactSpec> contacts;  // [contact] or [[contact]]: each face with its rigid obstacle
   std::string reference = "none";  // hertz | lame | none
   bool write_vtk = true;
+  SolverSpec solver;
 
   bool finite_strain() const { return model != "linear_elastic"; }
   int dim() const {

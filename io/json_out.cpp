@@ -124,6 +124,16 @@ Json run_summary(const Model& m, const RunResult& r) {
     j["memory_gib"] = {{"estimated", estimated_peak_bytes(m.spec) / double(1 << 30)},
                        {"peak_resident", double(usage.ru_maxrss) / double(1 << 20)}};
   }
+  {
+    const LinearSolverRecord& ls = r.linear_solver;
+    Json solver = {{"type", ls.type}, {"ranks", ls.ranks}};
+    if (!ls.method.empty()) solver["method"] = ls.method;
+    if (ls.type != "direct") {
+      solver["krylov_iterations"] = ls.iterations;
+      solver["peak_resident_all_ranks_gib"] = finite_or_null(ls.peak_resident_all_ranks_gib);
+    }
+    j["solver"] = solver;
+  }
   j["timing_s"] = {{"assembly", r.timing.assembly},         {"factorization", r.timing.factorization},
                    {"linear_solve", r.timing.linear_solve}, {"contact", r.timing.contact},
                    {"postprocess", r.timing.postprocess},   {"total", r.timing.total}};

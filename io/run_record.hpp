@@ -77,6 +77,15 @@ struct LoadCurvePoint {
   double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|)
 };
 
+// Who solved the linear systems, and how (summary.json "solver").
+struct LinearSolverRecord {
+  std::string type = "direct";        // direct | petsc
+  std::string method;                 // e.g. "preonly + cholesky (mumps)", "fgmres + fieldsplit"
+  std::vector<int> iterations;        // Krylov iterations per active-set iteration
+  int ranks = 1;
+  double peak_resident_all_ranks_gib = 0;
+};
+
 struct RunResult {
   std::string status = "converged";
   Eigen::MatrixXd u;  // n_cp x dim
@@ -90,6 +99,7 @@ struct RunResult {
   std::vector<LoadCurvePoint> load_curve;
   double half_width_deformed = 0, max_pressure_cauchy = 0;  // large deformation contact
   Timing timing;
+  LinearSolverRecord linear_solver;
 };
 
 }  // namespace igac

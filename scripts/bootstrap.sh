@@ -9,7 +9,8 @@ packages=(cmake g++ make pkg-config
           libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
           libfmt-dev libtomlplusplus-dev libcli11-dev libgtest-dev
           nlohmann-json3-dev libpugixml-dev libopenblas0-pthread libopenblas-dev
-          python3 python3-matplotlib)
+          python3 python3-matplotlib
+          libpetsc-real-dev openmpi-bin)   # the PETSc (MPI) solver path: --solver petsc, scripts/mpirun.sh
 
 missing=()
 for p in "${packages[@]}"; do

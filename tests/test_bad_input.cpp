@@ -91,7 +91,7 @@ INSTANTIATE_TEST_SUITE_P(
     BadInput, BadInputFile,
     ::testing::Values(
         BadCase{"malformed_toml", "bad_malformed.toml", "[material", {"malformed TOML", "expected ']'"}},
-        BadCase{"unknown_top_level_key", "bad_unknown_top_key.toml", "solver =", {"[top level] solver: unknown key"}},
+        BadCase{"unknown_top_level_key", "bad_unknown_top_key.toml", "solvers =", {"[top level] solvers: unknown key"}},
         BadCase{"unknown_material_key", "bad_unknown_material_key.toml", "poisson =", {"[material] poisson: unknown key", "nu"}},
         BadCase{"missing_E", "bad_missing_E.toml", "", {"[material] E: missing"}},
         BadCase{"degree_0", "bad_degree_0.toml", "degree = 0", {"[mesh] degree:", "at least 1"}},

@@ -1,0 +1,87 @@
+#include "app/petsc_run.hpp"
+
+#include <fmt/format.h>
+
+#ifdef IGAC_WITH_PETSC
+#include <mpi.h>
+
+#include "contact/petsc_contact.hpp"
+#endif
+
+namespace igac {
+
+bool uses_petsc(const Model& m) { return m.spec.solver.type == "petsc"; }
+
+#ifdef IGAC_WITH_PETSC
+namespace {
+// Rigid motions of the free equations (translations, rotations about the
+// centroid): the near null space that algebraic multigrid builds its coarse
+// spaces from.  Exact in the NURBS space (partition of unity).
+Eigen::MatrixXd rigid_motions(const Model& m) {
+  const Body& body = m.body;
+  const DofMap& dofs = *m.dofs;
+  const int dim = body.space_dim(), n_modes = dim == 2 ? 3 : 6;
+  const Eigen::RowVectorXd centre = body.points().colwise().mean();
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dofs.num_free(), n_modes);
+  for (int i = 0; i < dofs.num_dofs(); ++i) {
+    const int eq = dofs.equation(i);
+    if (eq < 0) continue;
+    const int c = i % dim;
+    const Eigen::RowVectorXd x = body.points().row(i / dim) - centre;
+    M(eq, c) = 1.0;
+    if (dim == 2) {
+      M(eq, 2) = c == 0 ? -x[1] : x[0];
+    } else {  // rotations about x, y, z (each up to its sign)
+      const int a = (c + 1) % 3, b = (c + 2) % 3;
+      M(eq, 3 + b) = x[a];
+      M(eq, 3 + a) = -x[b];
+    }
+  }
+  return M;
+}
+}  // namespace
+
+ElementRange process_elements(const Model& m) {
+  if (!uses_petsc(m)) return {};
+  const auto [b, e] = process_share(m.body.num_elements());
+  return {b, e};
+}
+
+void sum_over_processes(Eigen::VectorXd& f) {
+  if (!PetscSession::active() || PetscSession::size() == 1) return;
+  MPI_Allreduce(MPI_IN_PLACE, f.data(), int(f.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);  // PETSc's world
+}
+
+ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const WeightedGapOperator& op,
+                                 const RigidModes& modes, const ContactSolverOptions& opt, LinearSolverRecord& record) {
+  if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
+  PetscContactOptions po;
+  po.contact = opt;
+  po.stiffness = m.spec.E;
+  po.dim = m.body.space_dim();
+  // The load is whole on every process: PETSc gets it once.
+  const Eigen::VectorXd f_part = PetscSession::rank() == 0 ? sys.f : Eigen::VectorXd::Zero(sys.f.size()).eval();
+  ContactSolution s;
+  try {
+    s = solve_contact_petsc(std::move(sys.K), f_part, op, modes, rigid_motions(m), po);
+  } catch (const PetscOptionError& e) {
+    throw InputError(fmt::format("{}: [solver] options: {}", m.spec.path, e.what()));
+  }
+  record.type = "petsc";
+  record.method = s.linear_solver;
+  record.iterations = s.linear_iterations;
+  record.ranks = s.ranks;
+  record.peak_resident_all_ranks_gib = s.peak_resident_all_ranks_gib;
+  return s;
+}
+#else
+ElementRange process_elements(const Model&) { return {}; }
+void sum_over_processes(Eigen::VectorXd&) {}
+ContactSolution solve_with_petsc(const Model& m, LinearSystem&, const WeightedGapOperator&, const RigidModes&,
+                                 const ContactSolverOptions&, LinearSolverRecord&) {
+  throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc (install "
+                               "libpetsc-real-dev, see scripts/bootstrap.sh, and rebuild)", m.spec.path));
+}
+#endif
+
+}  // namespace igac

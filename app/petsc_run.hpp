@@ -1,0 +1,22 @@
+// The PETSc path of a small-deformation run (contact/petsc_contact), seen
+// from app/case_run: which elements this process assembles, the load summed
+// over the processes, and the contact solve in PETSc.  Built also without
+// PETSc: then a case that asks for it is a one-line input error.
+#pragma once
+
+#include "io/run_record.hpp"
+
+namespace igac {
+
+bool uses_petsc(const Model& model);
+// This process's contiguous block of elements (all of them on one process).
+ElementRange process_elements(const Model& model);
+// Element loads of every process summed, on every process (no-op on one).
+void sum_over_processes(Eigen::VectorXd& f);
+// The contact solve in PETSc (op with no rows: the plain linear solve).
+// `K` is moved into PETSc.  Throws InputError for a bad PETSc option.
+ContactSolution solve_with_petsc(const Model& model, LinearSystem& system, const WeightedGapOperator& op,
+                                 const RigidModes& modes, const ContactSolverOptions& options,
+                                 LinearSolverRecord& record);
+
+}  // namespace igac

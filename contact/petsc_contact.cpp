@@ -1,0 +1,461 @@
+#include "contact/petsc_contact.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <omp.h>
+#include <petscksp.h>
+#include <set>
+#include <sys/resource.h>
+
+namespace igac {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+bool g_active = false;
+std::string g_message;              // PETSc's own words for the first error of a chain
+std::vector<std::string> g_defaults;  // options igac set (not the user's: never "unused")
+
+PetscErrorCode keep_message(MPI_Comm, int, const char*, const char*, PetscErrorCode n, PetscErrorType p,
+                            const char* mess, void*) {
+  if (p == PETSC_ERROR_INITIAL) g_message = mess ? mess : "";
+  return n;
+}
+
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  while (!s.empty() && (s.back() == ' ' || s.back() == '.')) s.pop_back();
+  return s;
+}
+
+// Codes PETSc gives to an option it cannot take (unknown type, bad value,
+// a combination it does not support).
+bool is_option_error(PetscErrorCode e) {
+  return e == PETSC_ERR_ARG_UNKNOWN_TYPE || e == PETSC_ERR_ARG_WRONG || e == PETSC_ERR_ARG_OUTOFRANGE ||
+         e == PETSC_ERR_ARG_INCOMP || e == PETSC_ERR_SUP || e == PETSC_ERR_USER_INPUT ||
+         e == PETSC_ERR_ARG_TYPENOTSET || e == PETSC_ERR_ARG_WRONGSTATE;
+}
+
+// Throws on a PETSc error: a PetscOptionError when the options may be the
+// cause (`options_phase`) and the code says so, else std::runtime_error.
+void check(PetscErrorCode e, const char* what, bool options_phase = false) {
+  if (!e) return;
+  const char* text = nullptr;
+  PetscErrorMessage(e, &text, nullptr);
+  std::string msg = one_line(fmt::format("PETSc {}: {}{}", what, text ? text : "error",
+                                         g_message.empty() ? std::string() : ": " + one_line(g_message)));
+  g_message.clear();
+  if (e == PETSC_ERR_MEM) throw std::bad_alloc();
+  if (options_phase && is_option_error(e)) throw PetscOptionError(msg);
+  throw std::runtime_error(msg);
+}
+
+// PETSc objects destroyed at scope exit (also when an exception leaves).
+template <class T, PetscErrorCode (*Destroy)(T*)>
+struct Owned {
+  T p = nullptr;
+  Owned() = default;
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  ~Owned() {
+    if (p) Destroy(&p);
+  }
+  operator T() const { return p; }
+  T* operator&() { return &p; }
+};
+using OwnedMat = Owned<Mat, MatDestroy>;
+using OwnedVec = Owned<Vec, VecDestroy>;
+using OwnedKSP = Owned<KSP, KSPDestroy>;
+using OwnedIS = Owned<IS, ISDestroy>;
+using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
+using OwnedNullSpace = Owned<MatNullSpace, MatNullSpaceDestroy>;
+
+int env_int(std::initializer_list<const char*> names, int fallback) {
+  for (const char* n : names)
+    if (const char* v = std::getenv(n)) return std::atoi(v);
+  return fallback;
+}
+
+// Sets an option unless the user gave it; remembers it as igac's own.
+void default_option(const char* name, const char* value) {
+  PetscBool has = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, name, &has), "options");
+  if (has) return;
+  check(PetscOptionsSetValue(nullptr, name, value), "options");
+  g_defaults.emplace_back(name + 1);
+}
+
+// Options left unused after the first solve: misspelt, or for another solver.
+void refuse_unused_options() {
+  PetscInt count = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  check(PetscOptionsLeftGet(nullptr, &count, &names, &values), "options");
+  std::vector<std::string> unused;
+  for (PetscInt i = 0; i < count; ++i) {
+    const std::string name = names[i];
+    const bool ours = std::find(g_defaults.begin(), g_defaults.end(), name) != g_defaults.end();
+    const bool global = name.rfind("log", 0) == 0 || name.rfind("malloc", 0) == 0 || name == "options_left" ||
+                        name == "no_signal_handler" || name.rfind("info", 0) == 0 || name == "memory_view";
+    if (!ours && !global) unused.push_back("-" + name);
+  }
+  PetscOptionsLeftRestore(nullptr, &count, &names, &values);
+  if (!unused.empty())
+    throw PetscOptionError(fmt::format("PETSc option {} was not used by the solver (misspelt, or an option of "
+                                       "another solver type)", unused.front()));
+}
+
+double peak_resident_gib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / double(1 << 20);
+}
+
+}  // namespace
+
+int launcher_rank() { return env_int({"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}, 0); }
+int launcher_size() { return env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1); }
+
+PetscSession::PetscSession(const std::string& options) {
+  if (g_active) throw std::logic_error("one PetscSession per program");
+  // igac reports errors itself; PETSc's signal handler would hide a crash's cause.
+  PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr);
+  check(PetscInitializeNoArguments(), "initialisation");
+  g_active = true;
+  PetscPushErrorHandler(keep_message, nullptr);
+  try {
+    check(PetscOptionsInsertString(nullptr, options.c_str()), "options", true);
+  } catch (...) {
+    PetscFinalize();
+    g_active = false;
+    throw;
+  }
+  // One process per core: unless told otherwise, the assembly threads share
+  // the cores with the other processes.
+  if (size() > 1 && !std::getenv("OMP_NUM_THREADS")) omp_set_num_threads(std::max(1, omp_get_num_procs() / size()));
+}
+
+PetscSession::~PetscSession() {
+  if (!g_active) return;
+  PetscFinalize();
+  g_active = false;
+}
+
+bool PetscSession::active() { return g_active; }
+int PetscSession::rank() {
+  if (!g_active) return 0;
+  int r = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+  return r;
+}
+int PetscSession::size() {
+  if (!g_active) return 1;
+  int s = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &s);
+  return s;
+}
+
+std::pair<int, int> process_share(int n) {
+  const long long r = PetscSession::rank(), s = PetscSession::size();
+  return {int(n * r / s), int(n * (r + 1) / s)};
+}
+
+ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen::VectorXd& f_part,
+                                    const WeightedGapOperator& op, const RigidModes& modes,
+                                    const Eigen::MatrixXd& near_null, const PetscContactOptions& o) {
+  if (!g_active) throw std::logic_error("solve_contact_petsc without a PetscSession");
+  using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const PetscInt n = PetscInt(Kp.rows()), m = PetscInt(op.weights.size()), N = n + m;
+  const int k = int(modes.modes.cols());
+  ContactSolution sol;
+  sol.ranks = PetscSession::size();
+  auto t0 = Clock::now();
+
+  // Augmentation weights W_K = E / h_K^d, h_K from the multiplier's support
+  // measure int B_K ~ h^(d-1): G^T W G has the magnitude of K on the face.
+  Eigen::VectorXd W(m);
+  for (PetscInt K = 0; K < m; ++K)
+    W[K] = o.stiffness / std::pow(std::pow(op.weights[K], 1.0 / (o.dim - 1)), o.dim);
+  const RowMat& G = op.G;
+  const RowMat Gt = RowMat(G.transpose());
+  const RowMat GtG = RowMat(Gt * G);  // pattern of the augmentation (all multipliers)
+
+  // Pattern: K (this process's elements, any rows), then the contact rows
+  // this process owns; every entry of the matrix's life is in it.
+  PetscInt r0 = 0, r1 = 0;
+  OwnedMat A;
+  {
+    OwnedMat P;
+    check(MatCreate(comm, &P), "matrix");
+    check(MatSetType(P, MATPREALLOCATOR), "matrix");
+    check(MatSetSizes(P, PETSC_DECIDE, PETSC_DECIDE, N, N), "matrix");
+    check(MatSetUp(P), "matrix");
+    check(MatGetOwnershipRange(P, &r0, &r1), "matrix");
+    std::vector<PetscInt> cols;
+    std::vector<PetscScalar> zeros;
+    auto add_row = [&](PetscInt row) {
+      zeros.assign(cols.size(), 0.0);
+      check(MatSetValues(P, 1, &row, PetscInt(cols.size()), cols.data(), zeros.data(), INSERT_VALUES), "matrix");
+    };
+    for (PetscInt c = 0; c < n; ++c) {  // K symmetric: column c is row c
+      cols.assign(Kp.innerIndexPtr() + Kp.outerIndexPtr()[c], Kp.innerIndexPtr() + Kp.outerIndexPtr()[c + 1]);
+      if (!cols.empty()) add_row(c);
+    }
+    for (PetscInt row = r0; row < r1; ++row) {
+      cols.clear();
+      if (row < n) {
+        for (RowMat::InnerIterator it(GtG, row); it; ++it) cols.push_back(PetscInt(it.col()));
+        for (RowMat::InnerIterator it(Gt, row); it; ++it) cols.push_back(n + PetscInt(it.col()));
+      } else {
+        for (RowMat::InnerIterator it(G, row - n); it; ++it) cols.push_back(PetscInt(it.col()));
+        cols.push_back(row);
+      }
+      if (!cols.empty()) add_row(row);
+    }
+    check(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "matrix");
+    check(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "matrix");
+    check(MatCreate(comm, &A), "matrix");
+    check(MatSetType(A, MATAIJ), "matrix");
+    check(MatSetSizes(A, PETSC_DECIDE, PETSC_DECIDE, N, N), "matrix");
+    check(MatPreallocatorPreallocate(P, PETSC_TRUE, A), "matrix");
+  }
+  check(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
+  check(MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "matrix");
+  check(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "matrix");
+  {
+    std::vector<PetscInt> cols;
+    for (PetscInt c = 0; c < n; ++c) {
+      const int b = Kp.outerIndexPtr()[c], e = Kp.outerIndexPtr()[c + 1];
+      if (b == e) continue;
+      cols.assign(Kp.innerIndexPtr() + b, Kp.innerIndexPtr() + e);
+      check(MatSetValues(A, 1, &c, e - b, cols.data(), Kp.valuePtr() + b, ADD_VALUES), "matrix");
+    }
+    Kp = Eigen::SparseMatrix<double>();  // PETSc has it now
+    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
+    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
+  }
+  OwnedVec x, b, bf;
+  check(MatCreateVecs(A, &x, &b), "vector");
+  check(VecDuplicate(b, &bf), "vector");
+  {
+    std::vector<PetscInt> idx;
+    std::vector<PetscScalar> val;
+    for (PetscInt i = 0; i < n; ++i)
+      if (f_part[i] != 0.0) {
+        idx.push_back(i);
+        val.push_back(f_part[i]);
+      }
+    check(VecSet(bf, 0.0), "vector");
+    check(VecSetValues(bf, PetscInt(idx.size()), idx.data(), val.data(), ADD_VALUES), "vector");
+    check(VecAssemblyBegin(bf), "vector");
+    check(VecAssemblyEnd(bf), "vector");
+  }
+  const double assembly_s = since(t0);
+
+  // The two fields and the displacement field's near null space.
+  const PetscInt u0 = std::min(r0, n), u1 = std::min(r1, n), l0 = std::max(r0, n), l1 = std::max(r1, n);
+  OwnedIS is_u, is_l;
+  check(ISCreateStride(comm, u1 - u0, u0, 1, &is_u), "index set");
+  check(ISCreateStride(comm, l1 - l0, l0, 1, &is_l), "index set");
+  std::vector<OwnedVec> null_vecs(near_null.cols());
+  std::vector<Vec> null_raw;
+  for (Eigen::Index j = 0; j < near_null.cols(); ++j) {
+    Vec& v = null_vecs[j].p;
+    check(VecCreateMPI(comm, u1 - u0, n, &v), "vector");
+    PetscScalar* a = nullptr;
+    check(VecGetArray(v, &a), "vector");
+    for (PetscInt i = u0; i < u1; ++i) a[i - u0] = near_null(i, j);
+    check(VecRestoreArray(v, &a), "vector");
+    for (Vec w : null_raw) {  // Gram-Schmidt: PETSc wants them orthonormal
+      PetscScalar d = 0;
+      check(VecDot(v, w, &d), "vector");
+      check(VecAXPY(v, -d, w), "vector");
+    }
+    PetscReal norm = 0;
+    check(VecNormalize(v, &norm), "vector");
+    if (norm > 0) null_raw.push_back(v);
+  }
+  OwnedNullSpace near;
+  check(MatNullSpaceCreate(comm, PETSC_FALSE, PetscInt(null_raw.size()), null_raw.data(), &near), "null space");
+  check(PetscObjectCompose((PetscObject)(IS)is_u, "nearnullspace", (PetscObject)(MatNullSpace)near), "null space");
+
+  // The solver: MUMPS LDL^T unless the options say otherwise.
+  OwnedKSP ksp;
+  check(KSPCreate(comm, &ksp), "solver");
+  check(KSPSetOperators(ksp, A, A), "solver");
+  default_option("-ksp_type", "preonly");
+  default_option("-pc_type", "cholesky");
+  default_option("-pc_factor_mat_solver_type", "mumps");
+  // The symbolic analysis is reused over the active-set iterations while
+  // the pivots of the indefinite matrix move: room for delayed pivots
+  // (MUMPS's default +20 % ran out of memory on hertz3d, 2 processes).
+  default_option("-mat_mumps_icntl_14", "100");
+  // Tight enough that a Krylov solution matches the direct one to 1e-8.
+  check(KSPSetTolerances(ksp, 1e-11, 1e-50, PETSC_DEFAULT, 2000), "solver");
+  check(KSPSetFromOptions(ksp), "options", true);
+  PC pc = nullptr;
+  check(KSPGetPC(ksp, &pc), "solver");
+  KSPType ksp_type = nullptr;
+  PCType pc_type = nullptr;
+  check(KSPGetType(ksp, &ksp_type), "solver");
+  check(PCGetType(pc, &pc_type), "solver");
+  const bool fieldsplit = pc_type && std::string(pc_type) == PCFIELDSPLIT;
+  if (fieldsplit) {
+    check(PCFieldSplitSetIS(pc, "u", is_u), "options", true);
+    check(PCFieldSplitSetIS(pc, "lambda", is_l), "options", true);
+  }
+  const bool preonly = ksp_type && std::string(ksp_type) == KSPPREONLY;
+  if (!preonly) check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "solver");
+  check(VecSet(x, 0.0), "vector");
+
+  OwnedScatter to_all;
+  OwnedVec x_all;
+  check(VecScatterCreateToAll(x, &to_all, &x_all), "vector");
+
+  std::vector<char> active = initial_active_set(op, k, o.contact);
+  std::set<std::vector<char>> seen;
+  Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), u = Eigen::VectorXd::Zero(n);
+  RowMat aug_prev(n, n);  // G_A^T W G_A in the matrix now
+  double setup_s = 0, solve_s = 0;
+  for (int it = 0; it < o.contact.max_iterations; ++it) {
+    seen.insert(active);
+    sol.active_set_sizes.push_back(int(std::count(active.begin(), active.end(), 1)));
+    // Contact rows and columns for this active set (owned rows only).
+    auto ts = Clock::now();
+    Eigen::VectorXd wa(m), g0a(m);
+    for (PetscInt K = 0; K < m; ++K) {
+      wa[K] = active[K] ? W[K] : 0.0;
+      g0a[K] = active[K] ? op.g0[K] : 0.0;
+    }
+    const RowMat aug = RowMat(Gt * wa.asDiagonal() * G);
+    const RowMat delta = RowMat(aug - aug_prev);
+    std::vector<PetscInt> cols;
+    std::vector<PetscScalar> vals;
+    for (PetscInt row = l0; row < l1; ++row) {  // [G_A  D_I]
+      const PetscInt K = row - n;
+      cols.clear();
+      vals.clear();
+      for (RowMat::InnerIterator e(G, K); e; ++e) {
+        cols.push_back(PetscInt(e.col()));
+        vals.push_back(active[K] ? e.value() : 0.0);
+      }
+      cols.push_back(row);
+      vals.push_back(active[K] ? 0.0 : W[K] * op.weights[K] * op.weights[K]);
+      check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
+    }
+    for (PetscInt row = u0; row < u1; ++row) {  // G_A^T
+      cols.clear();
+      vals.clear();
+      for (RowMat::InnerIterator e(Gt, row); e; ++e) {
+        cols.push_back(n + PetscInt(e.col()));
+        vals.push_back(active[e.col()] ? e.value() : 0.0);
+      }
+      if (!cols.empty())
+        check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
+    }
+    check(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY), "matrix");
+    check(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY), "matrix");
+    for (PetscInt row = u0; row < u1; ++row) {  // + G_A^T W G_A - (the previous one)
+      cols.clear();
+      vals.clear();
+      for (RowMat::InnerIterator e(delta, row); e; ++e) {
+        cols.push_back(PetscInt(e.col()));
+        vals.push_back(e.value());
+      }
+      if (!cols.empty())
+        check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), ADD_VALUES), "matrix");
+    }
+    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
+    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
+    aug_prev = aug;
+    // Right-hand side [f - G_A^T W g0_A; -g0_A], and the start: the last
+    // solution with the inactive multipliers at zero.
+    const Eigen::VectorXd rhs_u = -(Gt * wa.cwiseProduct(g0a));
+    check(VecCopy(bf, b), "vector");
+    PetscScalar *pb = nullptr, *px = nullptr;
+    check(VecGetArray(b, &pb), "vector");
+    check(VecGetArray(x, &px), "vector");
+    for (PetscInt row = r0; row < r1; ++row) {
+      if (row < n) {
+        pb[row - r0] += rhs_u[row];
+      } else {
+        pb[row - r0] = -g0a[row - n];
+        if (!active[row - n]) px[row - r0] = 0.0;
+      }
+    }
+    check(VecRestoreArray(x, &px), "vector");
+    check(VecRestoreArray(b, &pb), "vector");
+    sol.schur_s += since(ts);  // (here: the contact rows' assembly)
+
+    ts = Clock::now();
+    check(KSPSetOperators(ksp, A, A), "solver");
+    check(KSPSetUp(ksp), "solver setup", it == 0);
+    setup_s += since(ts);
+    ts = Clock::now();
+    check(KSPSolve(ksp, b, x), "solve", it == 0);
+    solve_s += since(ts);
+    if (it == 0) refuse_unused_options();
+    KSPConvergedReason reason;
+    PetscInt iterations = 0;
+    check(KSPGetConvergedReason(ksp, &reason), "solver");
+    check(KSPGetIterationNumber(ksp, &iterations), "solver");
+    sol.linear_iterations.push_back(int(iterations));
+
+    check(VecScatterBegin(to_all, x, x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+    check(VecScatterEnd(to_all, x, x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+    const PetscScalar* pa = nullptr;
+    check(VecGetArrayRead(x_all, &pa), "vector");
+    u = Eigen::Map<const Eigen::VectorXd>(pa, n);
+    lambda = Eigen::Map<const Eigen::VectorXd>(pa + n, m);
+    check(VecRestoreArrayRead(x_all, &pa), "vector");
+    for (PetscInt K = 0; K < m; ++K)
+      if (!active[K]) lambda[K] = 0.0;
+    const Eigen::VectorXd gap = (op.g0 + G * u).cwiseQuotient(op.weights);
+    sol.weighted_gap = gap;
+    if (reason < 0) {
+      PCFailedReason pc_reason = PC_NOERROR;
+      PCGetFailedReason(pc, &pc_reason);
+      sol.status = fmt::format("failed: the PETSc linear solve did not converge in active-set iteration {} ({}{}, "
+                               "{} iterations)",
+                               it + 1, KSPConvergedReasons[reason],
+                               pc_reason != PC_NOERROR ? std::string(", ") + PCFailedReasons[pc_reason] : "",
+                               iterations);
+      break;
+    }
+    const std::vector<char> next = next_active_set(lambda, gap, active, k, o.contact.complementarity_scale);
+    if (next == active) {
+      sol.converged = true;
+      sol.status = "converged";
+      break;
+    }
+    if (seen.count(next)) {
+      sol.status = fmt::format("active set cycling after {} iterations", it + 1);
+      break;
+    }
+    active = next;
+  }
+  if (!sol.converged && sol.status.empty())
+    sol.status = fmt::format("active set not settled in {} iterations", o.contact.max_iterations);
+  sol.u = u;
+  sol.lambda = lambda;
+  sol.active = active;
+  sol.factorize_s = setup_s;
+  sol.iterations_s = solve_s;
+  sol.schur_s += assembly_s;
+  sol.linear_solver = fmt::format("{} + {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
+  if (pc_type && (std::string(pc_type) == PCLU || std::string(pc_type) == PCCHOLESKY)) {
+    MatSolverType st = nullptr;
+    if (!PCFactorGetMatSolverType(pc, &st) && st) sol.linear_solver += fmt::format(" ({})", st);
+  }
+  double mine = peak_resident_gib(), all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, comm);
+  sol.peak_resident_all_ranks_gib = all;
+  return sol;
+}
+
+}  // namespace igac

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# scripts/mpirun.sh N ARGS...   — runs `build/igac ARGS` on N MPI processes.
+#   scripts/mpirun.sh 2 run cases/hertz3d.toml --solver petsc
+# Open MPI refuses to start as root without --allow-run-as-root and more
+# processes than cores without --oversubscribe; both are set here (through
+# its environment, so a plain `mpirun` in the same shell works too), with one
+# thread per process for OpenMP and OpenBLAS unless the caller chose.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[ $# -ge 2 ] || { echo "usage: scripts/mpirun.sh N run CASE.toml --solver petsc [options]" >&2; exit 2; }
+n="$1"; shift
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}" OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}"
+exec mpirun -n "$n" "${IGAC_BINARY:-$here/build/igac}" "$@"
