@@ -214,12 +214,18 @@ Model build_model(const CaseSpec& spec) {
                                            db.value));
     }
   m.dofs = std::make_unique<DofMap>(m.body, dc);
-  m.material = LinearElastic(spec.E, spec.nu);
   // The case's law: the Newton path's material, and the stress of the
   // ParaView output in both paths (small strain: the linear law's P is sigma).
   // (A CaseSpec made in code may give only E and nu.)
   const MaterialParameters& given = spec.material_parameters;
   m.law = make_law(spec.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{spec.E, spec.nu, {}} : given);
+  // The small-deformation path assembles with the law's own elasticity at
+  // F = I (materials/hyperelastic.hpp): a law is written once.
+  try {
+    m.material = small_strain_material(*m.law, m.body.space_dim());
+  } catch (const MaterialError& e) {
+    throw InputError(fmt::format("{}: [material] {}", spec.path, e.what()));
+  }
 
   for (const ContactSpec& cs : spec.contacts) {
     const auto faces = find_faces(m, cs.face);

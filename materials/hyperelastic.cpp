@@ -164,4 +164,37 @@ TangentCheck check_law(const HyperelasticLaw& law, const Eigen::Matrix3d& F, dou
   return check_law_dim<3>(law, F, tolerance);
 }
 
+namespace {
+
+template <int dim>
+LinearElastic small_strain_material_dim(const HyperelasticLaw& law) {
+  const DimMatrix<dim> I = DimMatrix<dim>::Identity();
+  DimMatrix<dim> P;
+  TangentMatrix<dim> A;
+  if (!law.evaluate(I, P, &A)) throw MaterialError(law.name() + ": the law cannot be evaluated at F = I");
+  const double lambda = A(0, dim + 1), mu = A(1, 1);  // A_0011 and A_0101
+  const double scale = std::max(A.cwiseAbs().maxCoeff(), 1e-300);
+  if (P.cwiseAbs().maxCoeff() > 1e-10 * scale)
+    throw MaterialError(law.name() + ": the reference configuration is not stress-free (P(I) != 0)");
+  double worst = 0;
+  for (int i = 0; i < dim; ++i)
+    for (int J = 0; J < dim; ++J)
+      for (int k = 0; k < dim; ++k)
+        for (int L = 0; L < dim; ++L) {
+          const double c = lambda * (i == J) * (k == L) + mu * ((i == k) * (J == L) + (i == L) * (J == k));
+          worst = std::max(worst, std::abs(A(i * dim + J, k * dim + L) - c));
+        }
+  if (worst > 1e-8 * scale)
+    throw MaterialError(law.name() + ": its elasticity at F = I is not isotropic; the small-deformation path "
+                                     "assembles isotropic laws only");
+  // E and nu of (lambda, mu): E = mu (3 lambda + 2 mu) / (lambda + mu), nu = lambda / (2 (lambda + mu)).
+  return LinearElastic(mu * (3 * lambda + 2 * mu) / (lambda + mu), lambda / (2 * (lambda + mu)));
+}
+
+}  // namespace
+
+LinearElastic small_strain_material(const HyperelasticLaw& law, int dim) {
+  return dim == 2 ? small_strain_material_dim<2>(law) : small_strain_material_dim<3>(law);
+}
+
 }  // namespace igac

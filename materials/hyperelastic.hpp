@@ -207,6 +207,16 @@ std::span<const LawParameter> law_parameters(const std::string& name);
 // Hertz reference, the complementarity scale) use it.
 MaterialParameters small_strain_equivalent(const std::string& name, const MaterialParameters& parameters);
 
+// The small-strain material of a law, from the law itself: its first
+// elasticity tensor at F = I is the tensor C of linear elasticity
+// (Holzapfel, sec. 6.8).  For an isotropic law C_iJkL = lambda d_iJ d_kL +
+// mu (d_ik d_JL + d_iL d_Jk), and the small-deformation path assembles with
+// these lambda and mu (in `dim` dimensions: 2 is plane strain), so a law is
+// written once for both paths.  Throws MaterialError when the law is not
+// stress-free at F = I or its C is not isotropic (that path has no
+// anisotropic kernel).
+LinearElastic small_strain_material(const HyperelasticLaw& law, int dim);
+
 // Gradient checker (after Ceres' GradientChecker): compares the law's P with
 // central differences of its energy, and its A with central differences of
 // its P, at F.  Errors are max-norm differences relative to the stiffness

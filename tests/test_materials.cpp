@@ -204,6 +204,21 @@ TEST_P(MaterialLaw, LinearisesToLinearElasticityAtIdentity) {
   }
 }
 
+// The small-deformation path takes (lambda, mu) from the law's tangent at
+// F = I: for every law it is the (E, nu) the law declares it linearises to.
+TEST_P(MaterialLaw, SmallStrainMaterialIsTheLawsOwnElasticityAtIdentity) {
+  for (const MaterialParameters& mp : {kPaperMaterial, kStiffMaterial}) {
+    const MaterialParameters given = own_parameters(GetParam(), mp);
+    const auto law = make_law(GetParam(), given);
+    const MaterialParameters lin = small_strain_equivalent(GetParam(), given);
+    for (int dim : {2, 3}) {
+      const LinearElastic m = small_strain_material(*law, dim);
+      EXPECT_NEAR(m.E(), lin.E, 1e-10 * lin.E) << GetParam() << ", " << dim << "D";
+      EXPECT_NEAR(m.nu(), lin.nu, 1e-10) << GetParam() << ", " << dim << "D";
+    }
+  }
+}
+
 // Plane strain: the 2D law at F2 is the in-plane block of the 3D law at
 // diag(F2, 1) -- energy, P_iJ and A_iJkL for i, J, k, L in {0, 1}.
 TEST_P(MaterialLaw, PlaneStrainIsTheInPlaneBlockOf3D) {
@@ -503,6 +518,43 @@ TEST(MaterialTangentCheck, ReportNamesLawDimensionAndVerdict) {
 }
 
 // ---------------------------------------------------- registry, parameters
+
+// A law whose elasticity at F = I is not isotropic (linear elastic plus a
+// stiffening of the x direction): the small-deformation path refuses it.
+class AnisotropicLaw final : public HyperelasticLaw {
+ public:
+  std::string name() const override { return "anisotropic"; }
+  bool evaluate(const Eigen::Matrix2d& F, Eigen::Matrix2d& P, Eigen::Matrix4d* A) const override {
+    return add_fibre<2>(F, P, A);
+  }
+  bool evaluate(const Eigen::Matrix3d& F, Eigen::Matrix3d& P, Eigen::Matrix<double, 9, 9>* A) const override {
+    return add_fibre<3>(F, P, A);
+  }
+  double energy(const Eigen::Matrix2d&) const override { return 0; }
+  double energy(const Eigen::Matrix3d&) const override { return 0; }
+
+ private:
+  template <int dim>
+  bool add_fibre(const DimMatrix<dim>& F, DimMatrix<dim>& P, TangentMatrix<dim>* A) const {
+    if (!base_->evaluate(F, P, A)) return false;
+    P(0, 0) += F(0, 0) - 1;
+    if (A) (*A)(0, 0) += 1;
+    return true;
+  }
+  std::unique_ptr<HyperelasticLaw> base_ = make_law("linear_elastic", MaterialParameters{1, 0.3});
+};
+
+TEST(MaterialSmallStrain, AnisotropicLawIsRefused) {
+  const AnisotropicLaw law;
+  for (int dim : {2, 3}) {
+    try {
+      small_strain_material(law, dim);
+      ADD_FAILURE() << "accepted in " << dim << "D";
+    } catch (const MaterialError& e) {
+      EXPECT_NE(std::string(e.what()).find("not isotropic"), std::string::npos) << e.what();
+    }
+  }
+}
 
 TEST(MaterialRegistry, ListsEveryLawAndMakesIt) {
   const std::vector<std::string> expected{"linear_elastic", "neo_hookean", "saint_venant_kirchhoff", "mooney_rivlin"};
