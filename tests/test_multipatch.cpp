@@ -294,3 +294,25 @@ TEST(MultiPatchFiles, FoldedPatchIsAOneLineErrorNamingThePatch) {
 
 }  // namespace
 }  // namespace igac
+
+namespace igac {
+namespace {
+
+// Without the mid-plane symmetry: half the O-ring's cross-section as two
+// patches, a fixed plate below and a moving plate above, nothing else holding
+// it vertically.  The two plates balance, and each carries what the plate of
+// the symmetric quarter model (cases/oring.toml) carries.
+TEST(MultiPatchORing, TwoPlatesOnTwoPatchesEqualTheSymmetricQuarter) {
+  const RunResult half = run_case(read_case(kSource + "/cases/oring_two_plates.toml"));
+  const RunResult quarter = run_case(read_case(kSource + "/cases/oring.toml"));
+  ASSERT_EQ(half.status, "converged");
+  ASSERT_EQ(quarter.status, "converged");
+  ASSERT_EQ(half.reactions.size(), 2u);
+  const double F = quarter.reactions.front().normal_force;
+  EXPECT_GT(F, 0);
+  EXPECT_NEAR(half.reactions[0].normal_force, half.reactions[1].normal_force, 1e-8 * F);
+  EXPECT_NEAR(half.reactions[0].normal_force, F, 1e-6 * F);
+}
+
+}  // namespace
+}  // namespace igac
