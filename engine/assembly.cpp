@@ -1,5 +1,6 @@
 #include <algorithm>
 #include "engine/assembly.hpp"
+#include "engine/sparsity.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -108,55 +109,6 @@ PatchQuadrature face_quadrature(const Body& body, const PatchSide& side, int poi
   return body.side_quadrature(side, points);
 }
 
-namespace {
-
-// Sparsity pattern of the stiffness matrix in the free numbering: equations
-// are coupled when their control points share an element.  Values are zero.
-Eigen::SparseMatrix<double> stiffness_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
-  const int dim = dofs.dim(), n_free = dofs.num_free();
-  const int n_cp = dofs.num_dofs() / dim;
-  // node adjacency through elements (nodes = representative control points,
-  // identified by their first free equation or, if none, the cp itself)
-  std::vector<std::vector<int>> adj(n_cp);
-  std::vector<int> cps;
-  for (int e = e_begin; e < e_end; ++e) {
-    quad.control_points(e, cps);
-    for (int a : cps)
-      for (int b : cps) adj[a].push_back(b);
-  }
-  std::vector<std::vector<int>> cols(n_free);
-  for (int a = 0; a < n_cp; ++a) {
-    auto& v = adj[a];
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    for (int i = 0; i < dim; ++i) {
-      const int r = dofs.equation(a * dim + i);
-      if (r < 0) continue;
-      for (int b : v)
-        for (int j = 0; j < dim; ++j) {
-          const int c = dofs.equation(b * dim + j);
-          if (c >= 0) cols[r].push_back(c);
-        }
-    }
-    std::vector<int>().swap(v);
-  }
-  Eigen::SparseMatrix<double> K(n_free, n_free);
-  std::vector<int> nnz(n_free);
-  for (int r = 0; r < n_free; ++r) {
-    auto& v = cols[r];
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    nnz[r] = int(v.size());
-  }
-  K.reserve(nnz);
-  // symmetric: row r's columns are column r's rows
-  for (int r = 0; r < n_free; ++r)
-    for (int c : cols[r]) K.insert(c, r) = 0.0;
-  K.makeCompressed();
-  return K;
-}
-
-}  // namespace
 
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& mat, const Eigen::VectorXd& body_force,
@@ -170,9 +122,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
   const bool has_body_force = body_force.size() == dim && body_force.norm() > 0;
 
   LinearSystem s;
-  s.K = stiffness_pattern(quad, dofs, e_begin, e_end);
-  const int* outer = s.K.outerIndexPtr();
-  const int* inner = s.K.innerIndexPtr();
+  s.K = coupling_pattern(quad, dofs, e_begin, e_end);
   const int nnz = int(s.K.nonZeros());
 
   const int n_threads = omp_get_max_threads();
@@ -224,22 +174,14 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
       eq.resize(nd);
       for (int a = 0; a < nl; ++a)
         for (int i = 0; i < dim; ++i) eq[a * dim + i] = dofs.equation(ed.cps[a] * dim + i);
-      for (int c = 0; c < nd; ++c) {
-        if (eq[c] < 0) {  // prescribed: lift its value into the right-hand side
-          const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
-          if (g != 0.0)
-            for (int r = 0; r < nd; ++r)
-              if (eq[r] >= 0) rhs[tid][eq[r]] -= Ke(r, c) * g;
-          continue;
-        }
-        const int* first = inner + outer[eq[c]];
-        const int* past = inner + outer[eq[c] + 1];
-        for (int r = 0; r < nd; ++r) {
-          if (eq[r] < 0) continue;
-          const int* pos = std::lower_bound(first, past, eq[r]);
-          val[pos - inner] += Ke(r, c);
-        }
+      for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
+        if (eq[c] >= 0) continue;
+        const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
+        if (g != 0.0)
+          for (int r = 0; r < nd; ++r)
+            if (eq[r] >= 0) rhs[tid][eq[r]] -= Ke(r, c) * g;
       }
+      scatter_element_matrix(s.K, val, eq, Ke);
       if (has_body_force)
         for (int q = 0; q < nq; ++q)
           for (int a = 0; a < nl; ++a)

@@ -1,0 +1,74 @@
+#include "engine/sparsity.hpp"
+
+#include <stdexcept>
+
+namespace igac {
+
+// Sparsity pattern (free numbering, values zero): equations couple when their
+// control points share an element.  Built per node rather than per element
+// pair, so the temporary memory stays at the size of the result: a node is a
+// control point with its free equations, coincident control points of a
+// collapsed face (same equations) being one node, keyed by its first free
+// equation.  Symmetric, so column r's rows are row r's columns.
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  const int dim = dofs.dim(), n_free = dofs.num_free();
+  const int n_cp = dofs.num_dofs() / dim, n_el = e_end - e_begin, nl = quad.num_local();
+
+  // element -> control points, and control point -> elements (CSR)
+  std::vector<int> el_cps(size_t(n_el) * nl), cps;
+  std::vector<int> cp_start(n_cp + 1, 0);
+  for (int e = 0; e < n_el; ++e) {
+    quad.control_points(e_begin + e, cps);
+    if (int(cps.size()) != nl) throw std::logic_error("coupling pattern: elements of different sizes");
+    std::copy(cps.begin(), cps.end(), el_cps.begin() + size_t(e) * nl);
+    for (int a : cps) ++cp_start[a + 1];
+  }
+  for (int a = 0; a < n_cp; ++a) cp_start[a + 1] += cp_start[a];
+  std::vector<int> cp_els(cp_start[n_cp]), fill(cp_start.begin(), cp_start.end() - 1);
+  for (int e = 0; e < n_el; ++e)
+    for (int k = 0; k < nl; ++k) cp_els[fill[el_cps[size_t(e) * nl + k]]++] = e;
+
+  // node (first free equation) -> its control points
+  auto first_free = [&](int a) {
+    for (int i = 0; i < dim; ++i)
+      if (dofs.equation(a * dim + i) >= 0) return dofs.equation(a * dim + i);
+    return -1;
+  };
+  std::vector<std::vector<int>> node_cps(n_free);
+  for (int a = 0; a < n_cp; ++a)
+    if (const int r = first_free(a); r >= 0) node_cps[r].push_back(a);
+
+  // per node: the sorted free equations of every control point it meets
+  std::vector<std::vector<int>> cols(n_free);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int r = 0; r < n_free; ++r) {
+    auto& v = cols[r];
+    for (int a : node_cps[r])
+      for (int k = cp_start[a]; k < cp_start[a + 1]; ++k) {
+        const int* c = el_cps.data() + size_t(cp_els[k]) * nl;
+        for (int b = 0; b < nl; ++b)
+          for (int j = 0; j < dim; ++j)
+            if (const int q = dofs.equation(c[b] * dim + j); q >= 0) v.push_back(q);
+      }
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
+
+  // every free equation of a node has the node's columns
+  std::vector<int> node_of(n_free, -1);
+  for (int r = 0; r < n_free; ++r)
+    for (int a : node_cps[r])
+      for (int i = 0; i < dim; ++i)
+        if (const int q = dofs.equation(a * dim + i); q >= 0) node_of[q] = r;
+  Eigen::SparseMatrix<double> K(n_free, n_free);
+  std::vector<Eigen::Index> outer(n_free + 1, 0);
+  for (int q = 0; q < n_free; ++q) outer[q + 1] = outer[q] + Eigen::Index(cols[node_of[q]].size());
+  K.resizeNonZeros(outer[n_free]);
+  for (int q = 0; q <= n_free; ++q) K.outerIndexPtr()[q] = int(outer[q]);
+  for (int q = 0; q < n_free; ++q) std::copy(cols[node_of[q]].begin(), cols[node_of[q]].end(), K.innerIndexPtr() + outer[q]);
+  std::fill(K.valuePtr(), K.valuePtr() + outer[n_free], 0.0);
+  return K;
+}
+
+}  // namespace igac

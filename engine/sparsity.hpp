@@ -1,0 +1,53 @@
+// The sparsity pattern of the matrices of a body and the scatter of element
+// matrices into it: the one pattern and the one scatter of the linear
+// (assembly.cpp) and the total-Lagrangian (total_lagrangian.cpp) assembly.
+//
+// Pattern: free equations r and c are coupled when their control points
+// share an element; the matrix is compressed, column major, with sorted row
+// indices and zero values, and symmetric in structure.  A driver analyses it
+// once (symbolic factorisation) and every matrix assembled into it has the
+// same structure.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <vector>
+
+#include "engine/assembly.hpp"
+
+namespace igac {
+
+// The coupling pattern of elements [e_begin, e_end) of `quad` (e_end < 0:
+// to the last one) in the free numbering of `dofs` (n_free x n_free).
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
+                                             int e_end = -1);
+
+// values[k] += Ke(r, c) for every local row r and column c whose free
+// equations eq[r], eq[c] are >= 0 (prescribed ones, -1, are skipped), at the
+// entry (eq[r], eq[c]) of `pattern`, which must contain it.  The components
+// of a control point are consecutive equations, hence usually consecutive
+// entries of a column: a step forward is tried before a binary search.
+template <class ElementMatrix>
+void scatter_element_matrix(const Eigen::SparseMatrix<double>& pattern, double* values, const std::vector<int>& eq,
+                            const ElementMatrix& Ke) {
+  const int* outer = pattern.outerIndexPtr();
+  const int* inner = pattern.innerIndexPtr();
+  const int nd = int(eq.size());
+  for (int c = 0; c < nd; ++c) {
+    if (eq[c] < 0) continue;
+    const int* first = inner + outer[eq[c]];
+    const int* past = inner + outer[eq[c] + 1];
+    const int* pos = past;
+    for (int r = 0; r < nd; ++r) {
+      const int row = eq[r];
+      if (row < 0) continue;
+      if (pos + 1 < past && pos[1] == row)
+        ++pos;
+      else
+        pos = std::lower_bound(first, past, row);
+      values[pos - inner] += Ke(r, c);
+    }
+  }
+}
+
+}  // namespace igac
