@@ -18,6 +18,9 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include "app/case_run.hpp"
+#include "engine/assembly.hpp"
+#include "io/case_file.hpp"
 #include "tests/igac_process.hpp"
 
 namespace {
@@ -203,6 +206,28 @@ TEST_F(PetscPath, DirectSolverRefusesSeveralProcesses) {
   const auto o = run_mpi(2, "run " + c + " --out out", tmp.path());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("use --solver petsc"), std::string::npos) << o.output;
+}
+
+// What each process assembles: blocks of elements whose matrices and loads
+// sum to the whole body's (here three uneven blocks of a two-patch body
+// with a body force, so that the loads come from the elements too).
+TEST(ElementRange, BlocksSumToTheWhole) {
+  igac::CaseSpec spec = igac::read_case(kCases + "hertz2d_two_patches.toml");
+  const igac::Model m = igac::build_model(spec);
+  const Eigen::Vector2d g(0.1, -0.2);
+  const igac::LinearSystem whole = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g);
+  const int n_el = m.body.num_elements();
+  Eigen::SparseMatrix<double> K(whole.K.rows(), whole.K.cols());
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(whole.f.size());
+  for (const auto& [b, e] : {std::pair{0, n_el / 3}, std::pair{n_el / 3, n_el / 2}, std::pair{n_el / 2, -1}}) {
+    const igac::LinearSystem part = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g, {b, e});
+    K += part.K;
+    f += part.f;
+  }
+  // Sums of the same element matrices in another order: round-off only.
+  constexpr double kRoundOff = 1e-13;
+  EXPECT_LE((Eigen::SparseMatrix<double>(K - whole.K)).norm(), kRoundOff * whole.K.norm());
+  EXPECT_LE((f - whole.f).norm(), kRoundOff * whole.f.norm());
 }
 
 TEST(SolverSection, UnknownTypeIsAnInputError) {
