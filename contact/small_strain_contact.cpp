@@ -1,5 +1,7 @@
 #include "contact/small_strain_contact.hpp"
 
+#include "engine/bordered_spd.hpp"
+
 #include <chrono>
 #include <memory>
 #include <fmt/format.h>
@@ -180,20 +182,15 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     const Eigen::MatrixXd S_AA = schur.S_active(A);
     schur_in_loop += since(ts);
     const int na = int(A.size());
-    // [S_AA -G_A R; -R^T G_A^T 0] [lambda_A; c] = [g0_A + G_A K^-1 f; -R^T f]:
-    // S_AA is SPD while the active rows are independent (Cholesky, blocked),
-    // then the k x k system of the rigid amplitudes.
+    // [S_AA -G_A R; -R^T G_A^T 0] [lambda_A; c] = [g0_A + G_A K^-1 f; -R^T f]
     Eigen::VectorXd r1(na);
     Eigen::MatrixXd GRa(na, k);
     for (int i = 0; i < na; ++i) {
       GRa.row(i) = GR.row(A[i]);
       r1[i] = op.g0[A[i]] + Gvf[A[i]];
     }
-    Eigen::LLT<Eigen::MatrixXd> llt(S_AA);
-    const Eigen::MatrixXd W = na > 0 ? Eigen::MatrixXd(llt.solve(GRa)) : Eigen::MatrixXd(0, k);  // S^-1 G_A R
-    const Eigen::MatrixXd C = GRa.transpose() * W;                                                    // k x k
-    Eigen::FullPivLU<Eigen::MatrixXd> border(C);
-    if ((na > 0 && llt.info() != Eigen::Success) || border.rank() < k) {
+    BorderedSpdSolver dense;
+    if (!dense.compute(S_AA, GRa)) {
       sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions";
       sol.u = Eigen::VectorXd::Zero(n);
       sol.lambda = Eigen::VectorXd::Zero(m);
@@ -201,12 +198,8 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
       sol.weighted_gap = gap0;
       return sol;
     }
-    Eigen::VectorXd x(na);
-    if (na > 0) {
-      const Eigen::VectorXd Sr = llt.solve(r1);
-      if (k > 0) c = border.solve(Eigen::VectorXd(Rf - GRa.transpose() * Sr));  // R^T G_A^T lambda_A = R^T f
-      x = Sr + W * c;
-    }
+    Eigen::VectorXd x;
+    dense.solve(r1, Rf, x, c);
     lambda.setZero();
     for (int i = 0; i < na; ++i) lambda[A[i]] = x[i];
     // G u = G v_f - G K^-1 G_A^T lambda_A + G R c
