@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <fmt/format.h>
 #include <memory>
 #include <optional>
@@ -298,12 +297,6 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   SUNContext_Free(&ctx);
   summary.linear = solver.stats();
   summary.newton_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
-  if (std::getenv("IGAC_DEBUG")) {
-    const auto& l = summary.linear;
-    fmt::print(stderr, "newton {:.3f} s: residual {:.3f}, jacobian {:.3f}, factorize {:.3f}, schur {:.3f}, solve {:.3f}; "
-               "{} setups, {} solves, {} krylov iterations, {} fallbacks\n", summary.newton_seconds, summary.residual_seconds,
-               summary.jacobian_seconds, l.factorize_s, l.schur_s, l.solve_s, l.setups, l.solves, l.krylov_iterations, l.fallbacks);
-  }
   return summary;
 }
 
