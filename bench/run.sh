@@ -5,6 +5,9 @@
 #   measured in one process, for 2D Hertz from ~34k to ~530k dofs and the
 #   default 3D Hertz case (~32k dofs).  --quick stops at ~133k dofs in 2D.  Timings are the best of --repeat runs; the
 # machine's other load shows in them, the ratio much less.
+#   newton_vs_linear.csv: one large-deformation Newton iteration against one
+#   small-deformation solve of the same mesh (2D pressure and displacement
+#   cases, refine 0-1, --quick refine 0; 3D Neo-Hookean octant).
 #   stress_tests.csv / .md: bench/stress_test.py, numerical stability under
 #   stress (loads, degrees, grading, nu, load steps, initial gaps).
 #   work_precision.csv / *.png: bench/work_precision.py, error against time
@@ -27,6 +30,20 @@ SECONDS=0
 rm -f "$out/contact_vs_cholesky_2d.csv" "$out/contact_vs_cholesky_3d.csv"
 echo "wrote $out/contact_vs_cholesky.csv"
 echo "contact_vs_cholesky: ${SECONDS} s"
+
+t0=$SECONDS
+nrefines=(0 1)
+[ "${1:-}" = "--quick" ] && nrefines=(0)
+: > "$out/newton_vs_linear.csv"
+for c in hertz2d_neohookean_pressure hertz2d_neohookean_displacement hertz3d_neohookean; do
+  r=("${nrefines[@]}")
+  [ "$c" = hertz3d_neohookean ] && r=(0)
+  "$here/build/bench/newton_vs_linear" "$here/cases/$c.toml" "${r[@]}" --repeat 2 --csv "$out/nvl_$c.csv"
+  if [ -s "$out/newton_vs_linear.csv" ]; then tail -n +2 "$out/nvl_$c.csv"; else cat "$out/nvl_$c.csv"; fi >> "$out/newton_vs_linear.csv"
+  rm -f "$out/nvl_$c.csv"
+done
+echo "wrote $out/newton_vs_linear.csv"
+echo "newton_vs_linear: $((SECONDS - t0)) s"
 
 # Python benchmarks: Debian's interpreter has matplotlib.
 rc=0

@@ -14,11 +14,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->num_multipliers());
   m_ = offsets_.back();
   tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law);
-  const Eigen::SparseMatrix<double>& P = tl_->pattern();
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(P.nonZeros() + 4 * size_t(m_) * 64);
-  for (int c = 0; c < P.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(P, c); it; ++it) trip.emplace_back(it.row(), it.col(), 0.0);
+  modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
@@ -27,29 +23,10 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
       for (const ContactSide& side : c.face->sides)
         face_quadratures_.back().push_back(side.quadrature(c.face->quadrature_points()));
     }
-    ContactEval ce;
-    evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.body->num_control_points(), s_.body->space_dim()),
-                     Eigen::VectorXd::Zero(m_), false, ce);
-    for (const auto& g : ce.G) {
-      trip.emplace_back(g.col(), n_ + g.row(), 0.0);
-      trip.emplace_back(n_ + g.row(), g.col(), 0.0);
-    }
-    for (int K = 0; K < m_; ++K) trip.emplace_back(n_ + K, n_ + K, 0.0);
     // K_K on the reference faces: the small-deformation operator's weights
     for (size_t k = 0; k < s_.contacts.size(); ++k)
       weights_.segment(offsets_[k], offsets_[k + 1] - offsets_[k]) =
           assemble_weighted_gaps(*s_.dofs, *s_.contacts[k].face, *s_.contacts[k].obstacle).weights;
-  }
-  J_.resize(n_ + m_, n_ + m_);
-  J_.setFromTriplets(trip.begin(), trip.end());
-  J_.makeCompressed();
-  // where each K_T value sits in J_
-  kt_to_j_.resize(P.nonZeros());
-  for (int c = 0; c < P.outerSize(); ++c) {
-    const int* first = J_.innerIndexPtr() + J_.outerIndexPtr()[c];
-    const int* past = J_.innerIndexPtr() + J_.outerIndexPtr()[c + 1];
-    for (int k = P.outerIndexPtr()[c]; k < P.outerIndexPtr()[c + 1]; ++k)
-      kt_to_j_[k] = int(std::lower_bound(first, past, P.innerIndexPtr()[k]) - J_.innerIndexPtr());
   }
 }
 
@@ -146,30 +123,45 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   return true;
 }
 
-bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) {
+bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, BlockJacobian& J) {
   const Eigen::MatrixXd u = displacement(t, x);
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
-  Eigen::SparseMatrix<double>& K = tangent_;
-  if (K.nonZeros() == 0) K = tl_->pattern();  // filled in place from the second call on
-  if (!tl_->assemble(u, f_int, &K)) return false;
-  if (s_.follower_pressure)
-    for (const auto& p : s_.pressures) add_follower_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, u, f_ext, &K);
-  std::fill(J_.valuePtr(), J_.valuePtr() + J_.nonZeros(), 0.0);
-  for (int k = 0; k < K.nonZeros(); ++k) J_.valuePtr()[kt_to_j_[k]] = K.valuePtr()[k];
+  if (J.K.rows() != n_ || J.K.nonZeros() != tl_->pattern().nonZeros()) J.K = tl_->pattern();  // then filled in place
+  if (!tl_->assemble(u, f_int, &J.K)) return false;
+  J.B.resize(m_, n_);
+  J.s = Eigen::VectorXd::Zero(m_);
+  J.d = Eigen::VectorXd::Zero(m_);
+  J.rigid_modes = modes_.modes;
+  J.pinned = modes_.pinned;
   if (m_ > 0) {
     const Eigen::VectorXd lambda = x.tail(m_);
     ContactEval ce;
     evaluate_contact(t, u, lambda, true, ce);
     const auto active = decide_active(ce.gamma, lambda);
-    for (const auto& g : ce.G) {
-      J_.coeffRef(g.col(), n_ + g.row()) += g.value();
-      if (active[g.row()]) J_.coeffRef(n_ + g.row(), g.col()) += s_.complementarity_scale * g.value();
+    J.B.setFromTriplets(ce.G.begin(), ce.G.end());
+    for (int K = 0; K < m_; ++K) {
+      if (active[K]) J.s[K] = s_.complementarity_scale;
+      else J.d[K] = weights_[K];
     }
-    for (int Kk = 0; Kk < m_; ++Kk)
-      if (!active[Kk]) J_.coeffRef(n_ + Kk, n_ + Kk) = weights_[Kk];
-    for (const auto& c : ce.curvature) J_.coeffRef(c.row(), c.col()) += c.value();
+    for (const auto& c : ce.curvature) J.K.coeffRef(c.row(), c.col()) += c.value();  // face couplings: in the pattern
   }
-  J = J_;
+  // The follower load stiffness is the only unsymmetric part: the solver
+  // factorises K without it (symmetric, and K R = 0 for the translations
+  // that contact holds) and lets GMRES add it.
+  const bool follower = s_.follower_pressure && !s_.pressures.empty();
+  if (follower) {
+    if (J.K_factor.nonZeros() != J.K.nonZeros()) J.K_factor = J.K;
+    else std::copy(J.K.valuePtr(), J.K.valuePtr() + J.K.nonZeros(), J.K_factor.valuePtr());
+    for (const auto& p : s_.pressures) add_follower_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, u, f_ext, &J.K);
+  } else {
+    J.K_factor.resize(0, 0);
+  }
+  return true;
+}
+
+bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) {
+  if (!block_jacobian(t, x, blocks_)) return false;
+  J = assemble_full(blocks_);
   return true;
 }
 

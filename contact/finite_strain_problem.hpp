@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "contact/weighted_gap.hpp"
+#include "engine/linear_static.hpp"
 #include "engine/load_stepping.hpp"
 #include "engine/total_lagrangian.hpp"
 #include "materials/hyperelastic.hpp"
@@ -56,6 +57,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
   int num_multipliers() const { return m_; }
   bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override;
   bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) override;
+  // K = K_T + load stiffness + the obstacle's curvature term (the TL
+  // pattern), B = dgamma/du (m x n), s = c on active rows, d = K_K on
+  // inactive ones, and the body's rigid motions (held by contact).
+  bool block_jacobian(double t, const Eigen::VectorXd& x, BlockJacobian& J) override;
   int active_set_size(const Eigen::VectorXd& x) const override;
   std::vector<char> active_set(const Eigen::VectorXd& x) const override;
   double force_scale(double t, const Eigen::VectorXd& x) override;
@@ -84,11 +89,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
   int n_ = 0, m_ = 0;
   std::unique_ptr<TotalLagrangianAssembler> tl_;
   Eigen::VectorXd weights_;          // K_K
-  Eigen::SparseMatrix<double> J_;    // fixed pattern of the Newton matrix
-  Eigen::SparseMatrix<double> tangent_;  // K_T, reused across calls
+  RigidModes modes_;                 // of the free displacements
+  BlockJacobian blocks_;             // jacobian()'s, reused across calls
   std::vector<std::vector<PatchQuadrature>> face_quadratures_;  // per contact, per side: tabulated once
   std::vector<int> offsets_;         // first multiplier of each contact
-  std::vector<int> kt_to_j_;         // value index of K_T entry k in J_
   mutable std::vector<char> last_active_;
 };
 

@@ -4,15 +4,24 @@
 // Each active-set iteration is one linear solve; the iteration stops when the
 // active set no longer changes.
 //
-// How it stays cheap: K is factorised once (CHOLMOD) with the contact-face
-// equations ordered last, so the dense trailing block L_TT of the factor
-// gives the Schur complement of every multiplier at once,
-// S = G K^-1 G^T = Y^T Y with Y = L_TT^-1 (P G^T)_T — a dense triangular
-// solve of the size of the face.  Every active-set iteration then works on
-// S restricted to the active multipliers, a small dense matrix.  (Should
-// the ordering not keep the face apart, columns of S come from sparse
-// solves, computed only when a multiplier first becomes active.)  A body
-// held only by contact has rigid motions R
+// How it stays cheap: K is factorised once (CHOLMOD, P K P^T = L L^T) and
+// every active-set iteration works on the Schur complement of the ACTIVE
+// multipliers only, S_AA = G_A K^-1 G_A^T = Y_A^T Y_A, a small dense matrix,
+// with Y_A = L^-1 P G_A^T.  The contact-face equations are ordered last
+// (constrained AMD, or nested dissection with the face moved last), so Y_A
+// lives in the factor's trailing block: the column of a multiplier costs a
+// dense triangular solve of the size of the face, computed once, when the
+// multiplier first becomes active, in one blocked pass per iteration
+// (engine/cholesky.hpp, forward()).  The weighted gaps of all multipliers
+// come from one backward solve on the same block per iteration,
+// G K^-1 (f - G_A^T lambda_A) = G P^T L^-T (L^-1 P f - Y_A lambda_A).
+// Without the face-last ordering (face_last = false) the same code works on
+// the reach of the contact zone in CHOLMOD's own ordering: less fill in the
+// factor, but in 3D the reach crosses the top separators, dense blocks far
+// larger than the face (hertz3d: 17k rows against 1.1k), so the columns cost
+// more than the fill saves.
+//
+// A body held only by contact has rigid motions R
 // (K R = 0): they are pinned while K is factorised and their amplitudes c
 // enter the dense system with the equilibrium rows R^T (f - G^T lambda) = 0,
 // so the contact force balances the load to round-off:
@@ -37,10 +46,8 @@ struct ContactSolverOptions {
   double complementarity_scale = 1.0;
   // Initial active set: weighted initial gap <= this (the paper's 1e-9).
   double initial_gap_tolerance = 1e-9;
-  // Schur complement from the factor's trailing block (false: one sparse
-  // solve per multiplier that becomes active, the fallback used when the
-  // ordering cannot keep the face apart).
-  bool schur_from_factor = true;
+  // Order the contact-face equations last (see above).
+  bool face_last = true;
 };
 
 struct ContactSolution {
@@ -52,7 +59,8 @@ struct ContactSolution {
   bool converged = false;
   std::string status;
   double factorize_s = 0, schur_s = 0, iterations_s = 0;
-  int schur_columns = 0;             // sparse solves spent on S
+  int schur_columns = 0;             // columns of L^-1 P G^T computed (multipliers ever active)
+  int reach_rows = 0;                // rows of the contact face's reach in the factor
   // Iterative linear solvers (contact/petsc_contact): what ran, and the
   // Krylov iterations of each active-set iteration's solve.
   std::string linear_solver;

@@ -192,15 +192,21 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
   s.min_det_J = *std::min_element(min_det.begin(), min_det.end());
   if (!(s.min_det_J > 0))
     throw std::runtime_error(fmt::format("the geometry map folds: det J = {:.3g} at a Gauss point", s.min_det_J));
+  // The team may have had fewer threads than omp_get_max_threads() (dynamic
+  // threads on a loaded machine): sum the copies that were filled.
+  std::vector<const double*> parts;
+  for (const auto& v : values)
+    if (!v.empty()) parts.push_back(v.data());
   double* out = s.K.valuePtr();
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < nnz; ++k) {
     double v = 0;
-    for (int t = 0; t < n_threads; ++t) v += values[t][k];
+    for (const double* p : parts) v += p[k];
     out[k] = v;
   }
   s.f = Eigen::VectorXd::Zero(n_free);
-  for (const auto& r : rhs) s.f += r;
+  for (const auto& r : rhs)
+    if (r.size() == n_free) s.f += r;
   return s;
 }
 

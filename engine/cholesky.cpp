@@ -34,9 +34,9 @@ cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& A) {
 struct SparseCholesky::Impl {
   cholmod_common c;
   cholmod_factor* L = nullptr;
-  Eigen::MatrixXd L_TT;       // dense trailing block of the factor
   std::vector<int> position;  // position[original equation] in the factor
-  int t0 = 0;                 // first trailing position
+  std::vector<int> super_of;  // supernode of each factor column
+  std::vector<int> parent;    // supernodal elimination tree (-1: a root)
   Impl() { cholmod_start(&c); }
   ~Impl() {
     if (L) cholmod_free_factor(&L, &c);
@@ -92,10 +92,23 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A_in, const std:
   const int* P = static_cast<const int*>(I.L->Perm);
   I.position.assign(n, 0);
   for (int k = 0; k < n; ++k) I.position[P[k]] = k;
-  I.t0 = n;
-  for (int e : last) I.t0 = std::min(I.t0, I.position[e]);
-  trailing_size_ = last.empty() ? 0 : n - I.t0;
   I.c.nmethods = 0;
+  // Supernodal elimination tree: the parent of a supernode holds its first
+  // off-diagonal row.
+  const int* super = static_cast<const int*>(I.L->super);
+  const int* pi = static_cast<const int*>(I.L->pi);
+  const int* ls = static_cast<const int*>(I.L->s);
+  const int ns = int(I.L->nsuper);
+  I.super_of.assign(n, 0);
+  I.parent.assign(ns, -1);
+  for (int k = 0; k < ns; ++k)
+    for (int j = super[k]; j < super[k + 1]; ++j) I.super_of[j] = k;
+  for (int k = 0; k < ns; ++k) {
+    const int nscol = super[k + 1] - super[k];
+    int first = n;
+    for (int r = pi[k] + nscol; r < pi[k + 1]; ++r) first = std::min(first, ls[r]);
+    if (first < n) I.parent[k] = I.super_of[first];
+  }
   analyze_s_ = since(t0);
 }
 
@@ -112,26 +125,6 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A_in) {
         "the stiffness matrix is not positive definite: the body can move rigidly "
         "(add Dirichlet conditions or contact) or the data are singular");
   if (I.c.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorisation failed (status {})", I.c.status));
-  // Trailing block of the supernodal factor, dense.
-  const int n = int(I.L->n), t = n - I.t0;
-  I.L_TT.setZero(t, t);
-  if (t > 0) {
-    const int* super = static_cast<const int*>(I.L->super);
-    const int* pi = static_cast<const int*>(I.L->pi);
-    const int* px = static_cast<const int*>(I.L->px);
-    const int* s = static_cast<const int*>(I.L->s);
-    const double* x = static_cast<const double*>(I.L->x);
-    for (size_t k = 0; k < I.L->nsuper; ++k) {
-      const int k1 = super[k], k2 = super[k + 1];
-      if (k2 <= I.t0) continue;
-      const int nsrow = pi[k + 1] - pi[k];
-      for (int j = std::max(k1, I.t0); j < k2; ++j)
-        for (int r = j - k1; r < nsrow; ++r) {
-          const int row = s[pi[k] + r];
-          I.L_TT(row - I.t0, j - I.t0) = x[px[k] + r + (j - k1) * nsrow];
-        }
-    }
-  }
   factorize_s_ = since(t0);
 }
 
@@ -153,18 +146,120 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   return X;
 }
 
-Eigen::MatrixXd SparseCholesky::half_solve_trailing(const Eigen::SparseMatrix<double>& C) const {
-  auto& I = *impl_;
-  const int t = int(I.L_TT.rows());
-  Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(t, C.cols());
+int SparseCholesky::position(int equation) const { return impl_->position[equation]; }
+int SparseCholesky::size() const { return impl_->L ? int(impl_->L->n) : 0; }
+
+SparseCholesky::Reach SparseCholesky::reach(const std::vector<int>& equations) const {
+  const auto& I = *impl_;
+  if (!I.L) throw std::logic_error("SparseCholesky::reach before analyze");
+  std::vector<char> in(I.parent.size(), 0);
+  Reach R;
+  for (int e : equations)
+    for (int k = I.super_of[I.position[e]]; k >= 0 && !in[k]; k = I.parent[k]) {
+      in[k] = 1;
+      R.supernodes.push_back(k);
+    }
+  std::sort(R.supernodes.begin(), R.supernodes.end());
+  const int* super = static_cast<const int*>(I.L->super);
+  for (int k : R.supernodes)
+    for (int j = super[k]; j < super[k + 1]; ++j) R.rows.push_back(j);
+  return R;
+}
+
+namespace {
+// One supernode of the numeric factor: its columns k1..k2-1, its rows
+// (the first nscol are the columns themselves) and the dense nsrow x nscol
+// block, column major.
+struct Supernode {
+  int k1, nscol, nsrow;
+  const int* rows;
+  const double* x;
+};
+Supernode supernode(const cholmod_factor* L, int k) {
+  const int* super = static_cast<const int*>(L->super);
+  const int* pi = static_cast<const int*>(L->pi);
+  const int* px = static_cast<const int*>(L->px);
+  return {super[k], super[k + 1] - super[k], pi[k + 1] - pi[k], static_cast<const int*>(L->s) + pi[k],
+          static_cast<const double*>(L->x) + px[k]};
+}
+using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+}  // namespace
+
+Eigen::MatrixXd SparseCholesky::forward(const Reach& R, const Eigen::SparseMatrix<double>& C) const {
+  const auto& I = *impl_;
+  if (!I.L || !I.L->x) throw std::logic_error("SparseCholesky::forward before factorize");
+  std::vector<int> local(I.L->n, -1);
+  for (size_t i = 0; i < R.rows.size(); ++i) local[R.rows[i]] = int(i);
+  Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(Eigen::Index(R.rows.size()), C.cols());
   for (int j = 0; j < C.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(C, j); it; ++it) {
-      const int pos = I.position[it.row()];
-      if (pos < I.t0) throw std::logic_error("half_solve_trailing: a column reaches outside the trailing block");
-      Y(pos - I.t0, j) = it.value();
+      const int l = local[I.position[it.row()]];
+      if (l < 0) throw std::logic_error("SparseCholesky::forward: a column reaches outside the reach");
+      Y(l, j) = it.value();
     }
-  I.L_TT.triangularView<Eigen::Lower>().solveInPlace(Y);
+  Eigen::MatrixXd W;
+  for (int k : R.supernodes) {
+    const Supernode sn = supernode(I.L, k);
+    const Block Lk(sn.x, sn.nsrow, sn.nscol, Eigen::OuterStride<>(sn.nsrow));
+    auto Xk = Y.middleRows(local[sn.k1], sn.nscol);
+    Lk.topRows(sn.nscol).triangularView<Eigen::Lower>().solveInPlace(Xk);
+    const int below = sn.nsrow - sn.nscol;
+    if (below == 0) continue;
+    W.noalias() = Lk.bottomRows(below) * Xk;
+    for (int r = 0; r < below; ++r) Y.row(local[sn.rows[sn.nscol + r]]) -= W.row(r);
+  }
   return Y;
+}
+
+Eigen::VectorXd SparseCholesky::backward(const Reach& R, const Eigen::VectorXd& y) const {
+  const auto& I = *impl_;
+  if (!I.L || !I.L->x) throw std::logic_error("SparseCholesky::backward before factorize");
+  std::vector<int> local(I.L->n, -1);
+  for (size_t i = 0; i < R.rows.size(); ++i) local[R.rows[i]] = int(i);
+  Eigen::VectorXd x = y, xb;
+  for (auto k = R.supernodes.rbegin(); k != R.supernodes.rend(); ++k) {
+    const Supernode sn = supernode(I.L, *k);
+    const Block Lk(sn.x, sn.nsrow, sn.nscol, Eigen::OuterStride<>(sn.nsrow));
+    auto Xk = x.segment(local[sn.k1], sn.nscol);
+    const int below = sn.nsrow - sn.nscol;
+    if (below > 0) {
+      xb.resize(below);
+      for (int r = 0; r < below; ++r) xb[r] = x[local[sn.rows[sn.nscol + r]]];
+      Xk.noalias() -= Lk.bottomRows(below).transpose() * xb;
+    }
+    Lk.topRows(sn.nscol).triangularView<Eigen::Lower>().transpose().solveInPlace(Xk);
+  }
+  return x;
+}
+
+namespace {
+Eigen::VectorXd cholmod_system(int sys, cholmod_factor* L, const Eigen::VectorXd& b, cholmod_common* c) {
+  cholmod_dense d{};
+  d.nrow = b.size();
+  d.ncol = 1;
+  d.nzmax = b.size();
+  d.d = b.size();
+  d.x = const_cast<double*>(b.data());
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* x = cholmod_solve(sys, L, &d, c);
+  if (!x) throw std::runtime_error("CHOLMOD solve failed");
+  Eigen::VectorXd out = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(x->x), b.size());
+  cholmod_free_dense(&x, c);
+  return out;
+}
+}  // namespace
+
+Eigen::VectorXd SparseCholesky::forward_full(const Eigen::VectorXd& b) const {
+  auto& I = *impl_;
+  if (!I.L || !I.L->x) throw std::logic_error("SparseCholesky::forward_full before factorize");
+  return cholmod_system(CHOLMOD_L, I.L, cholmod_system(CHOLMOD_P, I.L, b, &I.c), &I.c);
+}
+
+Eigen::VectorXd SparseCholesky::backward_full(const Eigen::VectorXd& y) const {
+  auto& I = *impl_;
+  if (!I.L || !I.L->x) throw std::logic_error("SparseCholesky::backward_full before factorize");
+  return cholmod_system(CHOLMOD_Pt, I.L, cholmod_system(CHOLMOD_Lt, I.L, y, &I.c), &I.c);
 }
 
 }  // namespace igac

@@ -3,13 +3,21 @@
 // libblas.so.3 points to, OpenBLAS when installed).  One object: analyze()
 // once per sparsity pattern, factorize() per matrix, then solves.
 //
-// Equations can be ordered last (CAMD constrained ordering).  Then for any
-// C whose rows are zero outside those equations,
-//     C^T A^{-1} C = Y^T Y,   Y = L_TT^{-1} (P C)_T,
-// where T is the trailing block of the factor: the contact solver gets the
-// Schur complement G K^{-1} G^T of all multipliers from a dense triangular
-// solve of the size of the contact face, instead of one sparse solve per
-// multiplier.
+// Equations can be ordered last (constrained AMD, or nested dissection with
+// them moved last): they then form the trailing block of the factor.
+//
+// With any ordering, a right-hand
+// side b that is zero outside a few equations gives L^{-1} P b that is zero
+// outside the REACH of those equations: their supernodes and all ancestors
+// in the supernodal elimination tree (Gilbert & Peierls; Davis, Direct
+// Methods for Sparse Linear Systems, ch. 3).  forward() computes Y = L^{-1}
+// P C only on such a reach, as dense blocks (one triangular solve and one
+// product per supernode, all columns at once); backward() computes
+// x = L^{-T} y on a reach from y on the same reach, which is all a caller
+// needs for the entries of K^{-1} b at the reach's equations.  The contact
+// solvers form G_A K^{-1} G_A^T = Y_A^T Y_A for the active multipliers only;
+// with the contact face ordered last, the reach of any face equation is the
+// trailing block (a dense triangle of the size of the face).
 #pragma once
 
 #include <Eigen/Dense>
@@ -34,11 +42,26 @@ class SparseCholesky {
   // std::runtime_error when A is not positive definite.
   void factorize(const Eigen::SparseMatrix<double>& A);
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
-  // Y = L_TT^{-1} (P C)_T (see above).  Throws std::logic_error when C has a
-  // nonzero outside the trailing block.
-  Eigen::MatrixXd half_solve_trailing(const Eigen::SparseMatrix<double>& C) const;
-  // Size of the trailing block that holds the equations ordered last.
-  int trailing_size() const { return trailing_size_; }
+  // An ancestor-closed set of supernodes and their rows (factor positions,
+  // ascending; a supernode's columns are consecutive rows).
+  struct Reach {
+    std::vector<int> supernodes;  // ascending = children before parents
+    std::vector<int> rows;
+  };
+  // The reach of the given (original) equations.
+  Reach reach(const std::vector<int>& equations) const;
+  // Y = (L^{-1} P C) restricted to reach.rows (rows of Y in that order).
+  // Throws std::logic_error when C has a nonzero outside the reach.
+  Eigen::MatrixXd forward(const Reach& reach, const Eigen::SparseMatrix<double>& C) const;
+  // x = L^{-T} y restricted to reach.rows, from y given on reach.rows.
+  Eigen::VectorXd backward(const Reach& reach, const Eigen::VectorXd& y) const;
+  // Factor position of an original equation; the number of equations.
+  int position(int equation) const;
+  int size() const;
+  // L^{-1} P b in factor positions (all n), and P^T L^{-T} y back in the
+  // original numbering: the two halves of solve().
+  Eigen::VectorXd forward_full(const Eigen::VectorXd& b) const;
+  Eigen::VectorXd backward_full(const Eigen::VectorXd& y) const;
 
   bool analyzed() const;
   double analyze_seconds() const { return analyze_s_; }
@@ -48,7 +71,6 @@ class SparseCholesky {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  int trailing_size_ = 0;
   double analyze_s_ = 0, factorize_s_ = 0;
 };
 

@@ -6,10 +6,14 @@
 // part of x and its active set is decided inside the residual: a semismooth
 // Newton method), so engine/ never includes contact/.
 //
-// KINSOL runs Newton (with or without its line search) through a direct
-// linear solver that wraps UMFPACK (the saddle-point Jacobian of contact is
-// indefinite and, with the active-set rows, unsymmetric); the symbolic
-// analysis is done once and reused for every iteration and load step.
+// KINSOL runs Newton (with or without its line search) through a custom
+// direct linear solver, SaddleSolver (engine/saddle_solver.hpp): the
+// problem hands over its Jacobian in blocks (the displacement block K, the
+// constraint rows), K's symmetric part is factorised by CHOLMOD with the
+// symbolic analysis done once for the whole run, the active multipliers are
+// eliminated through a small dense Schur complement, and GMRES takes care of
+// K's skew part (a follower load); UMFPACK on the whole matrix is the
+// fallback when K's symmetric part is not positive definite.
 //
 // Steps: the case gives a number of steps (or a first increment).  A step
 // that fails — no convergence within the iteration limit, an inadmissible
@@ -21,6 +25,8 @@
 
 #include <Eigen/Sparse>
 #include <functional>
+
+#include "engine/saddle_solver.hpp"
 #include <string>
 #include <vector>
 
@@ -34,6 +40,14 @@ class NonlinearProblem {
   virtual bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) = 0;
   // dR/dx at (x; t), always with the same pattern.  False: inadmissible.
   virtual bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) = 0;
+  // The same in blocks (engine/saddle_solver.hpp), what the driver uses.
+  // The default wraps jacobian(): K is the whole matrix, no constraints.
+  virtual bool block_jacobian(double t, const Eigen::VectorXd& x, BlockJacobian& J) {
+    J.B.resize(0, size());
+    J.s.resize(0);
+    J.d.resize(0);
+    return jacobian(t, x, J.K);
+  }
   // Size of the contact active set at x (0 without contact), for reports.
   virtual int active_set_size(const Eigen::VectorXd& x) const { return 0; }
   // A fingerprint of the active set at x, to detect cycling.
@@ -68,6 +82,8 @@ struct LoadSteppingSummary {
   std::string status = "converged";
   std::vector<LoadStepRecord> steps;
   double newton_seconds = 0;
+  double residual_seconds = 0, jacobian_seconds = 0;  // inside newton_seconds
+  SaddleSolverStats linear;                           // the linear solves, ditto
 };
 
 // Runs from x (the state at t = 0) to t = 1; x holds the last converged

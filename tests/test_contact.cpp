@@ -558,11 +558,12 @@ TEST(ContactHertzEquilibrium, ShiftedObstacleGivesTheSamePressure) {
   }
 }
 
-TEST(ContactHertzEquilibrium, SchurFromTheFactorEqualsColumnBySolves) {
-  // The two ways of forming S = G K^-1 G^T (dense trailing block of the
-  // factor, or one sparse solve per active multiplier) solve the same
-  // problem: same active set, multipliers equal to round-off.
-  constexpr double kRoundOff = 1e-10;  // relative to p0; both paths are direct
+TEST(ContactHertzEquilibrium, FaceLastOrderingEqualsFreeOrdering) {
+  // S_AA = G_A K^-1 G_A^T from the trailing block of a face-last factor or
+  // from the reach of the contact zone in CHOLMOD's own ordering: the same
+  // problem, same active sets, multipliers and displacements equal to
+  // round-off; only the multipliers ever active get a column.
+  constexpr double kRoundOff = 1e-10;  // relative to p0 (and to |u|); both paths are direct
   const HertzRun run = run_hertz2d();
   const NurbsPatch& patch = run.model.body.patch(0);
   const double P = 0.003;
@@ -574,13 +575,19 @@ TEST(ContactHertzEquilibrium, SchurFromTheFactorEqualsColumnBySolves) {
   opt.complementarity_scale = 1.0 / run.model.mesh_size;
   SparseCholesky c1, c2;
   const ContactSolution a = solve_small_strain_contact(sys.K, sys.f, op, modes, c1, opt);
-  opt.schur_from_factor = false;
+  opt.face_last = false;
   const ContactSolution b = solve_small_strain_contact(sys.K, sys.f, op, modes, c2, opt);
   ASSERT_TRUE(a.converged && b.converged);
-  EXPECT_EQ(a.schur_columns, 0);
-  EXPECT_GT(b.schur_columns, 0);
+  for (const ContactSolution* s : {&a, &b}) {
+    EXPECT_LE(s->schur_columns, op.G.rows());
+    EXPECT_GE(s->schur_columns, std::count(s->active.begin(), s->active.end(), 1));
+  }
+  EXPECT_EQ(a.schur_columns, b.schur_columns);
+  EXPECT_LT(a.reach_rows, b.reach_rows);  // face last: the face's reach is the face
   EXPECT_TRUE(a.active == b.active);
+  EXPECT_EQ(a.active_set_sizes, b.active_set_sizes);
   EXPECT_LT((a.lambda - b.lambda).cwiseAbs().maxCoeff(), kRoundOff * hertz_cylinder(1.0, P, 1.0, 0.3).p0);
+  EXPECT_LT((a.u - b.u).cwiseAbs().maxCoeff(), kRoundOff * a.u.cwiseAbs().maxCoeff());
 }
 
 }  // namespace

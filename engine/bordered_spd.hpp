@@ -1,0 +1,33 @@
+// The small dense system both contact solvers end with: the Schur complement
+// S of the active multipliers bordered by the rigid motions they must hold,
+//     [ S     -B ] [x]   [ r ]        S: n x n, SPD on the null space of B^T
+//     [ -B^T   0 ] [c] = [ -q ]       B: n x k, full column rank (k <= 6)
+// (S = G_A K^-1 G_A^T, B = G_A R, q = R^T f: the multipliers balance the
+// load along every rigid motion).  Null-space method (Nocedal & Wright,
+// Numerical Optimization, sec. 16.2): B = Q [R1; 0], x = Q [w; mu] with
+// R1^T w = q, then (Q^T S Q)_22 mu = (Q^T r)_2 - (Q^T S Q)_21 w by Cholesky,
+// and c from the first k rows.  The balance B^T x = q holds to round-off
+// whatever the size of c (eliminating c through S^-1 B instead loses it to
+// cancellation when the load is tiny against the initial gaps), and the
+// Cholesky factor is blocked, unlike a full-pivoting LU of the whole system.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace igac {
+
+class BorderedSpdSolver {
+ public:
+  // False when B does not have full column rank (the multipliers cannot
+  // hold the rigid motions) or S is not positive definite on its null space.
+  bool compute(const Eigen::MatrixXd& S, const Eigen::MatrixXd& B);
+  void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& q, Eigen::VectorXd& x, Eigen::VectorXd& c) const;
+
+ private:
+  int n_ = 0, k_ = 0;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
+  Eigen::MatrixXd R1_, T_;  // T = Q^T S Q
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
+}  // namespace igac

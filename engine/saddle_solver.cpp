@@ -1,0 +1,338 @@
+#include "engine/saddle_solver.hpp"
+
+#include <Eigen/UmfPackSupport>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/bordered_spd.hpp"
+#include "engine/cholesky.hpp"
+
+namespace igac {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// GMRES on the preconditioned operator: restarted after kRestart vectors, at
+// most kMaxIterations in all (the fallback takes over beyond).
+constexpr int kRestart = 30;
+constexpr int kMaxIterations = 90;
+// Normwise backward error |J x - b| / (|J| |x| + |b|) (infinity norms) a
+// solve must reach: well below what Newton needs (its relative residual
+// tolerance is 1e-9), well above what a direct solve reaches (~1e-16).
+constexpr double kBackwardError = 1e-13;
+}  // namespace
+
+Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {
+  const int n = int(J.K.rows()), m = int(J.B.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(J.K.nonZeros() + 2 * J.B.nonZeros() + m);
+  for (int c = 0; c < J.K.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (int k = 0; k < m; ++k) {
+    for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
+      t.emplace_back(it.col(), n + k, it.value());
+      t.emplace_back(n + k, it.col(), J.s[k] * it.value());
+    }
+    t.emplace_back(n + k, n + k, J.d[k]);
+  }
+  Eigen::SparseMatrix<double> A(n + m, n + m);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+struct SaddleSolver::Impl {
+  const BlockJacobian* J = nullptr;
+  int n = 0, m = 0, k = 0;
+  // the symmetric part, in K's pattern, and where K's transpose entries sit
+  Eigen::SparseMatrix<double> Ks;
+  std::vector<int> transpose_of;
+  bool symmetric_pattern = false;
+  std::unique_ptr<SparseCholesky> chol_owner = std::make_unique<SparseCholesky>();
+  SparseCholesky& chol() const { return *chol_owner; }
+  std::vector<char> pinned;
+  // per setup
+  bool fallback = false;
+  double norm_J = 0;  // infinity norm
+  std::vector<int> active, inactive;
+  SparseCholesky::Reach reach;
+  Eigen::MatrixXd Y;   // L^-1 P B_A^T on reach.rows
+  Eigen::MatrixXd BR;  // B_A R
+  BorderedSpdSolver M;
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  Eigen::SparseMatrix<double> full;
+
+  Impl() {
+    // J has a symmetric pattern: order A + A^T by nested dissection, as for
+    // a Cholesky factor, not UMFPACK's column ordering of A^T A.
+    lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+    lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
+  }
+
+  void analyse_pattern(const Eigen::SparseMatrix<double>& K) {
+    Ks = K;
+    Ks.makeCompressed();
+    transpose_of.assign(Ks.nonZeros(), -1);
+    symmetric_pattern = Ks.rows() == Ks.cols();
+    for (int c = 0; c < Ks.outerSize() && symmetric_pattern; ++c)
+      for (int p = Ks.outerIndexPtr()[c]; p < Ks.outerIndexPtr()[c + 1]; ++p) {
+        const int r = Ks.innerIndexPtr()[p];
+        const int* first = Ks.innerIndexPtr() + Ks.outerIndexPtr()[r];
+        const int* past = Ks.innerIndexPtr() + Ks.outerIndexPtr()[r + 1];
+        const int* hit = std::lower_bound(first, past, c);
+        if (hit == past || *hit != c) {
+          symmetric_pattern = false;
+          break;
+        }
+        transpose_of[p] = int(hit - Ks.innerIndexPtr());
+      }
+  }
+
+  Eigen::VectorXd apply_J(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd y(n + m);
+    y.head(n).noalias() = J->K * x.head(n);
+    if (m > 0) {
+      y.head(n).noalias() += J->B.transpose() * x.tail(m);
+      const Eigen::VectorXd Bu = J->B * x.head(n);
+      y.tail(m) = J->s.cwiseProduct(Bu) + J->d.cwiseProduct(x.tail(m));
+    }
+    return y;
+  }
+
+  // x = P^-1 b for P = J with K replaced by K_s (exact when K_s R = 0).
+  void precondition(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    x.setZero(n + m);
+    Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
+    for (int K : inactive) lambda[K] = b[n + K] / J->d[K];
+    Eigen::VectorXd f = b.head(n);
+    if (m > 0) f.noalias() -= J->B.transpose() * lambda;
+    Eigen::VectorXd fp = f;
+    for (int p : J->pinned) fp[p] = 0;
+    Eigen::VectorXd y = chol().forward_full(fp);
+    const int na = int(active.size());
+    Eigen::VectorXd rhs(na + k), yr(Eigen::Index(reach.rows.size()));
+    for (size_t i = 0; i < reach.rows.size(); ++i) yr[i] = y[reach.rows[i]];
+    rhs.head(na).noalias() = Y.transpose() * yr;
+    for (int i = 0; i < na; ++i) rhs[i] -= b[n + active[i]] / J->s[active[i]];
+    if (k > 0) rhs.tail(k).noalias() = J->rigid_modes.transpose() * f;
+    Eigen::VectorXd lambda_A, c;
+    M.solve(rhs.head(na), rhs.tail(k), lambda_A, c);
+    if (na > 0) {
+      yr.noalias() = Y * lambda_A;
+      for (size_t i = 0; i < reach.rows.size(); ++i) y[reach.rows[i]] -= yr[i];
+    }
+    x.head(n) = chol().backward_full(y);
+    if (k > 0) x.head(n).noalias() += J->rigid_modes * c;
+    for (int i = 0; i < na; ++i) lambda[active[i]] = lambda_A[i];
+    x.tail(m) = lambda;
+  }
+
+  double backward_error(const Eigen::VectorXd& r, const Eigen::VectorXd& x, const Eigen::VectorXd& b) const {
+    const double den = norm_J * x.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff();
+    return den > 0 ? r.cwiseAbs().maxCoeff() / den : 0.0;
+  }
+
+  // Right-preconditioned restarted GMRES from x; true when the backward
+  // error reaches kBackwardError.
+  bool gmres(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance, int& iterations) const {
+    const double b_norm = b.cwiseAbs().maxCoeff();
+    auto done = [&](const Eigen::VectorXd& r) {
+      return backward_error(r, x, b) <= kBackwardError || r.cwiseAbs().maxCoeff() <= tolerance * b_norm;
+    };
+    const int N = n + m;
+    Eigen::VectorXd r = b - apply_J(x);
+    Eigen::MatrixXd V(N, kRestart + 1), Z(N, kRestart), H(kRestart + 1, kRestart);
+    Eigen::VectorXd g(kRestart + 1), cs(kRestart), sn(kRestart), z, w;
+    while (iterations < kMaxIterations) {
+      if (done(r)) return true;
+      // the 2-norm the Arnoldi process sees, for either criterion
+      const double target = std::max(kBackwardError * (norm_J * x.cwiseAbs().maxCoeff() + b_norm), tolerance * b_norm);
+      const double beta = r.norm();
+      V.col(0) = r / beta;
+      H.setZero();
+      g.setZero();
+      g[0] = beta;
+      int j = 0;
+      while (j < kRestart && iterations < kMaxIterations) {
+        precondition(V.col(j), z);
+        Z.col(j) = z;
+        w = apply_J(z);
+        for (int i = 0; i <= j; ++i) {  // modified Gram-Schmidt
+          H(i, j) = V.col(i).dot(w);
+          w -= H(i, j) * V.col(i);
+        }
+        H(j + 1, j) = w.norm();
+        if (H(j + 1, j) > 0) V.col(j + 1) = w / H(j + 1, j);
+        for (int i = 0; i < j; ++i) {  // earlier rotations
+          const double a = H(i, j), c = H(i + 1, j);
+          H(i, j) = cs[i] * a + sn[i] * c;
+          H(i + 1, j) = -sn[i] * a + cs[i] * c;
+        }
+        const double rho = std::hypot(H(j, j), H(j + 1, j));
+        cs[j] = rho > 0 ? H(j, j) / rho : 1.0;
+        sn[j] = rho > 0 ? H(j + 1, j) / rho : 0.0;
+        H(j, j) = rho;
+        H(j + 1, j) = 0;
+        g[j + 1] = -sn[j] * g[j];
+        g[j] *= cs[j];
+        ++j;
+        ++iterations;
+        if (std::abs(g[j]) <= target || H(j, j - 1) == 0) break;
+      }
+      const Eigen::VectorXd yk = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
+      x.noalias() += Z.leftCols(j) * yk;
+      r = b - apply_J(x);
+    }
+    return done(r);
+  }
+
+  bool factor_full(std::string& why) {
+    full = assemble_full(*J);
+    lu.compute(full);
+    if (lu.info() != Eigen::Success) {
+      why = "singular Newton matrix";
+      return false;
+    }
+    fallback = true;
+    return true;
+  }
+};
+
+SaddleSolver::SaddleSolver() : impl_(std::make_unique<Impl>()) {}
+SaddleSolver::~SaddleSolver() = default;
+
+bool SaddleSolver::setup(const BlockJacobian& J) {
+  auto& I = *impl_;
+  why_.clear();
+  ++stats_.setups;
+  I.J = &J;
+  I.n = int(J.K.rows());
+  I.m = int(J.B.rows());
+  I.k = int(J.rigid_modes.cols());
+  I.fallback = false;
+  I.norm_J = 0;
+  {
+    Eigen::VectorXd rows = Eigen::VectorXd::Zero(I.n + I.m);
+    for (int c = 0; c < J.K.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) rows[it.row()] += std::abs(it.value());
+    for (int k = 0; k < I.m; ++k)
+      for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
+        rows[it.col()] += std::abs(it.value());
+        rows[I.n + k] += std::abs(J.s[k] * it.value());
+      }
+    if (I.m > 0) rows.tail(I.m) += J.d.cwiseAbs();
+    I.norm_J = rows.size() ? rows.maxCoeff() : 0.0;
+  }
+  const auto t0 = Clock::now();
+  const bool same_pattern =
+      J.K.isCompressed() && I.Ks.rows() == J.K.rows() && I.Ks.nonZeros() == J.K.nonZeros() &&
+      std::equal(J.K.outerIndexPtr(), J.K.outerIndexPtr() + J.K.outerSize() + 1, I.Ks.outerIndexPtr()) &&
+      std::equal(J.K.innerIndexPtr(), J.K.innerIndexPtr() + J.K.nonZeros(), I.Ks.innerIndexPtr());
+  if (!same_pattern) {
+    I.analyse_pattern(J.K);
+    I.chol_owner = std::make_unique<SparseCholesky>();
+  }
+  if (!I.symmetric_pattern || !J.K.isCompressed()) {
+    const bool ok = I.factor_full(why_);
+    stats_.factorize_s += since(t0);
+    stats_.fallbacks += ok;
+    return ok;
+  }
+  // K_s values, rigid motions pinned
+  const double* kv = J.K.valuePtr();
+  double* sv = I.Ks.valuePtr();
+  if (J.K_factor.nonZeros() == J.K.nonZeros()) std::copy(J.K_factor.valuePtr(), J.K_factor.valuePtr() + J.K.nonZeros(), sv);
+  else
+    for (int p = 0; p < int(I.Ks.nonZeros()); ++p) sv[p] = 0.5 * (kv[p] + kv[I.transpose_of[p]]);
+  I.pinned.assign(I.n, 0);
+  for (int p : J.pinned) I.pinned[p] = 1;
+  if (!J.pinned.empty())
+    for (int c = 0; c < I.Ks.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(I.Ks, c); it; ++it)
+        if (I.pinned[it.row()] || I.pinned[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+  try {
+    if (!I.chol().analyzed()) {
+      std::vector<int> last;  // the equations B touches, ordered last
+      std::vector<char> touched(I.n, 0);
+      for (int k = 0; k < I.m; ++k)
+        for (RowSparse::InnerIterator it(J.B, k); it; ++it)
+          if (it.value() != 0.0 && !I.pinned[it.col()]) touched[it.col()] = 1;
+      for (int i = 0; i < I.n; ++i)
+        if (touched[i]) last.push_back(i);
+      I.chol().analyze(I.Ks, last);
+    }
+    I.chol().factorize(I.Ks);
+  } catch (const std::runtime_error&) {  // not positive definite: this iteration by LU
+    const bool ok = I.factor_full(why_);
+    stats_.factorize_s += since(t0);
+    stats_.fallbacks += ok;
+    return ok;
+  }
+  stats_.factorize_s += since(t0);
+
+  // Schur complement of the active multipliers
+  const auto t1 = Clock::now();
+  I.active.clear();
+  I.inactive.clear();
+  for (int k = 0; k < I.m; ++k) {
+    if (J.s[k] != 0.0) I.active.push_back(k);
+    else I.inactive.push_back(k);
+  }
+  const int na = int(I.active.size()), k = I.k;
+  {
+    std::vector<Eigen::Triplet<double>> t;
+    std::vector<int> eqs;
+    for (int i = 0; i < na; ++i)
+      for (RowSparse::InnerIterator it(J.B, I.active[i]); it; ++it)
+        if (!I.pinned[it.col()] && it.value() != 0.0) {
+          t.emplace_back(it.col(), i, it.value());
+          eqs.push_back(it.col());
+        }
+    Eigen::SparseMatrix<double> C(I.n, na);
+    C.setFromTriplets(t.begin(), t.end());
+    I.reach = I.chol().reach(eqs);
+    I.Y = I.chol().forward(I.reach, C);
+  }
+  I.BR.resize(na, k);
+  for (int i = 0; i < na; ++i) I.BR.row(i) = J.B.row(I.active[i]) * J.rigid_modes;
+  const Eigen::MatrixXd S = I.Y.transpose() * I.Y;
+  if (!I.M.compute(S, I.BR)) {  // dependent constraints: let LU on J decide
+    const bool ok = I.factor_full(why_);
+    stats_.schur_s += since(t1);
+    stats_.fallbacks += ok;
+    return ok;
+  }
+  stats_.schur_s += since(t1);
+  return true;
+}
+
+bool SaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) {
+  auto& I = *impl_;
+  const auto t0 = Clock::now();
+  ++stats_.solves;
+  bool ok = true;
+  if (I.fallback) {
+    x = I.lu.solve(b);
+  } else {
+    I.precondition(b, x);
+    int iterations = 0;
+    ok = I.gmres(b, x, tolerance, iterations);
+    stats_.krylov_iterations += iterations;
+    if (!ok && I.factor_full(why_)) {  // GMRES stalled: this iteration by LU
+      ++stats_.fallbacks;
+      x = I.lu.solve(b);
+      ok = true;
+    }
+  }
+  stats_.solve_s += since(t0);
+  if (!ok || !x.allFinite()) {
+    if (why_.empty()) why_ = "singular Newton matrix";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace igac
