@@ -323,7 +323,6 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
   RowMat aug_prev(n, n);  // G_A^T W G_A in the matrix now
   double setup_s = 0, solve_s = 0;
   for (int it = 0; it < o.contact.max_iterations; ++it) {
-    seen.insert(active);
     sol.active_set_sizes.push_back(int(std::count(active.begin(), active.end(), 1)));
     // Contact rows and columns for this active set (owned rows only).
     auto ts = Clock::now();
@@ -428,16 +427,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
       break;
     }
     const std::vector<char> next = next_active_set(lambda, gap, active, k, o.contact.complementarity_scale);
-    if (next == active) {
-      sol.converged = true;
-      sol.status = "converged";
-      break;
-    }
-    if (seen.count(next)) {
-      sol.status = fmt::format("active set cycling after {} iterations", it + 1);
-      break;
-    }
-    active = next;
+    if (settle_active_set(next, active, seen, it, sol)) break;
   }
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", o.contact.max_iterations);

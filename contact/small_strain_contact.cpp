@@ -159,6 +159,22 @@ std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::Ve
   return next;
 }
 
+bool settle_active_set(const std::vector<char>& next, std::vector<char>& active, std::set<std::vector<char>>& seen,
+                       int iteration, ContactSolution& sol) {
+  if (next == active) {
+    sol.converged = true;
+    sol.status = "converged";
+    return true;
+  }
+  seen.insert(active);
+  if (seen.count(next)) {
+    sol.status = fmt::format("active set cycling after {} iterations", iteration + 1);
+    return true;
+  }
+  active = next;
+  return false;
+}
+
 ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                            const WeightedGapOperator& op, const RigidModes& modes,
                                            SparseCholesky& chol, const ContactSolverOptions& opt) {
@@ -206,7 +222,6 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
   const auto t_iter = Clock::now();
   double schur_in_loop = 0;
   for (int it = 0; it < opt.max_iterations; ++it) {
-    seen.insert(active);
     std::vector<int> A;
     for (int K_ = 0; K_ < m; ++K_)
       if (active[K_]) A.push_back(K_);
@@ -242,16 +257,7 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
     const std::vector<char> next = next_active_set(lambda, gap, active, k, opt.complementarity_scale);
     sol.weighted_gap = gap;
-    if (next == active) {
-      sol.converged = true;
-      sol.status = "converged";
-      break;
-    }
-    if (seen.count(next)) {
-      sol.status = fmt::format("active set cycling after {} iterations", it + 1);
-      break;
-    }
-    active = next;
+    if (settle_active_set(next, active, seen, it, sol)) break;
   }
   sol.schur_s += schur_in_loop;
   sol.iterations_s = since(t_iter) - schur_in_loop;

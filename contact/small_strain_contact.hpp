@@ -31,6 +31,7 @@
 // (Pi g)_K < 0), written as lambda_K + c_n (Pi g)_K < 0 with c_n > 0.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,14 @@ std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const
 // multipliers stay active.  The same rule for every linear solver.
 std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::VectorXd& gap,
                                   const std::vector<char>& active, int k, double cn);
+
+// One step of the active-set iteration, the same for every linear solver:
+// `next` (from next_active_set) against the current set.  Returns true when
+// the iteration ends -- the set settled (converged) or came back (cycling),
+// with sol.status set; otherwise records the current set in `seen` and moves
+// `active` to `next`.
+bool settle_active_set(const std::vector<char>& next, std::vector<char>& active, std::set<std::vector<char>>& seen,
+                       int iteration, ContactSolution& sol);
 
 ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                            const WeightedGapOperator& op, const RigidModes& modes,
