@@ -28,6 +28,7 @@
 #include "io/gismo_xml.hpp"
 #include "io/vtk_output.hpp"
 #include "tests/igac_process.hpp"
+#include "tests/vtu_file.hpp"
 
 namespace igac {
 namespace {
@@ -185,14 +186,7 @@ void expect_four_patch_lame_rates(int p) {
 TEST(MultiPatchLame, FourPatchAnnulusKeepsOptimalRatesDegree2) { expect_four_patch_lame_rates(2); }
 TEST(MultiPatchLame, FourPatchAnnulusKeepsOptimalRatesDegree3) { expect_four_patch_lame_rates(3); }
 
-vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& path) {
-  vtkNew<vtkXMLUnstructuredGridReader> r;
-  r->SetFileName(path.c_str());
-  r->Update();
-  auto g = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  g->ShallowCopy(r->GetOutput());
-  return g;
-}
+vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& path) { return igac_test::read_vtu(path.string()); }
 
 // One .vtu with every patch's Bezier cells; where cells of the two patches
 // meet, their points coincide and carry the same displacement (C0).

@@ -38,6 +38,7 @@
 #include "io/case_file.hpp"
 #include "app/case_run.hpp"
 #include "io/vtk_output.hpp"
+#include "tests/vtu_file.hpp"
 
 namespace {
 
@@ -190,14 +191,7 @@ TEST(VtkStressRecovery, PatchTestOnCurvedRationalGeometry) {
 
 // ---------------------------------------------------------------- files
 
-vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const std::string& path) {
-  vtkNew<vtkXMLUnstructuredGridReader> r;
-  r->SetFileName(path.c_str());
-  r->Update();
-  auto g = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  g->ShallowCopy(r->GetOutput());
-  return g;
-}
+using igac_test::read_vtu;
 
 void expect_no_nan(vtkDataSetAttributes* attrs, const std::string& what) {
   for (int a = 0; a < attrs->GetNumberOfArrays(); ++a) {
