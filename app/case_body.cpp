@@ -9,14 +9,8 @@
 namespace igac {
 
 Geometry case_geometry(const CaseSpec& spec) {
-  if (!spec.geometry_file.empty()) {
-    const MultiPatch body = read_gismo_xml(spec.geometry_file);
-    if (body.patches.size() != 1)
-      throw InputError(fmt::format("{}: [geometry] file: {} holds {} patches: use case_body for a multi-patch body",
-                                   spec.path, spec.geometry_file, body.patches.size()));
-    // Knots on [0, 1] like the built-in shapes: the geometry is unchanged.
-    return Geometry{normalised(body.patches.front()), {}};
-  }
+  if (!spec.geometry_file.empty())  // a file's body: case_body
+    throw InputError(fmt::format("{}: [geometry] file: not a built-in shape", spec.path));
   try {
     if (const ShapeType* kind = find_shape_type(spec.shape)) {
       if (!spec.shape_values.empty()) return kind->make(spec.shape_values);

@@ -13,9 +13,9 @@ namespace igac {
 
 // Throws InputError (naming the case file) when the shape's data are invalid.
 MultiPatch case_body(const CaseSpec& spec);
-// The same body as the engine's coarse Geometry (before degree elevation and
-// refinement): a built-in shape with its face names, or the file's patch
-// with knots normalised to [0, 1].
+// A built-in shape as the engine's coarse Geometry (before degree elevation
+// and refinement), with its face names.  Throws InputError for a case that
+// reads a geometry file (its body comes from case_body).
 Geometry case_geometry(const CaseSpec& spec);
 
 }  // namespace igac

@@ -10,6 +10,7 @@
 #include "engine/spline/refinement.hpp"
 #include "app/case_body.hpp"
 #include "app/petsc_run.hpp"
+#include "engine/geometry/side_names.hpp"
 #include "engine/spline/split.hpp"
 
 namespace igac {
@@ -134,31 +135,14 @@ void check_patch_map(const CaseSpec& spec, const NurbsPatch& patch, int k) {
 
 std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name) {
   if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
-  static const char* dirs = "uvw";
-  const int pd = m.body.param_dim();
-  for (int k = 0; k < m.body.num_patches(); ++k)
-    for (int d = 0; d < pd; ++d)
-      for (int e = 0; e < 2; ++e) {
-        const Face f{d, e == 1};
-        const std::string parametric = fmt::format("{}{}", dirs[d], e);
-        const std::string prefix = fmt::format("{}:", k);
-        if (name == prefix + parametric || name == prefix + gismo_side_name(gismo_side_of(f)) ||
-            (m.body.num_patches() == 1 && name == parametric))
-          return std::vector<PatchSide>{PatchSide{k, f}};
-      }
+  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim())) return std::vector<PatchSide>{*side};
   return std::nullopt;
 }
 
 std::vector<std::string> face_names(const Model& m) {
   std::vector<std::string> out;
   for (const auto& [k, v] : m.faces) out.push_back(k);
-  static const char* dirs = "uvw";
-  const int pd = m.body.param_dim();
-  if (m.body.num_patches() == 1)
-    for (int d = 0; d < pd; ++d)
-      for (int e = 0; e < 2; ++e) out.push_back(fmt::format("{}{}", dirs[d], e));
-  for (int k = 0; k < m.body.num_patches(); ++k)
-    for (int s = 1; s <= 2 * pd; ++s) out.push_back(fmt::format("{}:{}", k, gismo_side_name(s)));
+  for (auto& n : parametric_side_names(m.body.num_patches(), m.body.param_dim())) out.push_back(std::move(n));
   return out;
 }
 

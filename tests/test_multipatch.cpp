@@ -245,6 +245,12 @@ TEST(MultiPatchContact, BallIndentsTwoPatchBlockAcrossTheInterface) {
   EXPECT_GT(share[0], 0);
   EXPECT_NEAR(share[0], share[1], 1e-8 * (share[0] + share[1]));
   EXPECT_NEAR(share[0] + share[1], r.reactions.front().normal_force, 1e-10 * r.reactions.front().normal_force);
+  // The first contact point (1, 1, 1) is inside a side, not at a corner: the
+  // half width is the reach of the pressed multipliers, about sqrt(R delta)
+  // for a ball of radius R pressed delta into a half-space, to within one
+  // face element (the multipliers' anchors sit at element centres).
+  const double element = 1.0 / spec.elements[0], sqrt_R_delta = std::sqrt(0.5 * 0.1);
+  EXPECT_NEAR(r.contact->report.half_width, sqrt_R_delta, element);
 }
 
 // Bad multi-patch geometry files: exit 2, one line naming the file, the
