@@ -15,6 +15,7 @@
 #include "engine/spline/knot_vector.hpp"
 #include "app/case_body.hpp"
 #include "app/case_run.hpp"
+#include "app/launcher.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/json_out.hpp"
 #include "app/output_folder.hpp"
@@ -31,13 +32,8 @@ namespace {
 
 // Under mpirun every process runs this program; only the first one prints
 // and writes files.
-#ifdef IGAC_WITH_PETSC
 int process_rank() { return launcher_rank(); }
 int process_count() { return launcher_size(); }
-#else
-int process_rank() { return 0; }
-int process_count() { return 1; }
-#endif
 
 // [solver] from the case, then the command line's --solver and
 // --petsc-options (added after the case's options: they win).
@@ -118,8 +114,14 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
 }
 
 int run_command(const std::string& path, std::string out, std::optional<int> refine, std::optional<int> degree,
-                bool quiet, bool no_output, const std::string& solver, const std::string& petsc_options) {
+                bool quiet, bool no_output, const std::string& solver, const std::string& petsc_options,
+                char** argv) {
   CaseSpec spec = read_case(path);
+#ifndef IGAC_WITH_PETSC
+  // The PETSc path lives in igac-petsc (app/launcher.hpp); without it the
+  // solve below says so in one line.
+  if ((solver.empty() ? spec.solver.type : solver) == "petsc") hand_over_to_petsc_build(argv);
+#endif
   apply_solver_options(spec, solver, petsc_options);
   apply_overrides(spec, degree, refine);
   if (process_rank() > 0) {  // the first process writes and prints
@@ -232,7 +234,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options);
+    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options, argv);
     if (geometry->parsed()) {
       write_gismo_xml(case_body(read_case(case_path)), out);
       return 0;

@@ -74,12 +74,6 @@ using OwnedIS = Owned<IS, ISDestroy>;
 using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
 using OwnedNullSpace = Owned<MatNullSpace, MatNullSpaceDestroy>;
 
-int env_int(std::initializer_list<const char*> names, int fallback) {
-  for (const char* n : names)
-    if (const char* v = std::getenv(n)) return std::atoi(v);
-  return fallback;
-}
-
 // Sets an option unless the user gave it; remembers it as igac's own.
 void default_option(const char* name, const char* value) {
   PetscBool has = PETSC_FALSE;
@@ -116,9 +110,6 @@ double peak_resident_gib() {
 }
 
 }  // namespace
-
-int launcher_rank() { return env_int({"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}, 0); }
-int launcher_size() { return env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1); }
 
 PetscSession::PetscSession(const std::string& options) {
   if (g_active) throw std::logic_error("one PetscSession per program");

@@ -62,11 +62,6 @@ class PetscSession {
   static int size();
 };
 
-// The process's MPI rank as its launcher tells it (mpirun's environment),
-// before MPI is initialised; 0 without a launcher.
-int launcher_rank();
-int launcher_size();
-
 // This process's contiguous share [begin, end) of n items (elements).
 std::pair<int, int> process_share(int n);
 

@@ -112,6 +112,23 @@ class PetscPath : public ::testing::Test {
   }
 };
 
+// The plain igac loads neither PETSc nor MPI (they are igac-petsc's: a
+// hundred shared libraries, ~40 ms at every start); --solver petsc above
+// reaches them through igac-petsc all the same.
+TEST_F(PetscPath, PlainIgacLoadsNoPetscNorMpi) {
+  FILE* pipe = popen(("ldd " + quote(IGAC_BINARY) + " 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string libs;
+  char buf[4096];
+  size_t got;
+  while ((got = fread(buf, 1, sizeof buf, pipe)) > 0) libs.append(buf, got);
+  ASSERT_EQ(pclose(pipe), 0) << libs;
+  ASSERT_NE(libs.find("libcholmod"), std::string::npos) << libs;
+  EXPECT_EQ(libs.find("libpetsc"), std::string::npos) << libs;
+  EXPECT_EQ(libs.find("libmpi"), std::string::npos) << libs;
+  EXPECT_TRUE(fs::exists(fs::path(IGAC_BINARY).parent_path() / "igac-petsc"));
+}
+
 // The case `name` on a coarse mesh: the direct solve, then PETSc on one and
 // on two processes, give the same result.
 void expect_petsc_matches_direct(const std::string& name, const std::string& elements, const TempDir& tmp) {
