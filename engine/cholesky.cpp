@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cholmod.h>
+#include <cstdlib>
+#include <dlfcn.h>
 #include <omp.h>
 #include <fmt/format.h>
 #include <stdexcept>
@@ -31,23 +33,70 @@ cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& A) {
   return s;
 }
 
+// OpenBLAS's threads (the pthread build Debian installs) pay only on large
+// dense blocks: below ~1e10 flops a factorisation is as fast on one thread
+// (2D at 34k dofs, p = 3: 0.45 s either way), and when the other core is
+// busy two threads cost 10-20x (their barriers wait for a time slice:
+// hertz2d 0.008 s -> 0.15 s).  Above, two threads take 3D factorisations
+// down by 25-30 %.  Found through dlsym, so any other BLAS works unchanged;
+// OPENBLAS_NUM_THREADS or OMP_NUM_THREADS in the environment win.
+class BlasThreads {
+ public:
+  static constexpr double kThreadedFlops = 1e10;
+  static int for_flops(double flops) {
+    const Api& a = api();
+    if (!a.set || !a.get || a.user_chose) return 0;  // 0: leave OpenBLAS alone
+    return flops < kThreadedFlops ? 1 : a.initial;
+  }
+  static void set(int n) {
+    if (n > 0) api().set(n);
+  }
+  static int current() { return api().get ? api().get() : 0; }
+
+ private:
+  struct Api {
+    void (*set)(int) = nullptr;
+    int (*get)() = nullptr;
+    int initial = 1;
+    bool user_chose = false;
+  };
+  static const Api& api() {
+    static const Api a = [] {
+      Api r;
+      r.set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+      r.get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+      r.initial = r.get ? r.get() : 1;
+      r.user_chose = std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS");
+      return r;
+    }();
+    return a;
+  }
+};
+
 // CHOLMOD's own OpenMP loops (num_threads(4), compiled in, per supernode)
 // leave libgomp's idle workers spinning on the other core for some
 // milliseconds after each loop, exactly when OpenBLAS wants that core for
 // the supernode's dense kernels: measured 10-40x slower factorisations in
 // 2D (0.014 s -> 0.13-0.58 s at 2.5k dofs) and 2.5x in 3D (hertz3d 7.7 s ->
 // 2.5 s).  Inside a CHOLMOD call every OpenMP region runs on one thread;
-// the two cores go to OpenBLAS's threads.  Our own threaded loops (assembly)
-// are untouched.
+// the cores go to OpenBLAS's threads, as many as the work pays for
+// (BlasThreads).  Our own threaded loops (assembly) are untouched.
 class BlasOwnsTheCores {
  public:
-  BlasOwnsTheCores() : levels_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
-  ~BlasOwnsTheCores() { omp_set_max_active_levels(levels_); }
+  explicit BlasOwnsTheCores(double flops = 0)
+      : levels_(omp_get_max_active_levels()), threads_(BlasThreads::current()) {
+    omp_set_max_active_levels(0);
+    BlasThreads::set(BlasThreads::for_flops(flops));
+  }
+  ~BlasOwnsTheCores() {
+    omp_set_max_active_levels(levels_);
+    BlasThreads::set(threads_);
+  }
   BlasOwnsTheCores(const BlasOwnsTheCores&) = delete;
   BlasOwnsTheCores& operator=(const BlasOwnsTheCores&) = delete;
 
  private:
-  int levels_;
+  int levels_, threads_;
 };
 }  // namespace
 
@@ -57,6 +106,7 @@ struct SparseCholesky::Impl {
   std::vector<int> position;  // position[original equation] in the factor
   std::vector<int> super_of;  // supernode of each factor column
   std::vector<int> parent;    // supernodal elimination tree (-1: a root)
+  double flops = 0;           // of one numeric factorisation with the kept ordering
   Impl() {
     cholmod_start(&c);
     c.print = 0;  // no "CHOLMOD warning" lines on stderr: callers read c.status (a matrix that is
@@ -108,10 +158,12 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A_in, const std:
         I.L = L2;
       } else if (L2) {
         cholmod_free_factor(&L2, &I.c);
+        I.c.fl = fl_amd;
       }
     }
   }
   if (!I.L) throw std::runtime_error("CHOLMOD: symbolic analysis failed (out of memory?)");
+  I.flops = I.c.fl;
   const int n = int(A.rows());
   const int* P = static_cast<const int*>(I.L->Perm);
   I.position.assign(n, 0);
@@ -143,7 +195,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A_in) {
   A.makeCompressed();
   cholmod_sparse a = view_lower(A);
   auto& I = *impl_;
-  const BlasOwnsTheCores blas;
+  const BlasOwnsTheCores blas(I.flops);
   cholmod_factorize(&a, I.L, &I.c);
   if (I.c.status == CHOLMOD_NOT_POSDEF || I.L->minor < I.L->n)
     throw std::runtime_error(
@@ -164,7 +216,7 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   b.x = const_cast<double*>(B.data());
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
-  const BlasOwnsTheCores blas;
+  const BlasOwnsTheCores blas(4.0 * factor_nonzeros() * double(B.cols()));  // forward and backward
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, I.L, &b, &I.c);
   if (!x) throw std::runtime_error("CHOLMOD solve failed");
   Eigen::MatrixXd X = Eigen::Map<Eigen::MatrixXd>(static_cast<double*>(x->x), B.rows(), B.cols());
