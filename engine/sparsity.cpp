@@ -40,19 +40,28 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
     if (const int r = first_free(a); r >= 0) node_cps[r].push_back(a);
 
   // per node: the sorted free equations of every control point it meets
+  // (each control point once: a stamp per thread, so only the 3^d p-ish
+  // distinct neighbours are sorted, not every element's copy of them)
   std::vector<std::vector<int>> cols(n_free);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int r = 0; r < n_free; ++r) {
-    auto& v = cols[r];
-    for (int a : node_cps[r])
-      for (int k = cp_start[a]; k < cp_start[a + 1]; ++k) {
-        const int* c = el_cps.data() + size_t(cp_els[k]) * nl;
-        for (int b = 0; b < nl; ++b)
-          for (int j = 0; j < dim; ++j)
-            if (const int q = dofs.equation(c[b] * dim + j); q >= 0) v.push_back(q);
-      }
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
+#pragma omp parallel
+  {
+    std::vector<int> seen(n_cp, -1);
+#pragma omp for schedule(dynamic, 256)
+    for (int r = 0; r < n_free; ++r) {
+      auto& v = cols[r];
+      for (int a : node_cps[r])
+        for (int k = cp_start[a]; k < cp_start[a + 1]; ++k) {
+          const int* c = el_cps.data() + size_t(cp_els[k]) * nl;
+          for (int b = 0; b < nl; ++b) {
+            if (seen[c[b]] == r) continue;
+            seen[c[b]] = r;
+            for (int j = 0; j < dim; ++j)
+              if (const int q = dofs.equation(c[b] * dim + j); q >= 0) v.push_back(q);
+          }
+        }
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());  // coincident control points share equations
+    }
   }
 
   // every free equation of a node has the node's columns
