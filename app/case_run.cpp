@@ -100,7 +100,9 @@ NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const st
       if (gs.direction == d) g = &gs;
     KnotVector target;
     try {
-      target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start)
+      target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start,
+                                      g->geometric_coarse ? KnotVector::CoarseSpans::geometric
+                                                          : KnotVector::CoarseSpans::uniform)
                  : KnotVector::uniform(spec.degree, spec.elements[d]);
       if (spec.refine > 0) target = target.subdivided(1 << spec.refine);
     } catch (const SplineError& e) {

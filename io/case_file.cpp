@@ -261,7 +261,7 @@ CaseSpec read_case(const std::string& path) {
       for (const auto& e : *gn->as_array()) gts.push_back(e.as_table());
     else mesh.fail("grading", "must be a table [mesh.grading] or tables [[mesh.grading]]");
     for (const auto* gt : gts) {
-      const Section g(path, "mesh.grading", *gt, {"direction", "toward", "span_fraction", "range_fraction"});
+      const Section g(path, "mesh.grading", *gt, {"direction", "toward", "span_fraction", "range_fraction", "coarse"});
       GradingSpec gs;
       const std::string d = g.string("direction");
       if (d != "u" && d != "v" && !(d == "w" && dim == 3))
@@ -274,6 +274,9 @@ CaseSpec read_case(const std::string& path) {
       gs.at_start = t == "start";
       gs.span_fraction = g.number("span_fraction");
       gs.range_fraction = g.number("range_fraction");
+      const std::string coarse = g.string("coarse", "uniform");
+      if (coarse != "uniform" && coarse != "geometric") g.fail("coarse", "must be \"uniform\" or \"geometric\"");
+      gs.geometric_coarse = coarse == "geometric";
       if (!(gs.span_fraction > 0 && gs.span_fraction < 1)) g.fail("span_fraction", "must lie in (0, 1)");
       if (!(gs.range_fraction > 0 && gs.range_fraction < 1)) g.fail("range_fraction", "must lie in (0, 1)");
       if (c.elements[gs.direction] < 2) g.fail("direction", "a graded direction needs at least 2 elements");

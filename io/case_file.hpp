@@ -23,6 +23,7 @@ struct GradingSpec {
   int direction = 0;
   bool at_start = true;
   double span_fraction = 0.8, range_fraction = 0.1;
+  bool geometric_coarse = false;  // coarse = "geometric": the other spans grow from the fine size
 };
 
 struct DirichletSpec {

@@ -145,6 +145,28 @@ TEST(Hertz2D, CubicIsStableWithoutOscillation) {
   RecordProperty("max_second_difference_over_p0", std::to_string(worst_second / h.p0));
 }
 
+// cases/hertz3d_p3.toml: N3/S1 on a 6.6k-dof mesh whose fine zone is fitted
+// to the contact zone (coarse spans growing geometrically) reaches the 5 %
+// relative L2 pressure error that the paper's p = 2 mesh (hertz3d, 31.9k
+// dofs) misses at 9.3 %; measured 4.6 %, a -0.4 %, p0 +1.0 %.
+TEST(Hertz3D, CubicOnAFittedMeshReachesFivePercent) {
+  const CaseRun run = run_case("hertz3d_p3.toml");
+  const RunResult& r = run.result;
+  ASSERT_EQ(r.status, "converged");
+  ASSERT_TRUE(r.hertz && r.pressure_error);
+  EXPECT_EQ(run.model.dofs->num_free(), 6613);
+  const PressureReport& rep = r.contact->report;
+  // The contact force balances the load to round-off; the load is pi R^2 P / 4
+  // up to the quadrature of the rational top face on 16 x 16 spans (7e-8).
+  const double F = std::numbers::pi * kR * kR * 1e-4 / 4;
+  EXPECT_NEAR(rep.total_force, r.applied_force, kForceTolerance * F);
+  EXPECT_NEAR(r.applied_force, F, 1e-6 * F);
+  EXPECT_NEAR(rep.max_pressure, r.hertz->p0, 0.02 * r.hertz->p0);
+  EXPECT_NEAR(rep.half_width, r.hertz->a, 0.02 * r.hertz->a);
+  EXPECT_LT(r.pressure_error->first / r.pressure_error->second, 0.05);
+  RecordProperty("pressure_l2_rel", std::to_string(r.pressure_error->first / r.pressure_error->second));
+}
+
 // ------------------------------------------------------------ p = 2 study
 
 struct StudyLevel {

@@ -146,6 +146,8 @@ INSTANTIATE_TEST_SUITE_P(
         MessageCase{"tiny_radius", "hertz2d", "radius = 1.0", "radius = 1e-300", {"[geometry] radius:", "1e-300"}},
         MessageCase{"tiny_range_fraction", "hertz2d", "range_fraction = 0.1", "range_fraction = 1e-12",
                     {"[mesh.grading] range_fraction", "1e-12"}},
+        MessageCase{"unknown_coarse_spans", "hertz2d", "range_fraction = 0.1", "range_fraction = 0.1\ncoarse = \"log\"",
+                    {"[mesh.grading] coarse", "\"uniform\" or \"geometric\""}},
         MessageCase{"degree_1_on_arcs", "lame_cylinder", "degree = 2", "degree = 1", {"[mesh] degree:", "at least 2"}},
         MessageCase{"load_pulls_away", "hertz2d_neohookean_pressure", "value = 0.1", "value = -0.1",
                     {"the load pulls the body away from the obstacle"}},

@@ -296,6 +296,34 @@ TEST(SplineGradedKnots, FractionOfSpansInFractionOfRangeAndNesting) {
   }
 }
 
+// coarse = "geometric": the fine part as before, then spans that grow by one
+// ratio r > 1 from the fine size (the first coarse span is r times a fine
+// one) and end exactly at the other end; and uniform again where the fine
+// spans are already the larger.
+TEST(SplineGradedKnots, GeometricCoarseSpansGrowByOneRatio) {
+  for (const bool at_start : {true, false}) {
+    SCOPED_TRACE(at_start ? "at start" : "at end");
+    const KnotVector kv = KnotVector::graded(2, 16, 0.75, 0.05, at_start, KnotVector::CoarseSpans::geometric);
+    EXPECT_EQ(kv.num_elements(), 16);
+    auto b = kv.breakpoints();
+    std::vector<double> h;
+    for (size_t e = 0; e + 1 < b.size(); ++e) h.push_back(b[e + 1] - b[e]);
+    if (!at_start) std::reverse(h.begin(), h.end());  // from the graded end
+    ASSERT_EQ(h.size(), 16u);
+    const double fine = 0.05 / 12;
+    for (int e = 0; e < 12; ++e) EXPECT_NEAR(h[e], fine, kKnotRoundoff) << "fine span " << e;
+    const double r = h[12] / fine;
+    EXPECT_GT(r, 1.5);
+    for (int e = 13; e < 16; ++e) EXPECT_NEAR(h[e] / h[e - 1], r, 1e-9) << "coarse span " << e;
+    EXPECT_EQ(kv.first(), 0.0);
+    EXPECT_EQ(kv.last(), 1.0);
+  }
+  // 2 fine spans of 0.4 and 8 coarse ones in 0.2: no growth, uniform coarse spans.
+  const KnotVector flat = KnotVector::graded(2, 10, 0.2, 0.8, true, KnotVector::CoarseSpans::geometric);
+  const auto b = flat.breakpoints();
+  for (size_t e = 2; e + 1 < b.size(); ++e) EXPECT_NEAR(b[e + 1] - b[e], 0.2 / 8, kKnotRoundoff);
+}
+
 TEST(SplineGradedKnots, RejectsBadFractions) {
   expect_spline_error([] { KnotVector::graded(2, 10, 1.0, 0.1, true); }, {"span fraction", "(0, 1)"});
   expect_spline_error([] { KnotVector::graded(2, 10, 0.8, 0.0, true); }, {"range fraction", "(0, 1)"});

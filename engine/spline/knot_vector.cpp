@@ -53,8 +53,26 @@ KnotVector KnotVector::uniform(int degree, int n_elements) {
   return KnotVector(degree, std::move(k));
 }
 
+namespace {
+// The ratio r > 1 with h (r + r^2 + ... + r^n) = L, for n h < L.
+double geometric_ratio(double h, int n, double L) {
+  auto filled = [&](double r) {
+    double s = 0, t = 1;
+    for (int k = 0; k < n; ++k) s += (t *= r);
+    return h * s;
+  };
+  double lo = 1, hi = 2;
+  while (filled(hi) < L) hi *= 2;
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (filled(mid) < L ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+}  // namespace
+
 KnotVector KnotVector::graded(int degree, int n_elements, double span_fraction,
-                              double range_fraction, bool at_start) {
+                              double range_fraction, bool at_start, CoarseSpans coarse) {
   if (!(span_fraction > 0 && span_fraction < 1))
     throw SplineError(fmt::format("grading span fraction {} must lie in (0, 1)", span_fraction));
   if (!(range_fraction > 0 && range_fraction < 1))
@@ -64,8 +82,14 @@ KnotVector KnotVector::graded(int degree, int n_elements, double span_fraction,
   const int n_coarse = n_elements - n_fine;
   std::vector<double> inner;  // interior breakpoints, measured from the graded end
   for (int e = 1; e <= n_fine; ++e) inner.push_back(range_fraction * e / n_fine);
-  for (int e = 1; e < n_coarse; ++e)
-    inner.push_back(range_fraction + (1 - range_fraction) * e / n_coarse);
+  const double h_fine = range_fraction / n_fine, rest = 1 - range_fraction;
+  if (coarse == CoarseSpans::geometric && n_coarse * h_fine < rest) {
+    const double r = geometric_ratio(h_fine, n_coarse, rest);
+    double x = range_fraction, h = h_fine;
+    for (int e = 1; e < n_coarse; ++e) inner.push_back(x += (h *= r));
+  } else {
+    for (int e = 1; e < n_coarse; ++e) inner.push_back(range_fraction + rest * e / n_coarse);
+  }
   if (!at_start) {
     for (double& x : inner) x = 1 - x;
     std::reverse(inner.begin(), inner.end());

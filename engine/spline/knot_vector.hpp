@@ -30,10 +30,16 @@ class KnotVector {
   // n_elements equal spans on [0, 1], open ends.
   static KnotVector uniform(int degree, int n_elements);
   // n_elements spans of which round(span_fraction * n_elements) share the
-  // range_fraction of [0, 1] next to the end `at_start ? 0 : 1`, each part
-  // uniform (paper, section 4.1: 80 % of the spans in 10 % of the range).
+  // range_fraction of [0, 1] next to the end `at_start ? 0 : 1`, uniformly
+  // (paper, section 4.1: 80 % of the spans in 10 % of the range).  The other
+  // spans are uniform too (CoarseSpans::uniform, the paper's: the span size
+  // jumps by a factor of 10-60 where the fine range ends), or grow
+  // geometrically from the fine span size to fill the rest (geometric: one
+  // ratio r > 1, the first coarse span r times a fine one; uniform when the
+  // fine size is already the larger).
+  enum class CoarseSpans { uniform, geometric };
   static KnotVector graded(int degree, int n_elements, double span_fraction,
-                           double range_fraction, bool at_start);
+                           double range_fraction, bool at_start, CoarseSpans coarse = CoarseSpans::uniform);
 
   int degree() const { return degree_; }
   const std::vector<double>& knots() const { return knots_; }
