@@ -1,20 +1,27 @@
 #!/usr/bin/python3
-"""vs_getfem.py [--problems 2d 3d] [--quick] — igac against GetFEM, same machine, same run.
+"""vs_getfem.py [--problems 2d 3d follower disp] [--quick] — igac against GetFEM, same machine, same run.
 
-Runs the GetFEM peer scripts (../shared/peers/getfem, Debian's
-python3-getfem++, installed here when missing: the bench's, never the
-tests') and igac on the same Hertz problems, one after the other, and
-reports for each the time to reach a relative L2 pressure error (against
-Hertz, over the contact face) and the ratio GetFEM / igac.
+Runs the GetFEM peer scripts (../shared/peers/getfem and getfem-largedef,
+Debian's python3-getfem++, installed here when missing: the bench's, never
+the tests') and igac on the same problems, one after the other, and reports
+for each accuracy target the time each code needs to reach it and the ratio
+GetFEM / igac.
 
-  2D Hertz P = 0.003: targets 2 %, 1 %, 0.7 %   (igac: cases/hertz2d.toml with its element counts
-                                                 scaled x1 ... x8, p = 2 and 3; GetFEM N = 16, 32, 64)
-  3D Hertz P = 1e-4:  target 5 %                (igac: cases/hertz3d.toml; GetFEM N = 4..12)
+  2d        Hertz P = 0.003, relative L2 pressure error against Hertz: 2 %, 1 %, 0.7 %
+            (igac: cases/hertz2d.toml, element counts scaled, p = 2 and 3; GetFEM N = 16, 32, 64)
+  3d        Hertz P = 1e-4, the same error: 5 %
+            (igac: cases/hertz3d.toml (paper mesh, p = 2) and cases/hertz3d_p3.toml (p = 3, fitted),
+             scaled; GetFEM N = 4 .. 14)
+  follower  Neo-Hookean, follower pressure P = 0.1; disp: top face moved by u_y = -0.4.  Target:
+  disp      GetFEM's converged values (../shared/peers/getfem-largedef/README.md, section 0): contact
+            force within 0.5 %, deformed contact half-width within 3 %, nominal peak pressure within
+            3 %, all three (igac: the shipped cases scaled; GetFEM N = 8 .. 64).  The issue's yardstick
+            is GetFEM's N = 64 run, so that ratio is reported too.
 
 Times.  GetFEM: mesh + setup + solve of its run (Python import excluded, as
-its README measures).  igac: the wall time of the whole process (start, case
-file, mesh, solve, report) with --no-output, since GetFEM writes no files;
-igac's own "total" is in the CSV too.  Each run is a fresh process.
+its READMEs measure).  igac: the wall time of the whole process (start, case
+file, mesh, solve, report) with --no-output, since GetFEM writes no files.
+Each run is a fresh process; the two codes never run at the same time.
 
 Writes bench/results/vs_getfem_runs.csv (every run), vs_getfem.csv (time to
 each target, ratio) and vs_getfem.png (error against time, both codes).
@@ -23,7 +30,6 @@ import argparse
 import csv
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -32,10 +38,16 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 IGAC = os.path.join(ROOT, "build", "igac")
-PEERS = os.path.normpath(os.path.join(ROOT, "..", "shared", "peers", "getfem"))
+PEERS = os.path.normpath(os.path.join(ROOT, "..", "shared", "peers"))
 PYTHON = "/usr/bin/python3"  # Debian's: GetFEM lives in its dist-packages
 
-TARGETS = {"2d": [0.02, 0.01, 0.007], "3d": [0.05]}
+# GetFEM's converged large-deformation values and the tolerances of issue 11.
+LARGEDEF = {
+    "follower": {"force": 0.111476, "half_width": 0.4959, "max_pressure": 0.238557},
+    "disp": {"force": 0.366592, "half_width": 0.7673, "max_pressure": 0.570388},
+}
+LARGEDEF_TOL = {"force": 0.005, "half_width": 0.03, "max_pressure": 0.03}
+TARGETS = {"2d": [0.02, 0.01, 0.007], "3d": [0.05], "follower": [1.0], "disp": [1.0]}
 
 
 def ensure_getfem():
@@ -46,20 +58,41 @@ def ensure_getfem():
     subprocess.run(["apt-get", "install", "-y", "-qq", "python3-getfem++"], check=True, env=env)
 
 
+def largedef_error(problem, force, half_width, max_pressure):
+    """Largest error relative to its tolerance: <= 1 when all three are within."""
+    ref, got = LARGEDEF[problem], {"force": force, "half_width": half_width, "max_pressure": max_pressure}
+    return max(abs(got[k] - ref[k]) / ref[k] / LARGEDEF_TOL[k] for k in ref)
+
+
 def run_getfem(problem, quick):
-    script = os.path.join(PEERS, "hertz2d.py" if problem == "2d" else "hertz3d.py")
-    if problem == "2d":
-        args = ["--P", "0.003", "--N"] + (["16", "32"] if quick else ["16", "32", "64"])
+    if problem in ("2d", "3d"):
+        script = os.path.join(PEERS, "getfem", "hertz2d.py" if problem == "2d" else "hertz3d.py")
+        if problem == "2d":
+            args = ["--P", "0.003", "--N"] + (["16", "32"] if quick else ["16", "32", "64"])
+        else:
+            args = ["--P", "1e-4", "--N"] + (["4", "6", "8"] if quick else ["4", "6", "8", "10", "12", "14"])
     else:
-        args = ["--P", "1e-4", "--N"] + (["4", "6"] if quick else ["4", "6", "8", "10", "12"])
+        script = os.path.join(PEERS, "getfem-largedef", "largedef2d.py")
+        args = (["--case", "follower", "--P", "0.1"] if problem == "follower" else ["--case", "disp", "--uy", "-0.4"])
+        args += ["--steps", "20", "--N"] + (["8", "16"] if quick else ["8", "16", "32", "64"])
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "gf.csv")
-        subprocess.run([PYTHON, script] + args + ["--csv", out], check=True, capture_output=True, cwd=PEERS)
+        subprocess.run([PYTHON, script] + args + ["--csv", out], check=True, capture_output=True,
+                       cwd=os.path.dirname(script))
         with open(out) as f:
             rows = list(csv.DictReader(f))
-    return [{"code": "getfem", "problem": problem, "mesh": f"N={r['N']}", "unknowns": int(r["n_dof_total"]),
-             "seconds": float(r["t_mesh_s"]) + float(r["t_setup_plus_solve_s"]), "own_total_s": float(r["t_solve_s"]),
-             "l2_rel": float(r["L2_err_rel"])} for r in rows]
+    runs = []
+    for r in rows:
+        run = {"code": "getfem", "problem": problem, "mesh": f"N={r['N']}", "unknowns": int(r["n_dof_total"])}
+        if problem in ("2d", "3d"):
+            run.update(seconds=float(r["t_mesh_s"]) + float(r["t_setup_plus_solve_s"]), error=float(r["L2_err_rel"]))
+        else:
+            run.update(seconds=float(r["t_mesh_s"]) + float(r["t_setup_s"]) + float(r["t_solve_s"]),
+                       force=float(r["F_contact"]), half_width=float(r["a_def_active"]),
+                       max_pressure=float(r["p_nom_max"]))
+            run["error"] = largedef_error(problem, run["force"], run["half_width"], run["max_pressure"])
+        runs.append(run)
+    return runs
 
 
 def scaled_case(case, factor, tmp):
@@ -67,47 +100,119 @@ def scaled_case(case, factor, tmp):
     text = open(case).read()
     m = re.search(r"elements = \[([0-9, ]+)\]", text)
     counts = [max(1, round(int(c) * factor)) for c in m.group(1).split(",")]
-    path = os.path.join(tmp, f"case_{factor:g}.toml")
+    path = os.path.join(tmp, f"x{factor:g}_{os.path.basename(case)}")
     with open(path, "w") as f:
         f.write(text[:m.start()] + "elements = [" + ", ".join(map(str, counts)) + "]" + text[m.end():])
     return path
 
 
-def run_igac(problem, quick):
-    case = os.path.join(ROOT, "cases", "hertz2d.toml" if problem == "2d" else "hertz3d.toml")
+def igac_meshes(problem, quick):
+    """(case file, degree, element factor) of every igac run."""
     if problem == "2d":
-        meshes = [(2, f) for f in (1, 1.5, 2, 2.5, 3, 4, 6, 8)] + [(3, f) for f in (1, 1.5, 2, 3, 4)]
+        factors = (1, 2) if quick else (0.75, 1, 1.5, 2, 3, 4)
+        return [("hertz2d.toml", p, f) for p in (2, 3) for f in factors]
+    if problem == "3d":
         if quick:
-            meshes = [(2, 1), (2, 2), (3, 1)]
-    else:
-        meshes = [(2, 1)] if quick else [(2, 1), (2, 1.5), (3, 1)]
+            return [("hertz3d.toml", 2, 1), ("hertz3d_p3.toml", 3, 0.75), ("hertz3d_p3.toml", 3, 1)]
+        return [("hertz3d.toml", 2, 1), ("hertz3d.toml", 2, 1.5)] + [
+            ("hertz3d_p3.toml", 3, f) for f in (0.75, 1, 1.25, 1.5)]
+    case = "hertz2d_neohookean_pressure.toml" if problem == "follower" else "hertz2d_neohookean_displacement.toml"
+    return [(case, 2, f) for f in ((0.5, 1) if quick else (0.375, 0.5, 0.75, 1))]
+
+
+def run_igac(problem, quick):
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for degree, factor in meshes:
-            path = scaled_case(case, factor, tmp)
-            t0 = time.perf_counter()
-            done = subprocess.run([IGAC, "run", path, "--no-output", "--degree", str(degree)], capture_output=True, text=True)
-            wall = time.perf_counter() - t0
-            if done.returncode != 0:
-                print(f"igac {problem} p={degree} x{factor}: {done.stderr.strip()}", file=sys.stderr)
-                continue
-            sizes = re.search(r"(\d+) dofs, (\d+) multipliers", done.stdout)
-            rel = float(re.search(r"pressure L2 +\S+ +\(relative (\S+),", done.stdout).group(1))
-            own = float(re.search(r"time +(\S+) s", done.stdout).group(1))
-            rows.append({"code": "igac", "problem": problem, "mesh": f"p={degree} elements x{factor:g}",
-                         "unknowns": int(sizes.group(1)) + int(sizes.group(2)), "seconds": wall, "own_total_s": own,
-                         "l2_rel": rel})
+    tmp = tempfile.TemporaryDirectory()
+    for name, degree, factor in igac_meshes(problem, quick):
+        path = scaled_case(os.path.join(ROOT, "cases", name), factor, tmp.name)
+        t0 = time.perf_counter()
+        done = subprocess.run([IGAC, "run", path, "--no-output", "--degree", str(degree)], capture_output=True,
+                              text=True)
+        wall = time.perf_counter() - t0
+        label = f"{name.removesuffix('.toml')} p={degree} x{factor:g}"
+        if done.returncode != 0:
+            print(f"igac {problem} {label}: {done.stderr.strip()}", file=sys.stderr)
+            continue
+        out = done.stdout
+        sizes = re.search(r"(\d+) dofs, (\d+) multipliers", out)
+        run = {"code": "igac", "problem": problem, "mesh": label,
+               "unknowns": int(sizes.group(1)) + int(sizes.group(2)), "seconds": wall}
+        if problem in ("2d", "3d"):
+            run["error"] = float(re.search(r"pressure L2 +\S+ +\(relative (\S+),", out).group(1))
+        else:
+            run["half_width"] = float(re.search(r"half width +(\S+) deformed", out).group(1))
+            run["max_pressure"] = float(re.search(r"max pressure +(\S+) nominal", out).group(1))
+            run["force"] = float(re.search(r"total force +(\S+)", out).group(1))
+            run["error"] = largedef_error(problem, run["force"], run["half_width"], run["max_pressure"])
+        rows.append(run)
     return rows
 
 
 def time_to(rows, target):
-    ok = [r for r in rows if r["l2_rel"] <= target]
+    ok = [r for r in rows if r["error"] <= target]
     return min(ok, key=lambda r: r["seconds"]) if ok else None
+
+
+def summarise(problem, gf, ig):
+    out = []
+    for target in TARGETS[problem]:
+        g, i = time_to(gf, target), time_to(ig, target)
+        row = {"problem": problem,
+               "target": f"L2 pressure {100 * target:g} %" if problem in ("2d", "3d")
+               else "force 0.5 %, half width 3 %, peak pressure 3 %",
+               "getfem_s": f"{g['seconds']:.3f}" if g else "", "getfem_mesh": g["mesh"] if g else "not reached",
+               "igac_s": f"{i['seconds']:.3f}" if i else "", "igac_mesh": i["mesh"] if i else "not reached",
+               "ratio_getfem_over_igac": f"{g['seconds'] / i['seconds']:.1f}" if g and i else "",
+               "getfem_N64_s": "", "ratio_getfem_N64_over_igac": ""}
+        n64 = [r for r in gf if r["mesh"] == "N=64"]
+        if problem in ("follower", "disp") and n64 and i:
+            row["getfem_N64_s"] = f"{n64[0]['seconds']:.3f}"
+            row["ratio_getfem_N64_over_igac"] = f"{n64[0]['seconds'] / i['seconds']:.1f}"
+        out.append(row)
+    return out
+
+
+def plot(runs, problems):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("vs_getfem: no matplotlib, no plot", file=sys.stderr)
+        return
+    fig, axes = plt.subplots(1, len(problems), figsize=(5 * len(problems), 4.2), squeeze=False)
+    for ax, problem in zip(axes[0], problems):
+        for code, style in (("getfem", "s-"), ("igac", "o")):
+            pts = sorted((r["seconds"], r["error"]) for r in runs if r["code"] == code and r["problem"] == problem)
+            if pts:
+                ax.loglog([p[0] for p in pts], [p[1] * (100 if problem in ("2d", "3d") else 1) for p in pts], style,
+                          label=code)
+        for t in TARGETS[problem]:
+            ax.axhline(t * (100 if problem in ("2d", "3d") else 1), color="grey", lw=0.5, ls=":")
+        ax.set_xlabel("time (s, same machine, same run)")
+        ax.set_ylabel("relative L2 pressure error (%)" if problem in ("2d", "3d")
+                      else "largest error / its tolerance")
+        ax.set_title({"2d": "Hertz 2D, P = 0.003", "3d": "Hertz 3D, P = 1e-4",
+                      "follower": "Neo-Hookean, follower P = 0.1", "disp": "Neo-Hookean, u_y = -0.4"}[problem])
+        ax.grid(alpha=0.3, which="both")
+        ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "results", "vs_getfem.png"), dpi=110)
+
+
+def write_csv(path, rows):
+    keys = []
+    for r in rows:
+        keys += [k for k in r if k not in keys]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(rows)
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--problems", nargs="+", default=["2d"], choices=["2d", "3d"])
+    ap.add_argument("--problems", nargs="+", default=["2d", "3d", "follower", "disp"], choices=list(TARGETS))
     ap.add_argument("--quick", action="store_true", help="fewer meshes (a smoke run of the bench)")
     args = ap.parse_args()
     if not os.path.exists(IGAC):
@@ -117,48 +222,19 @@ def main():
     for problem in args.problems:
         gf, ig = run_getfem(problem, args.quick), run_igac(problem, args.quick)
         runs += gf + ig
-        for target in TARGETS[problem]:
-            g, i = time_to(gf, target), time_to(ig, target)
-            summary.append({"problem": problem, "target_l2_rel": target,
-                            "getfem_s": f"{g['seconds']:.3f}" if g else "", "getfem_mesh": g["mesh"] if g else "not reached",
-                            "igac_s": f"{i['seconds']:.3f}" if i else "", "igac_mesh": i["mesh"] if i else "not reached",
-                            "ratio_getfem_over_igac": f"{g['seconds'] / i['seconds']:.2f}" if g and i else ""})
+        summary += summarise(problem, gf, ig)
     os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    with open(os.path.join(HERE, "results", "vs_getfem_runs.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(runs[0].keys()))
-        w.writeheader()
-        w.writerows(runs)
-    with open(os.path.join(HERE, "results", "vs_getfem.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(summary[0].keys()))
-        w.writeheader()
-        w.writerows(summary)
+    write_csv(os.path.join(HERE, "results", "vs_getfem_runs.csv"), runs)
+    write_csv(os.path.join(HERE, "results", "vs_getfem.csv"), summary)
     for r in runs:
-        print(f"{r['code']:7} {r['problem']} {r['mesh']:18} {r['unknowns']:>8} unknowns  {r['seconds']:8.3f} s  "
-              f"L2 rel {100 * r['l2_rel']:.3f} %")
+        err = f"L2 rel {100 * r['error']:.3f} %" if r["problem"] in ("2d", "3d") else \
+            f"force {r['force']:.6f}, a {r['half_width']:.4f}, p {r['max_pressure']:.5f} (error/tol {r['error']:.2f})"
+        print(f"{r['code']:7} {r['problem']:8} {r['mesh']:32} {r['unknowns']:>8} unknowns {r['seconds']:9.3f} s  {err}")
     for s in summary:
-        print(f"{s['problem']} {100 * s['target_l2_rel']:.1f} %: GetFEM {s['getfem_s'] or '-'} s ({s['getfem_mesh']}), "
-              f"igac {s['igac_s'] or '-'} s ({s['igac_mesh']}), ratio {s['ratio_getfem_over_igac'] or '-'}")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, axes = plt.subplots(1, len(args.problems), figsize=(6 * len(args.problems), 4.5), squeeze=False)
-        for ax, problem in zip(axes[0], args.problems):
-            for code, style in (("getfem", "s-"), ("igac", "o")):
-                pts = sorted((r["seconds"], r["l2_rel"]) for r in runs if r["code"] == code and r["problem"] == problem)
-                if pts:
-                    ax.loglog([p[0] for p in pts], [100 * p[1] for p in pts], style, label=code)
-            for t in TARGETS[problem]:
-                ax.axhline(100 * t, color="grey", lw=0.5, ls=":")
-            ax.set_xlabel("time (s, same machine, same run)")
-            ax.set_ylabel("relative L2 pressure error (%)")
-            ax.set_title(f"Hertz {problem.upper()}")
-            ax.grid(alpha=0.3, which="both")
-            ax.legend()
-        fig.tight_layout()
-        fig.savefig(os.path.join(HERE, "results", "vs_getfem.png"), dpi=110)
-    except ImportError:
-        print("vs_getfem: no matplotlib, no plot", file=sys.stderr)
+        extra = f", GetFEM N=64 {s['getfem_N64_s']} s: ratio {s['ratio_getfem_N64_over_igac']}" if s["getfem_N64_s"] else ""
+        print(f"{s['problem']} {s['target']}: GetFEM {s['getfem_s'] or '-'} s ({s['getfem_mesh']}), "
+              f"igac {s['igac_s'] or '-'} s ({s['igac_mesh']}), ratio {s['ratio_getfem_over_igac'] or '-'}{extra}")
+    plot(runs, args.problems)
 
 
 if __name__ == "__main__":
