@@ -52,12 +52,17 @@ class BlasThreads {
     if (n > 0) api().set(n);
   }
   static int current() { return api().get ? api().get() : 0; }
+  // OpenBLAS built on OpenMP (libopenblas0-openmp) runs on libgomp's own
+  // workers: nothing spins against it, and serialising OpenMP would
+  // serialise it too.
+  static bool uses_openmp() { return api().parallel == 2; }
 
  private:
   struct Api {
     void (*set)(int) = nullptr;
     int (*get)() = nullptr;
     int initial = 1;
+    int parallel = 0;  // openblas_get_parallel(): 0 sequential, 1 pthreads, 2 OpenMP
     bool user_chose = false;
   };
   static const Api& api() {
@@ -66,6 +71,8 @@ class BlasThreads {
       r.set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
       r.get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
       r.initial = r.get ? r.get() : 1;
+      if (auto parallel = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_parallel")))
+        r.parallel = parallel();
       r.user_chose = std::getenv("OPENBLAS_NUM_THREADS") || std::getenv("OMP_NUM_THREADS");
       return r;
     }();
@@ -85,7 +92,7 @@ class BlasOwnsTheCores {
  public:
   explicit BlasOwnsTheCores(double flops = 0)
       : levels_(omp_get_max_active_levels()), threads_(BlasThreads::current()) {
-    omp_set_max_active_levels(0);
+    if (!BlasThreads::uses_openmp()) omp_set_max_active_levels(0);
     BlasThreads::set(BlasThreads::for_flops(flops));
   }
   ~BlasOwnsTheCores() {
