@@ -1,8 +1,9 @@
-// The SVG plot writer (io/svg_plot.hpp): the document parses as XML; data
-// lands on the pixels the axes say (linear: proportional; log: a decade is a
-// fixed number of pixels; the axis ends are the frame's edges); ticks step
-// by 1-2-5 and by decades; non-finite points are never written; text is
-// escaped.
+// The SVG plots (io/svg_plot.hpp, io/plots.hpp): the document parses as XML;
+// data lands on the pixels the axes say (linear: proportional; log: a decade
+// is a fixed number of pixels; the axis ends are the frame's edges); ticks
+// step by 1-2-5 and by decades; non-finite points are never written; text
+// is escaped; the pressure plot of a real 2D Hertz run draws one segment
+// per S0 multiplier in view and the Hertz curve.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "io/plots.hpp"
 #include "io/svg_plot.hpp"
 
 namespace igac {
@@ -217,6 +221,55 @@ TEST(SvgPlot, SegmentsAreDisconnectedAndLinesClippedToTheFrame) {
 TEST(SvgPlot, DeterministicOutput) {
   const auto fig = one_panel({}, {}, {{.label = "d", .x = {0.1, 0.2, 0.35}, .y = {3, 1, 2}}});
   EXPECT_EQ(svg::render(fig), svg::render(fig));
+}
+
+// A real 2D Hertz run (cases/hertz2d.toml, N2/S0): its pressure plot.
+TEST(SvgPlot, Hertz2DPressurePlot) {
+  CaseSpec spec = read_case(std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml");
+  const Model model = build_model(spec);
+  const RunResult r = solve_model(model);
+  ASSERT_EQ(r.status, "converged");
+  ASSERT_TRUE(r.contact && r.hertz);
+  const auto& rep = r.contact->report;
+  ASSERT_EQ(rep.p1.size(), rep.multipliers.size() + 1) << "S0: one constant per face element";
+
+  const svg::Figure fig = pressure_figure(r, spec.name);
+  ASSERT_EQ(fig.panels.size(), 1u);
+  const svg::Panel& panel = fig.panels[0];
+  ASSERT_TRUE(panel.x.max && panel.y.min && panel.y.max);
+  const double xmax = *panel.x.max, ylo = *panel.y.min, yhi = *panel.y.max;
+  EXPECT_EQ(xmax, 1.6) << "r/a up to 1.6";
+  // The segments in view: those that start left of r/a = 1.6.
+  std::vector<double> breaks;
+  for (const auto& p : rep.p1) breaks.push_back(p.r / r.hertz->a);
+  const long in_view = std::count_if(breaks.begin(), breaks.end() - 1, [&](double x) { return x < xmax; });
+  ASSERT_GT(in_view, 10);
+
+  const auto doc = parse(svg::render(fig));
+  EXPECT_EQ(std::string(doc.select_node("//text[@class='title']").node().text().get()), "hertz2d");
+  const Box f = frames(doc).at(0);
+  const auto segs = pieces(series(doc, "multipliers (constant per element)"));
+  EXPECT_EQ(long(segs.size()), in_view) << "one segment per multiplier in view";
+  for (const auto& s : segs) {
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_NEAR(s[0].y, s[1].y, 1e-9) << "a constant";
+  }
+  const auto hertz = pieces(series(doc, "Hertz: p/p0 = √(1 − (r/a)²)"));
+  ASSERT_EQ(hertz.size(), 1u);
+  EXPECT_GT(hertz[0].size(), 300u);
+  // Back from pixels to (r/a, p/p0): every vertex on the Hertz curve, to
+  // the pixel rounding in y and in x times the curve's slope (away from its
+  // kink at r = a).
+  const double dx = 2 * kPixel * xmax / f.w, dy = 2 * kPixel * (yhi - ylo) / f.h;
+  int checked = 0;
+  for (const Pt& q : hertz[0]) {
+    const double x = (q.x - f.x) / f.w * xmax, y = ylo + (f.y + f.h - q.y) / f.h * (yhi - ylo);
+    if (std::abs(x - 1) < 0.01) continue;
+    const double expected = x < 1 ? std::sqrt(1 - x * x) : 0.0, slope = x < 1 ? x / expected : 0.0;
+    EXPECT_NEAR(y, expected, dy + slope * dx) << "r/a = " << x;
+    ++checked;
+  }
+  EXPECT_GT(checked, 390);
 }
 
 }  // namespace
