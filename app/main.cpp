@@ -164,11 +164,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (folder) {
     if (r.contact) {
       write_file_atomically(dir + "/pressure.csv", pressure_csv(r));
-      draw_plot("plot_pressure.py", dir + "/pressure.csv", dir + "/pressure.png", spec.name, quiet);
+      write_file_atomically(dir + "/pressure.svg", svg::render(pressure_figure(r, spec.name)));
     }
     if (!r.load_curve.empty()) {
       write_file_atomically(dir + "/load_curve.csv", load_curve_csv(r));
-      draw_plot("plot_load_curve.py", dir + "/load_curve.csv", dir + "/load_curve.png", spec.name, quiet);
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name)));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);
@@ -209,7 +209,7 @@ int main(int argc, char** argv) {
   study->add_option("case", case_path, "case file (TOML)")->required();
   study->add_option("--levels", levels, "number of refinement levels")->required();
   study->add_option("--degree", degree, "NURBS degree p");
-  study->add_option("--out", out, "output folder for study.json, study.csv, study.png");
+  study->add_option("--out", out, "output folder for study.json, study.csv, study.svg");
   study->add_flag("--quiet", quiet, "print only the table");
 
   auto* geometry = app.add_subcommand("geometry", "write the case's body (before refinement) as a G+Smo XML file");

@@ -126,7 +126,14 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     const std::string dir = folder->staging();
     write_file_atomically(dir + "/study.csv", csv);
     write_file_atomically(dir + "/study.json", j.dump(2) + "\n");
-    draw_plot("plot_study.py", dir + "/study.csv", dir + "/study.png", spec.name, opt.quiet);
+    std::vector<double> h;
+    std::vector<StudyError> plotted;
+    for (const auto& n : names) plotted.push_back({n, {}});
+    for (int l : reported) {
+      h.push_back(models[l].mesh_size);
+      for (auto& e : plotted) e.values.push_back(errors[l][e.name]);
+    }
+    write_file_atomically(dir + "/study.svg", svg::render(study_figure(h, plotted, spec.name)));
     folder->commit();
   }
   return 0;

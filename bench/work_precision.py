@@ -12,8 +12,8 @@ summary.json, wall time, peak memory, and the errors against Hertz:
 pressure_l2_rel, |a - a_H| / a_H and |p0 - p0_H| / p0_H.
 
 Peak memory: `peak_rss_mb` is /usr/bin/time -v's maximum resident set size
-(Debian package `time`; without it, getrusage of the children), which also
-covers the matplotlib helper igac starts to draw pressure.png (~60-70 MB);
+(Debian package `time`; without it, getrusage of the children; before igac
+drew its plots as SVG itself this also counted a ~60-70 MB matplotlib helper);
 `igac_peak_rss_mb` is igac's own high-water mark (VmHWM, polled from /proc
 while it runs).
 

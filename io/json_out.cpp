@@ -153,7 +153,7 @@ std::string pressure_csv(const RunResult& r) {
   const auto& rep = r.contact->report;
   auto row = [&](const char* kind, PressureSample p) {
     p.pressure += 0.0;  // an inactive multiplier's -0 prints as 0
-    if (r.hertz && r.hertz->a > 0 && r.hertz->p0 > 0)  // a zero load has no Hertz scale
+    if (has_hertz_scale(r))
       s += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", kind, p.r, p.pressure, p.r / r.hertz->a,
                        p.pressure / r.hertz->p0, r.hertz->pressure(p.r) / r.hertz->p0);
     else

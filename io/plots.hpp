@@ -1,22 +1,37 @@
-// PNG plots drawn by the Python scripts in scripts/ with Debian's
-// python3-matplotlib.  A missing plotting tool is a warning, not a failure:
-// the CSV next to the plot holds the same numbers.
+// The plots of an output folder, drawn as SVG (io/svg_plot.hpp) from what a
+// run holds in memory; the CSV files beside them hold the same numbers.
+//   pressure.svg    the contact pressure of the first contact: the
+//                   multipliers (N2/S0: one constant per face element, drawn
+//                   as a segment over its element), the P1 re-interpolation
+//                   and, when the case has Hertz, p/p0 = sqrt(1 - (r/a)^2)
+//                   against r/a, like Figure 1(b) of Antolin, Buffa & Fabre
+//                   (2018); otherwise p = -lambda against r.
+//   load_curve.svg  large deformation: the contact force against the load
+//                   factor, and against the loaded face's displacement (or
+//                   how far a moving obstacle has moved).
+//   study.svg       a refinement study: errors against h, log-log, with the
+//                   slope of the finest pair of levels in the legend and as
+//                   a triangle.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "io/run_record.hpp"
+#include "io/svg_plot.hpp"
+
 namespace igac {
 
-// Runs a program with this argument vector (argv[0] looked up in PATH), no
-// shell in between, its output discarded; its exit code, or -1 when it could
-// not be started or did not exit normally.
-int run_program(const std::vector<std::string>& argv);
+// Needs result.contact.
+svg::Figure pressure_figure(const RunResult& result, const std::string& title);
+// Needs result.load_curve (the origin is added as its first point).
+svg::Figure load_curve_figure(const RunResult& result, const std::string& title);
 
-// Runs scripts/<script> CSV PNG TITLE; the picture replaces PNG only when it
-// was drawn completely.  Returns false (and prints a warning unless quiet)
-// when the plot could not be drawn.
-bool draw_plot(const std::string& script, const std::string& csv, const std::string& png, const std::string& title,
-               bool quiet);
+// One error of a study, per level (aligned with the levels' h).
+struct StudyError {
+  std::string name;  // e.g. displacement_l2 (labelled in words on the plot)
+  std::vector<double> values;
+};
+svg::Figure study_figure(const std::vector<double>& h, const std::vector<StudyError>& errors, const std::string& title);
 
 }  // namespace igac

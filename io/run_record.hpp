@@ -102,4 +102,8 @@ struct RunResult {
   LinearSolverRecord linear_solver;
 };
 
+// pressure.csv and pressure.svg scale r by Hertz's a and p by its p0 when
+// the case has Hertz and both are positive (a zero load has no Hertz scale).
+inline bool has_hertz_scale(const RunResult& r) { return r.hertz && r.hertz->a > 0 && r.hertz->p0 > 0; }
+
 }  // namespace igac

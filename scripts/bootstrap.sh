@@ -9,7 +9,7 @@ packages=(cmake g++ make pkg-config
           libeigen3-dev libsundials-dev libsuitesparse-dev libvtk9-dev
           libfmt-dev libtomlplusplus-dev libcli11-dev libgtest-dev
           nlohmann-json3-dev libpugixml-dev libopenblas0-pthread libopenblas-dev
-          python3 python3-matplotlib
+          python3 python3-matplotlib     # the plots of bench/*.py (igac writes its own as SVG)
           libpetsc-real-dev openmpi-bin)   # the PETSc (MPI) solver path: --solver petsc, scripts/mpirun.sh
 
 missing=()

@@ -1,11 +1,13 @@
 // End to end through the igac executable: a coarse 3D Hertz run, a 3D
 // Neo-Hookean contact smoke test, and the contents of study.json, study.csv,
-// pressure.csv and load_curve.csv (what a user's scripts read).
+// pressure.csv and load_curve.csv (what a user's scripts read), with the
+// SVG plots beside them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <pugixml.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,6 +38,18 @@ std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
     rows.push_back(cells);
   }
   return rows;
+}
+
+// A plot igac wrote (io/plots.hpp): an SVG document with one frame per
+// panel and something drawn in it.
+void expect_svg(const fs::path& p) {
+  ASSERT_TRUE(fs::exists(p)) << p;
+  pugi::xml_document doc;
+  const std::string text = igac_test::read_file(p);
+  ASSERT_TRUE(doc.load_string(text.c_str())) << p;
+  EXPECT_STREQ(doc.document_element().name(), "svg") << p;
+  EXPECT_FALSE(doc.select_nodes("//rect[@class='frame']").empty()) << p;
+  EXPECT_FALSE(doc.select_nodes("//g[@class='series']/path").empty()) << p;
 }
 
 // cases/NAME.toml with edits, written to dir/NAME.toml.
@@ -81,6 +95,8 @@ TEST(EndToEnd, NeoHookean3DContactSmoke) {
   EXPECT_EQ(rows[0], (std::vector<std::string>{"load_factor", "contact_force", "face_displacement", "obstacle_displacement"}));
   EXPECT_DOUBLE_EQ(std::stod(rows.back()[0]), 1.0);
   for (size_t i = 2; i < rows.size(); ++i) EXPECT_GT(std::stod(rows[i][1]), std::stod(rows[i - 1][1])) << "force grows";
+  expect_svg(tmp.path() / "out" / "load_curve.svg");
+  expect_svg(tmp.path() / "out" / "pressure.svg");
 }
 
 TEST(EndToEnd, StudyJsonAndCsvAgree) {
@@ -103,7 +119,7 @@ TEST(EndToEnd, StudyJsonAndCsvAgree) {
   ASSERT_LT(size_t(col), header.size());
   for (int l = 0; l < 3; ++l)
     EXPECT_NEAR(std::stod(rows[l + 1][col]) / j["levels"][l]["errors"]["displacement_l2"].get<double>(), 1.0, 1e-7);
-  EXPECT_TRUE(fs::exists(tmp.path() / "st" / "study.png") || true);  // the plot needs matplotlib: not asserted
+  expect_svg(tmp.path() / "st" / "study.svg");
 }
 
 TEST(EndToEnd, PressureCsvMatchesTheSummary) {
@@ -125,6 +141,10 @@ TEST(EndToEnd, PressureCsvMatchesTheSummary) {
   }
   EXPECT_EQ(multipliers, j["multipliers"].get<int>());
   EXPECT_NEAR(max_p, j["contact"]["max_pressure"].get<double>(), 1e-9);
+  expect_svg(tmp.path() / "out" / "pressure.svg");
+  EXPECT_FALSE(fs::exists(tmp.path() / "out" / "load_curve.svg")) << "small deformation: no load curve";
+  for (const auto& e : fs::directory_iterator(tmp.path() / "out"))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "a temporary file was left: " << e.path();
 }
 
 }  // namespace
