@@ -7,7 +7,7 @@ Generates case variants from the shipped cases (coarse [32, 8] meshes, no
 ParaView output), runs each with `igac run`, and tabulates per run: status,
 exit code, load steps, Newton (or active-set) iterations, cut-backs, max
 pressure, total force against applied force, time, and a scan of every file
-the run wrote (summary.json, pressure.csv, load_curve.csv) for NaN / inf
+the run wrote (summary.json, the CSV files and the SVG plots) for NaN / inf
 (and for the JSON `null` that summary.json writes in place of a value that
 is not finite).
 
@@ -134,7 +134,7 @@ def scan_nonfinite(folder):
     """Non-finite tokens per written text file, and JSON nulls in summary.json."""
     nonfinite, nulls, files = 0, 0, []
     for f in sorted(Path(folder).glob("*")):
-        if f.suffix not in (".json", ".csv"):
+        if f.suffix not in (".json", ".csv", ".svg"):
             continue
         files.append(f.name)
         text = f.read_text(errors="replace")
