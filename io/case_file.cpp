@@ -419,7 +419,7 @@ CaseSpec read_case(const std::string& path) {
     c.write_vtk = s.boolean("vtk", true);
   }
   if (root.contains("solver")) {
-    const Section s(path, "solver", top.sub("solver"), {"type", "options"});
+    const Section s(path, "solver", top.sub("solver"), {"type", "options", "preconditioner"});
     c.solver.type = s.string("type", "direct");
     if (c.solver.type != "direct" && c.solver.type != "petsc")
       s.fail("type", fmt::format("unknown solver '{}' (direct: CHOLMOD on one process; petsc: PETSc, also under mpirun)",
@@ -427,6 +427,8 @@ CaseSpec read_case(const std::string& path) {
     c.solver.options = s.string("options", "");
     if (!c.solver.options.empty() && c.solver.type != "petsc")
       s.fail("options", "PETSc options need type = \"petsc\"");
+    c.solver.preconditioner = s.string("preconditioner", "options");
+    if (const std::string why = check_preconditioner(c.solver); !why.empty()) s.fail("preconditioner", why);
     if (c.solver.type == "petsc" && c.finite_strain())
       s.fail("type", "the PETSc solver runs the small-deformation (linear_elastic) contact solve only");
   }
@@ -457,7 +459,20 @@ double estimated_peak_bytes(const CaseSpec& c) {
   const bool multigrid = o.find("gamg") != std::string::npos || o.find("hypre") != std::string::npos ||
                          o.find("-pc_type ml") != std::string::npos;
   if (c.solver.type == "petsc" && multigrid) return kBase + kCalibration * 4 * 12 * nnz;
+  // The spline multigrid: K assembled (Eigen), then PETSc's displacement
+  // block and its Galerkin levels (1/8 + 1/64 + ... of it in 3D).
+  if (c.solver.type == "petsc" && c.solver.preconditioner == "spline_multigrid")
+    return kBase + kCalibration * 2.3 * 12 * nnz;
   return kBase + kCalibration * (12 * nnz + 10 * fill * nnz / 2);
+}
+
+std::string check_preconditioner(const SolverSpec& s) {
+  if (s.preconditioner != "options" && s.preconditioner != "spline_multigrid")
+    return fmt::format("unknown preconditioner '{}' (options: as [solver] options say, default MUMPS; "
+                       "spline_multigrid: geometric multigrid over the nested meshes)", s.preconditioner);
+  if (s.preconditioner == "spline_multigrid" && s.type != "petsc")
+    return "spline_multigrid runs in the PETSc solver: needs type = \"petsc\"";
+  return {};
 }
 
 void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> refine) {

@@ -1,0 +1,188 @@
+#include "contact/petsc_multigrid.hpp"
+
+#include <mpi.h>
+
+namespace igac {
+
+using petsc::check;
+using petsc::default_option;
+using petsc::share;
+
+namespace {
+
+// Rows [row0, row0 + rows) of M (whole) into a new distributed AIJ matrix
+// with the given local sizes; columns [col0, col0 + cols) are this
+// process's diagonal block.
+Mat distributed(const RowSparse& M, PetscInt row0, PetscInt rows, PetscInt col0, PetscInt cols) {
+  Mat out = nullptr;
+  check(MatCreate(PETSC_COMM_WORLD, &out), "matrix");
+  check(MatSetSizes(out, rows, cols, PetscInt(M.rows()), PetscInt(M.cols())), "matrix");
+  check(MatSetType(out, MATAIJ), "matrix");
+  std::vector<PetscInt> d_nnz(rows, 0), o_nnz(rows, 0);
+  for (PetscInt r = 0; r < rows; ++r)
+    for (RowSparse::InnerIterator e(M, row0 + r); e; ++e)
+      ++(e.col() >= col0 && e.col() < col0 + cols ? d_nnz : o_nnz)[r];
+  check(MatXAIJSetPreallocation(out, 1, d_nnz.data(), o_nnz.data(), nullptr, nullptr), "matrix");
+  std::vector<PetscInt> idx;
+  for (PetscInt r = row0; r < row0 + rows; ++r) {
+    idx.assign(M.innerIndexPtr() + M.outerIndexPtr()[r], M.innerIndexPtr() + M.outerIndexPtr()[r + 1]);
+    if (!idx.empty())
+      check(MatSetValues(out, 1, &r, PetscInt(idx.size()), idx.data(), M.valuePtr() + M.outerIndexPtr()[r],
+                         INSERT_VALUES), "matrix");
+  }
+  check(MatAssemblyBegin(out, MAT_FINAL_ASSEMBLY), "matrix");
+  check(MatAssemblyEnd(out, MAT_FINAL_ASSEMBLY), "matrix");
+  return out;
+}
+
+Vec vector_without_array(PetscInt local, PetscInt global) {
+  Vec v = nullptr;
+  check(VecCreateMPIWithArray(PETSC_COMM_WORLD, 1, local, global, nullptr, &v), "vector");
+  return v;
+}
+
+}  // namespace
+
+SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorXd& W,
+                                 const Eigen::VectorXd& inactive_diagonal, const petsc::SaddleLayout& L,
+                                 const std::vector<RowSparse>& prolongations)
+    : A_(A), layout_(L), G_(G), W_(W), inactive_(inactive_diagonal) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  // G_A: G's pattern, values per active set.
+  B_.p = distributed(G_, L.l0 - L.n, L.local_l(), L.u0, L.local_u());
+  check(VecCreateMPI(comm, L.local_l(), L.m, &d_), "vector");
+  check(VecDuplicate(d_, &sinv_), "vector");
+  check(VecDuplicate(d_, &tl_), "vector");
+  check(VecCreateMPI(comm, L.local_u(), L.n, &tu_), "vector");
+  xu_.p = vector_without_array(L.local_u(), L.n);
+  yu_.p = vector_without_array(L.local_u(), L.n);
+  xl_.p = vector_without_array(L.local_l(), L.m);
+  yl_.p = vector_without_array(L.local_l(), L.m);
+
+  // Interpolations, coarse to fine; the finest level's rows are A's.
+  const int nl = int(prolongations.size());
+  P_.resize(nl);
+  for (int k = 0; k < nl; ++k) {  // prolongations[k]: level nl - k from nl - k - 1
+    const RowSparse& P = prolongations[k];
+    const auto [r0, rows] = k == 0 ? std::pair<PetscInt, PetscInt>{L.u0, L.local_u()} : share(PetscInt(P.rows()));
+    const auto [c0, cols] = share(PetscInt(P.cols()));
+    P_[nl - 1 - k].p = distributed(P, r0, rows, c0, cols);
+  }
+  check(KSPCreate(comm, &mg_), "solver");
+  check(KSPSetOptionsPrefix(mg_, "u_"), "solver");
+  check(KSPSetType(mg_, KSPPREONLY), "solver");
+  PC pc = nullptr;
+  check(KSPGetPC(mg_, &pc), "solver");
+  check(PCSetType(pc, PCMG), "solver");
+  check(PCMGSetLevels(pc, nl + 1, nullptr), "solver");
+  for (int l = 1; l <= nl; ++l) check(PCMGSetInterpolation(pc, l, P_[l - 1]), "solver");
+  check(PCMGSetGalerkin(pc, PC_MG_GALERKIN_BOTH), "solver");
+  check(KSPSetOperators(mg_, A_, A_), "solver");
+  // Chebyshev on incomplete Cholesky (ICC(0) on each process's block):
+  // point smoothers (Jacobi, SOR) lose a factor 2 per level on the sphere
+  // octant, whose elements next to its collapsed axis grow thinner with
+  // every refinement (README "Beyond one machine").
+  default_option("-u_mg_levels_ksp_type", "chebyshev");
+  default_option("-u_mg_levels_pc_type", "bjacobi");
+  default_option("-u_mg_levels_sub_pc_type", "icc");
+  check(KSPSetFromOptions(mg_), "options", true);
+}
+
+SplineMultigrid::~SplineMultigrid() = default;
+
+void SplineMultigrid::set_active_set(const std::vector<char>& active) {
+  const petsc::SaddleLayout& L = layout_;
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> vals;
+  PetscScalar *pd = nullptr, *ps = nullptr;
+  check(VecGetArray(d_, &pd), "vector");
+  check(VecGetArray(sinv_, &ps), "vector");
+  for (PetscInt row = L.l0 - L.n; row < L.l1 - L.n; ++row) {
+    cols.clear();
+    vals.clear();
+    for (RowSparse::InnerIterator e(G_, row); e; ++e) {
+      cols.push_back(PetscInt(e.col()));
+      vals.push_back(active[row] ? e.value() : 0.0);
+    }
+    if (!cols.empty())
+      check(MatSetValues(B_, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
+    const PetscInt i = row - (L.l0 - L.n);
+    pd[i] = active[row] ? 0.0 : inactive_[row];
+    ps[i] = active[row] ? -W_[row] : 1.0 / inactive_[row];
+  }
+  check(VecRestoreArray(sinv_, &ps), "vector");
+  check(VecRestoreArray(d_, &pd), "vector");
+  check(MatAssemblyBegin(B_, MAT_FINAL_ASSEMBLY), "matrix");
+  check(MatAssemblyEnd(B_, MAT_FINAL_ASSEMBLY), "matrix");
+}
+
+void SplineMultigrid::attach(KSP ksp) {
+  const PetscInt local = layout_.r1 - layout_.r0, N = layout_.n + layout_.m;
+  check(MatCreateShell(PETSC_COMM_WORLD, local, local, N, N, this, &S_), "matrix");
+  check(MatShellSetOperation(S_, MATOP_MULT, (void (*)(void))mult), "matrix");
+  check(MatSetOption(S_, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
+  check(KSPSetOperators(ksp, S_, S_), "solver");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp, &pc), "solver");
+  check(PCSetType(pc, PCSHELL), "solver");
+  check(PCShellSetContext(pc, this), "solver");
+  check(PCShellSetApply(pc, apply), "solver");
+  check(PCShellSetName(pc, "spline multigrid (block triangular: MG on the displacements, -W on the multipliers)"),
+        "solver");
+}
+
+Mat SplineMultigrid::shell() const { return S_; }
+
+void SplineMultigrid::setup() {
+  check(KSPSetOperators(mg_, A_, A_), "solver");
+  check(KSPSetUp(mg_), "solver setup", true);
+}
+
+PetscErrorCode SplineMultigrid::mult(Mat S, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  SplineMultigrid* self = nullptr;
+  PetscCall(MatShellGetContext(S, &self));
+  const PetscScalar* px = nullptr;
+  PetscScalar* py = nullptr;
+  PetscCall(VecGetArrayRead(x, &px));
+  PetscCall(VecGetArray(y, &py));
+  const PetscInt nu = self->layout_.local_u();
+  PetscCall(VecPlaceArray(self->xu_, px));
+  PetscCall(VecPlaceArray(self->xl_, px + nu));
+  PetscCall(VecPlaceArray(self->yu_, py));
+  PetscCall(VecPlaceArray(self->yl_, py + nu));
+  PetscCall(MatMult(self->A_, self->xu_, self->yu_));                          // A u
+  PetscCall(MatMultTransposeAdd(self->B_, self->xl_, self->yu_, self->yu_));  // + G_A^T l
+  PetscCall(MatMult(self->B_, self->xu_, self->yl_));                          // G_A u
+  PetscCall(VecPointwiseMult(self->tl_, self->d_, self->xl_));
+  PetscCall(VecAXPY(self->yl_, 1.0, self->tl_));                               // + D_I l
+  for (Vec v : {self->xu_.p, self->xl_.p, self->yu_.p, self->yl_.p}) PetscCall(VecResetArray(v));
+  PetscCall(VecRestoreArray(y, &py));
+  PetscCall(VecRestoreArrayRead(x, &px));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SplineMultigrid::apply(PC pc, Vec r, Vec z) {
+  PetscFunctionBeginUser;
+  SplineMultigrid* self = nullptr;
+  PetscCall(PCShellGetContext(pc, &self));
+  const PetscScalar* pr = nullptr;
+  PetscScalar* pz = nullptr;
+  PetscCall(VecGetArrayRead(r, &pr));
+  PetscCall(VecGetArray(z, &pz));
+  const PetscInt nu = self->layout_.local_u();
+  PetscCall(VecPlaceArray(self->xu_, pr));
+  PetscCall(VecPlaceArray(self->xl_, pr + nu));
+  PetscCall(VecPlaceArray(self->yu_, pz));
+  PetscCall(VecPlaceArray(self->yl_, pz + nu));
+  PetscCall(VecPointwiseMult(self->yl_, self->sinv_, self->xl_));  // z_l = S~^-1 r_l
+  PetscCall(MatMultTranspose(self->B_, self->yl_, self->tu_));
+  PetscCall(VecAYPX(self->tu_, -1.0, self->xu_));                   // r_u - G_A^T z_l
+  PetscCall(KSPSolve(self->mg_, self->tu_, self->yu_));             // z_u = MG(...)
+  for (Vec v : {self->xu_.p, self->xl_.p, self->yu_.p, self->yl_.p}) PetscCall(VecResetArray(v));
+  PetscCall(VecRestoreArray(z, &pz));
+  PetscCall(VecRestoreArrayRead(r, &pr));
+  PetscFunctionReturn(0);
+}
+
+}  // namespace igac
