@@ -24,7 +24,8 @@
 // products P^T A P (so the Dirichlet eliminations and the augmentation reach
 // every level without a coarse assembly), the smoother Chebyshev on
 // block Jacobi with ICC(0) per process and the coarsest level a direct solve.  Options under the
-// prefix `u_` (`-u_mg_levels_ksp_max_it 3`, `-u_mg_levels_pc_type sor`).
+// prefix `u_` (`-u_mg_levels_ksp_max_it 3`, `-u_mg_levels_pc_type sor`;
+// `-u_pc_mg_levels L` keeps the L finest meshes).
 #pragma once
 
 #include <Eigen/SparseCore>
@@ -55,7 +56,7 @@ class SplineMultigrid {
   void attach(KSP ksp);
   // Rebuilds the hierarchy (Galerkin products, smoother estimates, coarse
   // factor) after A changed.
-  void setup();
+  void setup(bool rebuild = true);
   int levels() const { return int(P_.size()) + 1; }
   Mat shell() const;  // the saddle-point operator (after attach)
 
