@@ -154,51 +154,55 @@ void SplineMultigrid::setup(bool rebuild) {
   check(KSPSetUp(mg_), "solver setup", true);
 }
 
-PetscErrorCode SplineMultigrid::mult(Mat S, Vec x, Vec y) {
+// x and y as the work vectors xu_, xl_, yu_, yl_ (their u and lambda parts,
+// without copies), then `part`, then everything given back.
+PetscErrorCode SplineMultigrid::on_parts(Vec x, Vec y, PetscErrorCode (SplineMultigrid::*part)()) {
   PetscFunctionBeginUser;
-  SplineMultigrid* self = nullptr;
-  PetscCall(MatShellGetContext(S, &self));
   const PetscScalar* px = nullptr;
   PetscScalar* py = nullptr;
   PetscCall(VecGetArrayRead(x, &px));
   PetscCall(VecGetArray(y, &py));
-  const PetscInt nu = self->layout_.local_u();
-  PetscCall(VecPlaceArray(self->xu_, px));
-  PetscCall(VecPlaceArray(self->xl_, px + nu));
-  PetscCall(VecPlaceArray(self->yu_, py));
-  PetscCall(VecPlaceArray(self->yl_, py + nu));
-  PetscCall(MatMult(self->A_, self->xu_, self->yu_));                          // A u
-  PetscCall(MatMultTransposeAdd(self->B_, self->xl_, self->yu_, self->yu_));  // + G_A^T l
-  PetscCall(MatMult(self->B_, self->xu_, self->yl_));                          // G_A u
-  PetscCall(VecPointwiseMult(self->tl_, self->d_, self->xl_));
-  PetscCall(VecAXPY(self->yl_, 1.0, self->tl_));                               // + D_I l
-  for (Vec v : {self->xu_.p, self->xl_.p, self->yu_.p, self->yl_.p}) PetscCall(VecResetArray(v));
+  const PetscInt nu = layout_.local_u();
+  PetscCall(VecPlaceArray(xu_, px));
+  PetscCall(VecPlaceArray(xl_, px + nu));
+  PetscCall(VecPlaceArray(yu_, py));
+  PetscCall(VecPlaceArray(yl_, py + nu));
+  PetscCall((this->*part)());
+  for (Vec v : {xu_.p, xl_.p, yu_.p, yl_.p}) PetscCall(VecResetArray(v));
   PetscCall(VecRestoreArray(y, &py));
   PetscCall(VecRestoreArrayRead(x, &px));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SplineMultigrid::apply(PC pc, Vec r, Vec z) {
+PetscErrorCode SplineMultigrid::operator_parts() {  // y = [A G_A^T; G_A D_I] x
   PetscFunctionBeginUser;
-  SplineMultigrid* self = nullptr;
-  PetscCall(PCShellGetContext(pc, &self));
-  const PetscScalar* pr = nullptr;
-  PetscScalar* pz = nullptr;
-  PetscCall(VecGetArrayRead(r, &pr));
-  PetscCall(VecGetArray(z, &pz));
-  const PetscInt nu = self->layout_.local_u();
-  PetscCall(VecPlaceArray(self->xu_, pr));
-  PetscCall(VecPlaceArray(self->xl_, pr + nu));
-  PetscCall(VecPlaceArray(self->yu_, pz));
-  PetscCall(VecPlaceArray(self->yl_, pz + nu));
-  PetscCall(VecPointwiseMult(self->yl_, self->sinv_, self->xl_));  // z_l = S~^-1 r_l
-  PetscCall(MatMultTranspose(self->B_, self->yl_, self->tu_));
-  PetscCall(VecAYPX(self->tu_, -1.0, self->xu_));                   // r_u - G_A^T z_l
-  PetscCall(KSPSolve(self->mg_, self->tu_, self->yu_));             // z_u = MG(...)
-  for (Vec v : {self->xu_.p, self->xl_.p, self->yu_.p, self->yl_.p}) PetscCall(VecResetArray(v));
-  PetscCall(VecRestoreArray(z, &pz));
-  PetscCall(VecRestoreArrayRead(r, &pr));
+  PetscCall(MatMult(A_, xu_, yu_));
+  PetscCall(MatMultTransposeAdd(B_, xl_, yu_, yu_));
+  PetscCall(MatMult(B_, xu_, yl_));
+  PetscCall(VecPointwiseMult(tl_, d_, xl_));
+  PetscCall(VecAXPY(yl_, 1.0, tl_));
   PetscFunctionReturn(0);
+}
+
+PetscErrorCode SplineMultigrid::preconditioner_parts() {  // y = P^-1 x
+  PetscFunctionBeginUser;
+  PetscCall(VecPointwiseMult(yl_, sinv_, xl_));  // z_l = S~^-1 r_l
+  PetscCall(MatMultTranspose(B_, yl_, tu_));
+  PetscCall(VecAYPX(tu_, -1.0, xu_));    // r_u - G_A^T z_l
+  PetscCall(KSPSolve(mg_, tu_, yu_));    // z_u = MG(r_u - G_A^T z_l)
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SplineMultigrid::mult(Mat S, Vec x, Vec y) {
+  void* self = nullptr;
+  PetscCall(MatShellGetContext(S, &self));
+  return static_cast<SplineMultigrid*>(self)->on_parts(x, y, &SplineMultigrid::operator_parts);
+}
+
+PetscErrorCode SplineMultigrid::apply(PC pc, Vec r, Vec z) {
+  void* self = nullptr;
+  PetscCall(PCShellGetContext(pc, &self));
+  return static_cast<SplineMultigrid*>(self)->on_parts(r, z, &SplineMultigrid::preconditioner_parts);
 }
 
 }  // namespace igac

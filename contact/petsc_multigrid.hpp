@@ -63,6 +63,9 @@ class SplineMultigrid {
  private:
   static PetscErrorCode mult(Mat S, Vec x, Vec y);
   static PetscErrorCode apply(PC pc, Vec r, Vec z);
+  PetscErrorCode on_parts(Vec x, Vec y, PetscErrorCode (SplineMultigrid::*part)());
+  PetscErrorCode operator_parts();
+  PetscErrorCode preconditioner_parts();
 
   Mat A_;
   petsc::SaddleLayout layout_;
