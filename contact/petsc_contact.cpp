@@ -174,7 +174,7 @@ using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 // its elements' K in every row (diagonal or off-diagonal block of the
 // row's owner) and the counts are summed.  Rows shared by two processes'
 // elements are over-counted (a few slots unused); no hash table of the
-// pattern is built (MATPREALLOCATOR's took more memory than K itself).
+// whole pattern is built beside K (MATPREALLOCATOR's, as before).
 Mat assemble_matrix(Eigen::SparseMatrix<double>& Kp, const RowMat& G, const RowMat& Gt, const RowMat& GtG,
                     const SaddleLayout& L, bool saddle) {
   const MPI_Comm comm = PETSC_COMM_WORLD;
