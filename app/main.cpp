@@ -37,8 +37,12 @@ int process_count() { return launcher_size(); }
 
 // [solver] from the case, then the command line's --solver and
 // --petsc-options (added after the case's options: they win).
-void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::string& petsc_options) {
+void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::string& petsc_options,
+                          const std::string& preconditioner) {
   if (!solver.empty()) spec.solver.type = solver;
+  if (!preconditioner.empty()) spec.solver.preconditioner = preconditioner;
+  if (const std::string why = check_preconditioner(spec.solver); !why.empty())
+    throw InputError(fmt::format("--preconditioner {}: {}", spec.solver.preconditioner, why));
   if (!petsc_options.empty()) {
     if (spec.solver.type != "petsc") throw InputError("--petsc-options: needs --solver petsc (or [solver] type = \"petsc\")");
     spec.solver.options += " " + petsc_options;
@@ -115,14 +119,14 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
 
 int run_command(const std::string& path, std::string out, std::optional<int> refine, std::optional<int> degree,
                 bool quiet, bool no_output, const std::string& solver, const std::string& petsc_options,
-                char** argv) {
+                const std::string& preconditioner, char** argv) {
   CaseSpec spec = read_case(path);
 #ifndef IGAC_WITH_PETSC
   // The PETSc path lives in igac-petsc (app/launcher.hpp); without it the
   // solve below says so in one line.
   if ((solver.empty() ? spec.solver.type : solver) == "petsc") hand_over_to_petsc_build(argv);
 #endif
-  apply_solver_options(spec, solver, petsc_options);
+  apply_solver_options(spec, solver, petsc_options, preconditioner);
   apply_overrides(spec, degree, refine);
   if (process_rank() > 0) {  // the first process writes and prints
     no_output = true;
@@ -192,7 +196,7 @@ int main(int argc, char** argv) {
   std::optional<int> refine, degree;
   bool quiet = false, no_output = false;
   int levels = 4;
-  std::string solver, petsc_options;
+  std::string solver, petsc_options, preconditioner;
 
   auto* run = app.add_subcommand("run", "run one case");
   run->add_option("case", case_path, "case file (TOML)")->required();
@@ -204,6 +208,8 @@ int main(int argc, char** argv) {
   run->add_option("--solver", solver, "linear solver: direct (CHOLMOD, one process) or petsc (also under mpirun)")
       ->check(CLI::IsMember({"direct", "petsc"}));
   run->add_option("--petsc-options", petsc_options, "PETSc options, e.g. \"-ksp_type fgmres -pc_type fieldsplit\"");
+  run->add_option("--preconditioner", preconditioner,
+                  "PETSc: options (as the PETSc options say; default MUMPS) or spline_multigrid");
 
   auto* study = app.add_subcommand("study", "refinement study on nested meshes");
   study->add_option("case", case_path, "case file (TOML)")->required();
@@ -234,7 +240,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options, argv);
+    if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options,
+                                          preconditioner, argv);
     if (geometry->parsed()) {
       write_gismo_xml(case_body(read_case(case_path)), out);
       return 0;

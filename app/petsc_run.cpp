@@ -5,7 +5,9 @@
 #ifdef IGAC_WITH_PETSC
 #include <mpi.h>
 
+#include "app/case_run.hpp"
 #include "contact/petsc_contact.hpp"
+#include "engine/prolongation.hpp"
 #endif
 
 namespace igac {
@@ -39,6 +41,24 @@ Eigen::MatrixXd rigid_motions(const Model& m) {
   }
   return M;
 }
+// The prolongations of the spline multigrid, finest first: the case's mesh
+// at --refine r from r - 1, ..., 1 from 0 (nested: each halves the spans of
+// the one before).  The coarse models are built whole on every process
+// (small next to the fine one: 1/8 of it, 1/64, ...).
+std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> spline_hierarchy(const Model& m) {
+  std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> out;
+  const Model* fine = &m;
+  Model coarse;
+  for (int r = m.spec.refine - 1; r >= 0; --r) {
+    CaseSpec spec = m.spec;
+    spec.refine = r;
+    Model next = build_model(spec);
+    out.push_back(prolongation(next.body, *next.dofs, fine->body, *fine->dofs));
+    coarse = std::move(next);
+    fine = &coarse;
+  }
+  return out;
+}
 }  // namespace
 
 ElementRange process_elements(const Model& m) {
@@ -59,6 +79,8 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   po.contact = opt;
   po.stiffness = m.spec.E;
   po.dim = m.body.space_dim();
+  po.spline_multigrid = m.spec.solver.preconditioner == "spline_multigrid";
+  if (po.spline_multigrid) po.prolongations = spline_hierarchy(m);
   // The load is whole on every process: PETSc gets it once.
   const Eigen::VectorXd f_part = PetscSession::rank() == 0 ? sys.f : Eigen::VectorXd::Zero(sys.f.size()).eval();
   ContactSolution s;

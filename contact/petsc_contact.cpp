@@ -1,16 +1,21 @@
 #include "contact/petsc_contact.hpp"
 
+#include "contact/petsc_multigrid.hpp"
+#include "contact/petsc_support.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <omp.h>
+#include <optional>
 #include <petscksp.h>
 #include <set>
 #include <sys/resource.h>
 
 namespace igac {
+using namespace petsc;
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -40,48 +45,6 @@ bool is_option_error(PetscErrorCode e) {
          e == PETSC_ERR_ARG_TYPENOTSET || e == PETSC_ERR_ARG_WRONGSTATE;
 }
 
-// Throws on a PETSc error: a PetscOptionError when the options may be the
-// cause (`options_phase`) and the code says so, else std::runtime_error.
-void check(PetscErrorCode e, const char* what, bool options_phase = false) {
-  if (!e) return;
-  const char* text = nullptr;
-  PetscErrorMessage(e, &text, nullptr);
-  std::string msg = one_line(fmt::format("PETSc {}: {}{}", what, text ? text : "error",
-                                         g_message.empty() ? std::string() : ": " + one_line(g_message)));
-  g_message.clear();
-  if (e == PETSC_ERR_MEM) throw std::bad_alloc();
-  if (options_phase && is_option_error(e)) throw PetscOptionError(msg);
-  throw std::runtime_error(msg);
-}
-
-// PETSc objects destroyed at scope exit (also when an exception leaves).
-template <class T, PetscErrorCode (*Destroy)(T*)>
-struct Owned {
-  T p = nullptr;
-  Owned() = default;
-  Owned(const Owned&) = delete;
-  Owned& operator=(const Owned&) = delete;
-  ~Owned() {
-    if (p) Destroy(&p);
-  }
-  operator T() const { return p; }
-  T* operator&() { return &p; }
-};
-using OwnedMat = Owned<Mat, MatDestroy>;
-using OwnedVec = Owned<Vec, VecDestroy>;
-using OwnedKSP = Owned<KSP, KSPDestroy>;
-using OwnedIS = Owned<IS, ISDestroy>;
-using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
-using OwnedNullSpace = Owned<MatNullSpace, MatNullSpaceDestroy>;
-
-// Sets an option unless the user gave it; remembers it as igac's own.
-void default_option(const char* name, const char* value) {
-  PetscBool has = PETSC_FALSE;
-  check(PetscOptionsHasName(nullptr, nullptr, name, &has), "options");
-  if (has) return;
-  check(PetscOptionsSetValue(nullptr, name, value), "options");
-  g_defaults.emplace_back(name + 1);
-}
 
 // Options left unused after the first solve: misspelt, or for another solver.
 void refuse_unused_options() {
@@ -110,6 +73,39 @@ double peak_resident_gib() {
 }
 
 }  // namespace
+
+namespace petsc {
+
+void check(PetscErrorCode e, const char* what, bool options_phase) {
+  if (!e) return;
+  const char* text = nullptr;
+  PetscErrorMessage(e, &text, nullptr);
+  std::string msg = one_line(fmt::format("PETSc {}: {}{}", what, text ? text : "error",
+                                         g_message.empty() ? std::string() : ": " + one_line(g_message)));
+  g_message.clear();
+  if (e == PETSC_ERR_MEM) throw std::bad_alloc();
+  if (options_phase && is_option_error(e)) throw PetscOptionError(msg);
+  throw std::runtime_error(msg);
+}
+
+void default_option(const char* name, const char* value) {
+  PetscBool has = PETSC_FALSE;
+  check(PetscOptionsHasName(nullptr, nullptr, name, &has), "options");
+  if (has) return;
+  check(PetscOptionsSetValue(nullptr, name, value), "options");
+  g_defaults.emplace_back(name + 1);
+}
+
+std::pair<PetscInt, PetscInt> share(PetscInt n) {
+  PetscInt local = PETSC_DECIDE, first = 0;
+  check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &n), "layout");
+  MPI_Exscan(&local, &first, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD);
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return {rank == 0 ? 0 : first, local};
+}
+
+}  // namespace petsc
 
 PetscSession::PetscSession(const std::string& options) {
   if (g_active) throw std::logic_error("one PetscSession per program");
@@ -155,112 +151,144 @@ std::pair<int, int> process_share(int n) {
   return {int(n * r / s), int(n * (r + 1) / s)};
 }
 
-ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen::VectorXd& f_part,
-                                    const WeightedGapOperator& op, const RigidModes& modes,
-                                    const Eigen::MatrixXd& near_null, const PetscContactOptions& o) {
-  if (!g_active) throw std::logic_error("solve_contact_petsc without a PetscSession");
-  using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+namespace {
+
+using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// The assembled matrix: K (this process's elements, any rows) plus, on the
+// rows this process owns, the pattern of the augmentation G^T G (all
+// multipliers) and, for the whole saddle-point matrix, the columns G^T and
+// the rows [G D].  Every entry of the matrix's life is in the pattern.
+// `saddle` false: the displacement block alone (n x n, A's rows [u0, u1)).
+//
+// Preallocation from per-row counts: every process counts the entries of
+// its elements' K in every row (diagonal or off-diagonal block of the
+// row's owner) and the counts are summed.  Rows shared by two processes'
+// elements are over-counted (a few slots unused); no hash table of the
+// whole pattern is built beside K (MATPREALLOCATOR's, as before).
+Mat assemble_matrix(Eigen::SparseMatrix<double>& Kp, const RowMat& G, const RowMat& Gt, const RowMat& GtG,
+                    const SaddleLayout& L, bool saddle) {
   const MPI_Comm comm = PETSC_COMM_WORLD;
-  const PetscInt n = PetscInt(Kp.rows()), m = PetscInt(op.weights.size()), N = n + m;
-  const int k = int(modes.modes.cols());
-  ContactSolution sol;
-  sol.ranks = PetscSession::size();
-  auto t0 = Clock::now();
-
-  // Augmentation weights W_K = E / h_K^d, h_K from the multiplier's support
-  // measure int B_K ~ h^(d-1): G^T W G has the magnitude of K on the face.
-  Eigen::VectorXd W(m);
-  for (PetscInt K = 0; K < m; ++K)
-    W[K] = o.stiffness / std::pow(std::pow(op.weights[K], 1.0 / (o.dim - 1)), o.dim);
-  const RowMat& G = op.G;
-  const RowMat Gt = RowMat(G.transpose());
-  const RowMat GtG = RowMat(Gt * G);  // pattern of the augmentation (all multipliers)
-
-  // Pattern: K (this process's elements, any rows), then the contact rows
-  // this process owns; every entry of the matrix's life is in it.
-  PetscInt r0 = 0, r1 = 0;
-  OwnedMat A;
-  {
-    OwnedMat P;
-    check(MatCreate(comm, &P), "matrix");
-    check(MatSetType(P, MATPREALLOCATOR), "matrix");
-    check(MatSetSizes(P, PETSC_DECIDE, PETSC_DECIDE, N, N), "matrix");
-    check(MatSetUp(P), "matrix");
-    check(MatGetOwnershipRange(P, &r0, &r1), "matrix");
-    std::vector<PetscInt> cols;
-    std::vector<PetscScalar> zeros;
-    auto add_row = [&](PetscInt row) {
-      zeros.assign(cols.size(), 0.0);
-      check(MatSetValues(P, 1, &row, PetscInt(cols.size()), cols.data(), zeros.data(), INSERT_VALUES), "matrix");
-    };
-    for (PetscInt c = 0; c < n; ++c) {  // K symmetric: column c is row c
-      cols.assign(Kp.innerIndexPtr() + Kp.outerIndexPtr()[c], Kp.innerIndexPtr() + Kp.outerIndexPtr()[c + 1]);
-      if (!cols.empty()) add_row(c);
+  const PetscInt size = saddle ? L.n + L.m : L.n, local = saddle ? L.r1 - L.r0 : L.local_u();
+  const PetscInt n = L.n, first = saddle ? L.r0 : L.u0;
+  int procs = 1;
+  MPI_Comm_size(comm, &procs);
+  std::vector<PetscInt> starts(procs + 1, 0);
+  MPI_Allgather(&local, 1, MPIU_INT, starts.data() + 1, 1, MPIU_INT, comm);
+  for (int q = 0; q < procs; ++q) starts[q + 1] += starts[q];
+  auto owner_range = [&](PetscInt row) {
+    const int q = int(std::upper_bound(starts.begin(), starts.end(), row) - starts.begin()) - 1;
+    return std::pair{starts[q], starts[q + 1]};
+  };
+  std::vector<PetscInt> d_all(n, 0), o_all(n, 0);
+  for (PetscInt c = 0; c < n; ++c) {  // K symmetric: column c is row c
+    const auto [lo, hi] = owner_range(c);
+    for (int e = Kp.outerIndexPtr()[c]; e < Kp.outerIndexPtr()[c + 1]; ++e) {
+      const PetscInt r = Kp.innerIndexPtr()[e];
+      ++(r >= lo && r < hi ? d_all : o_all)[c];
     }
-    for (PetscInt row = r0; row < r1; ++row) {
-      cols.clear();
-      if (row < n) {
-        for (RowMat::InnerIterator it(GtG, row); it; ++it) cols.push_back(PetscInt(it.col()));
-        for (RowMat::InnerIterator it(Gt, row); it; ++it) cols.push_back(n + PetscInt(it.col()));
-      } else {
-        for (RowMat::InnerIterator it(G, row - n); it; ++it) cols.push_back(PetscInt(it.col()));
-        cols.push_back(row);
-      }
-      if (!cols.empty()) add_row(row);
-    }
-    check(MatAssemblyBegin(P, MAT_FINAL_ASSEMBLY), "matrix");
-    check(MatAssemblyEnd(P, MAT_FINAL_ASSEMBLY), "matrix");
-    check(MatCreate(comm, &A), "matrix");
-    check(MatSetType(A, MATAIJ), "matrix");
-    check(MatSetSizes(A, PETSC_DECIDE, PETSC_DECIDE, N, N), "matrix");
-    check(MatPreallocatorPreallocate(P, PETSC_TRUE, A), "matrix");
   }
+  MPI_Allreduce(MPI_IN_PLACE, d_all.data(), int(n), MPIU_INT, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, o_all.data(), int(n), MPIU_INT, MPI_SUM, comm);
+  // The contact pattern of the owned rows: (row, column) lists, zeros first.
+  std::vector<std::vector<PetscInt>> contact(local);
+  for (PetscInt row = first; row < first + local; ++row) {
+    std::vector<PetscInt>& cols = contact[row - first];
+    if (row < n) {
+      for (RowMat::InnerIterator it(GtG, row); it; ++it) cols.push_back(PetscInt(it.col()));
+      if (saddle)
+        for (RowMat::InnerIterator it(Gt, row); it; ++it) cols.push_back(n + PetscInt(it.col()));
+    } else {
+      for (RowMat::InnerIterator it(G, row - n); it; ++it) cols.push_back(PetscInt(it.col()));
+      cols.push_back(row);
+    }
+  }
+  std::vector<PetscInt> d_nnz(local), o_nnz(local);
+  for (PetscInt i = 0; i < local; ++i) {
+    const PetscInt row = first + i;
+    PetscInt d = row < n ? d_all[row] : 0, o = row < n ? o_all[row] : 0;
+    for (PetscInt c : contact[i]) ++(c >= first && c < first + local ? d : o);
+    d_nnz[i] = std::min(d, local);
+    o_nnz[i] = std::min(o, size - local);
+  }
+  d_all = {};
+  o_all = {};
+  Mat A = nullptr;
+  check(MatCreate(comm, &A), "matrix");
+  check(MatSetType(A, MATAIJ), "matrix");
+  check(MatSetSizes(A, local, local, size, size), "matrix");
+  check(MatXAIJSetPreallocation(A, 1, d_nnz.data(), o_nnz.data(), nullptr, nullptr), "matrix");
   check(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
   check(MatSetOption(A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE), "matrix");
+  std::vector<PetscInt> cols;
+  for (PetscInt c = 0; c < n; ++c) {
+    const int b = Kp.outerIndexPtr()[c], e = Kp.outerIndexPtr()[c + 1];
+    if (b == e) continue;
+    cols.assign(Kp.innerIndexPtr() + b, Kp.innerIndexPtr() + e);
+    check(MatSetValues(A, 1, &c, e - b, cols.data(), Kp.valuePtr() + b, ADD_VALUES), "matrix");
+  }
+  Kp = Eigen::SparseMatrix<double>();  // PETSc has it now
+  std::vector<PetscScalar> zeros;
+  for (PetscInt i = 0; i < local; ++i) {
+    if (contact[i].empty()) continue;
+    const PetscInt row = first + i;
+    zeros.assign(contact[i].size(), 0.0);
+    check(MatSetValues(A, 1, &row, PetscInt(contact[i].size()), contact[i].data(), zeros.data(), ADD_VALUES),
+          "matrix");
+  }
+  check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
+  check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
   check(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "matrix");
-  {
-    std::vector<PetscInt> cols;
-    for (PetscInt c = 0; c < n; ++c) {
-      const int b = Kp.outerIndexPtr()[c], e = Kp.outerIndexPtr()[c + 1];
-      if (b == e) continue;
-      cols.assign(Kp.innerIndexPtr() + b, Kp.innerIndexPtr() + e);
-      check(MatSetValues(A, 1, &c, e - b, cols.data(), Kp.valuePtr() + b, ADD_VALUES), "matrix");
-    }
-    Kp = Eigen::SparseMatrix<double>();  // PETSc has it now
-    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
-    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
-  }
-  OwnedVec x, b, bf;
-  check(MatCreateVecs(A, &x, &b), "vector");
-  check(VecDuplicate(b, &bf), "vector");
-  {
-    std::vector<PetscInt> idx;
-    std::vector<PetscScalar> val;
-    for (PetscInt i = 0; i < n; ++i)
-      if (f_part[i] != 0.0) {
-        idx.push_back(i);
-        val.push_back(f_part[i]);
-      }
-    check(VecSet(bf, 0.0), "vector");
-    check(VecSetValues(bf, PetscInt(idx.size()), idx.data(), val.data(), ADD_VALUES), "vector");
-    check(VecAssemblyBegin(bf), "vector");
-    check(VecAssemblyEnd(bf), "vector");
-  }
-  const double assembly_s = since(t0);
+  return A;
+}
 
-  // The two fields and the displacement field's near null space.
-  const PetscInt u0 = std::min(r0, n), u1 = std::min(r1, n), l0 = std::max(r0, n), l1 = std::max(r1, n);
-  OwnedIS is_u, is_l;
-  check(ISCreateStride(comm, u1 - u0, u0, 1, &is_u), "index set");
-  check(ISCreateStride(comm, l1 - l0, l0, 1, &is_l), "index set");
-  std::vector<OwnedVec> null_vecs(near_null.cols());
+// The rows [G_A D_I] and the columns G_A^T of the whole saddle-point matrix
+// for this active set (owned rows only; flushed, not final).
+void set_contact_rows(Mat A, const RowMat& G, const RowMat& Gt, const std::vector<char>& active,
+                      const Eigen::VectorXd& inactive_diagonal, const SaddleLayout& L) {
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> vals;
+  for (PetscInt row = L.l0; row < L.l1; ++row) {  // [G_A  D_I]
+    const PetscInt K = row - L.n;
+    cols.clear();
+    vals.clear();
+    for (RowMat::InnerIterator e(G, K); e; ++e) {
+      cols.push_back(PetscInt(e.col()));
+      vals.push_back(active[K] ? e.value() : 0.0);
+    }
+    cols.push_back(row);
+    vals.push_back(active[K] ? 0.0 : inactive_diagonal[K]);
+    check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
+  }
+  for (PetscInt row = L.u0; row < L.u1; ++row) {  // G_A^T
+    cols.clear();
+    vals.clear();
+    for (RowMat::InnerIterator e(Gt, row); e; ++e) {
+      cols.push_back(L.n + PetscInt(e.col()));
+      vals.push_back(active[e.col()] ? e.value() : 0.0);
+    }
+    if (!cols.empty())
+      check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
+  }
+  check(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY), "matrix");
+  check(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY), "matrix");
+}
+
+// The field split's two fields, the displacement field with its near null
+// space (rigid motions, orthonormalised), for algebraic multigrid.
+void set_fields(PC pc, const Eigen::MatrixXd& near_null, const SaddleLayout& L, OwnedIS& is_u, OwnedIS& is_l,
+                std::vector<OwnedVec>& null_vecs, OwnedNullSpace& near) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  check(ISCreateStride(comm, L.local_u(), L.u0, 1, &is_u), "index set");
+  check(ISCreateStride(comm, L.local_l(), L.l0, 1, &is_l), "index set");
+  null_vecs = std::vector<OwnedVec>(near_null.cols());
   std::vector<Vec> null_raw;
   for (Eigen::Index j = 0; j < near_null.cols(); ++j) {
     Vec& v = null_vecs[j].p;
-    check(VecCreateMPI(comm, u1 - u0, n, &v), "vector");
+    check(VecCreateMPI(comm, L.local_u(), L.n, &v), "vector");
     PetscScalar* a = nullptr;
     check(VecGetArray(v, &a), "vector");
-    for (PetscInt i = u0; i < u1; ++i) a[i - u0] = near_null(i, j);
+    for (PetscInt i = L.u0; i < L.u1; ++i) a[i - L.u0] = near_null(i, j);
     check(VecRestoreArray(v, &a), "vector");
     for (Vec w : null_raw) {  // Gram-Schmidt: PETSc wants them orthonormal
       PetscScalar d = 0;
@@ -271,23 +299,81 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
     check(VecNormalize(v, &norm), "vector");
     if (norm > 0) null_raw.push_back(v);
   }
-  OwnedNullSpace near;
   check(MatNullSpaceCreate(comm, PETSC_FALSE, PetscInt(null_raw.size()), null_raw.data(), &near), "null space");
   check(PetscObjectCompose((PetscObject)(IS)is_u, "nearnullspace", (PetscObject)(MatNullSpace)near), "null space");
+  check(PCFieldSplitSetIS(pc, "u", is_u), "options", true);
+  check(PCFieldSplitSetIS(pc, "lambda", is_l), "options", true);
+}
 
-  // The solver: MUMPS LDL^T unless the options say otherwise.
+}  // namespace
+
+ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen::VectorXd& f_part,
+                                    const WeightedGapOperator& op, const RigidModes& modes,
+                                    const Eigen::MatrixXd& near_null, const PetscContactOptions& o) {
+  if (!g_active) throw std::logic_error("solve_contact_petsc without a PetscSession");
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const PetscInt n = PetscInt(Kp.rows()), m = PetscInt(op.weights.size()), N = n + m;
+  const int k = int(modes.modes.cols());
+  const bool multigrid = o.spline_multigrid;
+  ContactSolution sol;
+  sol.ranks = PetscSession::size();
+  auto t0 = Clock::now();
+
+  // Augmentation weights W_K = E / h_K^d, h_K from the multiplier's support
+  // measure int B_K ~ h^(d-1): G^T W G has the magnitude of K on the face.
+  // An inactive multiplier's row is D_KK l_K = 0, D_KK = W_K (int B_K)^2.
+  Eigen::VectorXd W(m), D(m);
+  for (PetscInt K = 0; K < m; ++K) {
+    W[K] = o.stiffness / std::pow(std::pow(op.weights[K], 1.0 / (o.dim - 1)), o.dim);
+    D[K] = W[K] * op.weights[K] * op.weights[K];
+  }
+  const RowMat& G = op.G;
+  const RowMat Gt = RowMat(G.transpose());
+  const RowMat GtG = RowMat(Gt * G);  // pattern of the augmentation (all multipliers)
+
+  SaddleLayout L;
+  L.n = n;
+  L.m = m;
+  std::tie(L.r0, L.r1) = share(N);
+  L.r1 += L.r0;
+  L.u0 = std::min(L.r0, n), L.u1 = std::min(L.r1, n), L.l0 = std::max(L.r0, n), L.l1 = std::max(L.r1, n);
+  // The assembled matrix: the whole saddle-point matrix, or (multigrid) its
+  // displacement block, the rest applied by SplineMultigrid's shell.
+  OwnedMat A;
+  A.p = assemble_matrix(Kp, G, Gt, GtG, L, !multigrid);
+  std::optional<SplineMultigrid> mg;
+  if (multigrid) mg.emplace(A, G, W, D, L, o.prolongations);
+
   OwnedKSP ksp;
   check(KSPCreate(comm, &ksp), "solver");
-  check(KSPSetOperators(ksp, A, A), "solver");
-  default_option("-ksp_type", "preonly");
-  default_option("-pc_type", "cholesky");
-  default_option("-pc_factor_mat_solver_type", "mumps");
-  // The symbolic analysis is reused over the active-set iterations while
-  // the pivots of the indefinite matrix move: room for delayed pivots
-  // (MUMPS's default +20 % ran out of memory on hertz3d, 2 processes).
-  default_option("-mat_mumps_icntl_14", "100");
-  // Tight enough that a Krylov solution matches the direct one to 1e-8.
-  check(KSPSetTolerances(ksp, 1e-11, 1e-50, PETSC_DEFAULT, 2000), "solver");
+  if (multigrid) {
+    PetscBool has = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, "-pc_type", &has), "options");
+    if (has)
+      throw PetscOptionError("PETSc option -pc_type: the spline multigrid is the preconditioner (its own options "
+                             "start with -u_, e.g. -u_mg_levels_pc_type sor)");
+    mg->attach(ksp);
+    // Multigrid with a Chebyshev smoother is a fixed linear operator, but a
+    // user's inner Krylov (-u_ksp_type cg) would not be: flexible GMRES.
+    default_option("-ksp_type", "fgmres");  // restart 30: 60 vectors (~25 iterations per solve measured)
+  } else {
+    check(KSPSetOperators(ksp, A, A), "solver");
+    default_option("-ksp_type", "preonly");
+    default_option("-pc_type", "cholesky");
+    default_option("-pc_factor_mat_solver_type", "mumps");
+    // The symbolic analysis is reused over the active-set iterations while
+    // the pivots of the indefinite matrix move: room for delayed pivots
+    // (MUMPS's default +20 % ran out of memory on hertz3d, 2 processes).
+    default_option("-mat_mumps_icntl_14", "100");
+  }
+  // Tight enough that a Krylov solution matches the direct one to 1e-8
+  // (the multigrid path: 1e-12, p0 on hertz3d was 1.2e-8 off at 1e-11).
+  // The multigrid path solves to kLoose while the active set moves (it only
+  // decides signs of lambda and of the gaps), then once more to kTight for
+  // the active set that repeats itself (checked to repeat again).
+  const double kTight = multigrid ? 1e-12 : 1e-11, kLoose = 1e-6;
+  bool loose = multigrid;
+  check(KSPSetTolerances(ksp, loose ? kLoose : kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
   check(KSPSetFromOptions(ksp), "options", true);
   PC pc = nullptr;
   check(KSPGetPC(ksp, &pc), "solver");
@@ -295,24 +381,63 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
   PCType pc_type = nullptr;
   check(KSPGetType(ksp, &ksp_type), "solver");
   check(PCGetType(pc, &pc_type), "solver");
-  const bool fieldsplit = pc_type && std::string(pc_type) == PCFIELDSPLIT;
-  if (fieldsplit) {
-    check(PCFieldSplitSetIS(pc, "u", is_u), "options", true);
-    check(PCFieldSplitSetIS(pc, "lambda", is_l), "options", true);
-  }
+  OwnedIS is_u, is_l;
+  std::vector<OwnedVec> null_vecs;
+  OwnedNullSpace near;
+  if (pc_type && std::string(pc_type) == PCFIELDSPLIT) set_fields(pc, near_null, L, is_u, is_l, null_vecs, near);
   const bool preonly = ksp_type && std::string(ksp_type) == KSPPREONLY;
   if (!preonly) check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "solver");
-  check(VecSet(x, 0.0), "vector");
+  const Mat op_mat = multigrid ? mg->shell() : Mat(A);
 
-  OwnedScatter to_all;
-  OwnedVec x_all;
-  check(VecScatterCreateToAll(x, &to_all, &x_all), "vector");
+  OwnedVec x, b, bf;
+  check(MatCreateVecs(op_mat, &x, &b), "vector");
+  check(VecDuplicate(b, &bf), "vector");
+  check(VecSet(x, 0.0), "vector");
+  {  // f in u's rows (numbered as in the saddle-point system: u first)
+    std::vector<PetscInt> idx;
+    std::vector<PetscScalar> val;
+    for (PetscInt i = 0; i < n; ++i)
+      if (f_part[i] != 0.0) {
+        idx.push_back(i);
+        val.push_back(f_part[i]);
+      }
+    check(VecSet(bf, 0.0), "vector");
+    if (multigrid) {  // the shell's vectors are ordered [u, lambda] per process, not globally
+      OwnedVec fu;
+      check(VecCreateMPI(comm, L.local_u(), n, &fu), "vector");
+      check(VecSetValues(fu, PetscInt(idx.size()), idx.data(), val.data(), ADD_VALUES), "vector");
+      check(VecAssemblyBegin(fu), "vector");
+      check(VecAssemblyEnd(fu), "vector");
+      const PetscScalar* pf = nullptr;
+      PetscScalar* pb = nullptr;
+      check(VecGetArrayRead(fu, &pf), "vector");
+      check(VecGetArray(bf, &pb), "vector");
+      std::copy(pf, pf + L.local_u(), pb);
+      check(VecRestoreArray(bf, &pb), "vector");
+      check(VecRestoreArrayRead(fu, &pf), "vector");
+    } else {
+      check(VecSetValues(bf, PetscInt(idx.size()), idx.data(), val.data(), ADD_VALUES), "vector");
+      check(VecAssemblyBegin(bf), "vector");
+      check(VecAssemblyEnd(bf), "vector");
+    }
+  }
+  const double assembly_s = since(t0);
+
+  // The solution to every process: u and lambda gathered separately (the
+  // shell's vectors interleave them process by process).
+  OwnedVec xu, xl, u_all, l_all;
+  OwnedScatter u_to_all, l_to_all;
+  check(VecCreateMPIWithArray(comm, 1, L.local_u(), n, nullptr, &xu), "vector");
+  check(VecCreateMPIWithArray(comm, 1, L.local_l(), m, nullptr, &xl), "vector");
+  check(VecScatterCreateToAll(xu, &u_to_all, &u_all), "vector");
+  check(VecScatterCreateToAll(xl, &l_to_all, &l_all), "vector");
 
   std::vector<char> active = initial_active_set(op, k, o.contact);
   std::set<std::vector<char>> seen;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), u = Eigen::VectorXd::Zero(n);
   RowMat aug_prev(n, n);  // G_A^T W G_A in the matrix now
   double setup_s = 0, solve_s = 0;
+  int built_for = -1;  // active-set size the multigrid hierarchy was built for
   for (int it = 0; it < o.contact.max_iterations; ++it) {
     sol.active_set_sizes.push_back(int(std::count(active.begin(), active.end(), 1)));
     // Contact rows and columns for this active set (owned rows only).
@@ -322,35 +447,15 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
       wa[K] = active[K] ? W[K] : 0.0;
       g0a[K] = active[K] ? op.g0[K] : 0.0;
     }
+    if (multigrid)
+      mg->set_active_set(active);
+    else
+      set_contact_rows(A, G, Gt, active, D, L);
     const RowMat aug = RowMat(Gt * wa.asDiagonal() * G);
     const RowMat delta = RowMat(aug - aug_prev);
     std::vector<PetscInt> cols;
     std::vector<PetscScalar> vals;
-    for (PetscInt row = l0; row < l1; ++row) {  // [G_A  D_I]
-      const PetscInt K = row - n;
-      cols.clear();
-      vals.clear();
-      for (RowMat::InnerIterator e(G, K); e; ++e) {
-        cols.push_back(PetscInt(e.col()));
-        vals.push_back(active[K] ? e.value() : 0.0);
-      }
-      cols.push_back(row);
-      vals.push_back(active[K] ? 0.0 : W[K] * op.weights[K] * op.weights[K]);
-      check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
-    }
-    for (PetscInt row = u0; row < u1; ++row) {  // G_A^T
-      cols.clear();
-      vals.clear();
-      for (RowMat::InnerIterator e(Gt, row); e; ++e) {
-        cols.push_back(n + PetscInt(e.col()));
-        vals.push_back(active[e.col()] ? e.value() : 0.0);
-      }
-      if (!cols.empty())
-        check(MatSetValues(A, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
-    }
-    check(MatAssemblyBegin(A, MAT_FLUSH_ASSEMBLY), "matrix");
-    check(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY), "matrix");
-    for (PetscInt row = u0; row < u1; ++row) {  // + G_A^T W G_A - (the previous one)
+    for (PetscInt row = L.u0; row < L.u1; ++row) {  // + G_A^T W G_A - (the previous one)
       cols.clear();
       vals.clear();
       for (RowMat::InnerIterator e(delta, row); e; ++e) {
@@ -370,21 +475,30 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
     PetscScalar *pb = nullptr, *px = nullptr;
     check(VecGetArray(b, &pb), "vector");
     check(VecGetArray(x, &px), "vector");
-    for (PetscInt row = r0; row < r1; ++row) {
-      if (row < n) {
-        pb[row - r0] += rhs_u[row];
-      } else {
-        pb[row - r0] = -g0a[row - n];
-        if (!active[row - n]) px[row - r0] = 0.0;
-      }
+    for (PetscInt row = L.u0; row < L.u1; ++row) pb[row - L.u0] += rhs_u[row];
+    for (PetscInt row = L.l0; row < L.l1; ++row) {
+      const PetscInt i = L.local_u() + row - L.l0;
+      pb[i] = -g0a[row - n];
+      if (!active[row - n]) px[i] = 0.0;
     }
     check(VecRestoreArray(x, &px), "vector");
     check(VecRestoreArray(b, &pb), "vector");
     sol.schur_s += since(ts);  // (here: the contact rows' assembly)
 
     ts = Clock::now();
-    check(KSPSetOperators(ksp, A, A), "solver");
+    check(KSPSetOperators(ksp, op_mat, op_mat), "solver");
     check(KSPSetUp(ksp), "solver setup", it == 0);
+    if (multigrid) {
+      // The hierarchy (Galerkin products, ICC factors, Chebyshev bounds) is
+      // rebuilt when the active set has changed by a fifth since it was
+      // built: the augmentation only touches the contact face, and a
+      // hierarchy of a nearby set preconditions as well (hertz3d level 2:
+      // the same iterations per solve, setup 6 s instead of 10 s).
+      const int now = sol.active_set_sizes.back();
+      const bool rebuild = built_for < 0 || std::abs(now - built_for) > 0.2 * std::max(built_for, 1);
+      mg->setup(rebuild);
+      if (rebuild) built_for = now;
+    }
     setup_s += since(ts);
     ts = Clock::now();
     check(KSPSolve(ksp, b, x), "solve", it == 0);
@@ -396,13 +510,23 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
     check(KSPGetIterationNumber(ksp, &iterations), "solver");
     sol.linear_iterations.push_back(int(iterations));
 
-    check(VecScatterBegin(to_all, x, x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
-    check(VecScatterEnd(to_all, x, x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
     const PetscScalar* pa = nullptr;
-    check(VecGetArrayRead(x_all, &pa), "vector");
+    check(VecGetArrayRead(x, &pa), "vector");
+    check(VecPlaceArray(xu, pa), "vector");
+    check(VecPlaceArray(xl, pa + L.local_u()), "vector");
+    check(VecScatterBegin(u_to_all, xu, u_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+    check(VecScatterEnd(u_to_all, xu, u_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+    check(VecScatterBegin(l_to_all, xl, l_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+    check(VecScatterEnd(l_to_all, xl, l_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+    check(VecResetArray(xu), "vector");
+    check(VecResetArray(xl), "vector");
+    check(VecRestoreArrayRead(x, &pa), "vector");
+    check(VecGetArrayRead(u_all, &pa), "vector");
     u = Eigen::Map<const Eigen::VectorXd>(pa, n);
-    lambda = Eigen::Map<const Eigen::VectorXd>(pa + n, m);
-    check(VecRestoreArrayRead(x_all, &pa), "vector");
+    check(VecRestoreArrayRead(u_all, &pa), "vector");
+    check(VecGetArrayRead(l_all, &pa), "vector");
+    lambda = Eigen::Map<const Eigen::VectorXd>(pa, m);
+    check(VecRestoreArrayRead(l_all, &pa), "vector");
     for (PetscInt K = 0; K < m; ++K)
       if (!active[K]) lambda[K] = 0.0;
     const Eigen::VectorXd gap = (op.g0 + G * u).cwiseQuotient(op.weights);
@@ -418,6 +542,13 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
       break;
     }
     const std::vector<char> next = next_active_set(lambda, gap, active, k, o.contact.complementarity_scale);
+    if (loose && next == active) {  // the same set again, now solved tightly (not a new iteration)
+      loose = false;
+      check(KSPSetTolerances(ksp, kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
+      sol.active_set_sizes.pop_back();
+      --it;
+      continue;
+    }
     if (settle_active_set(next, active, seen, it, sol)) break;
   }
   if (!sol.converged && sol.status.empty())
@@ -428,7 +559,9 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
   sol.factorize_s = setup_s;
   sol.iterations_s = solve_s;
   sol.schur_s += assembly_s;
-  sol.linear_solver = fmt::format("{} + {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
+  sol.linear_solver = multigrid ? fmt::format("{} + spline multigrid ({} levels)", ksp_type ? ksp_type : "?",
+                                              mg->levels())
+                                : fmt::format("{} + {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
   if (pc_type && (std::string(pc_type) == PCLU || std::string(pc_type) == PCCHOLESKY)) {
     MatSolverType st = nullptr;
     if (!PCFactorGetMatSolverType(pc, &st) && st) sol.linear_solver += fmt::format(" ({})", st);

@@ -25,6 +25,10 @@
 // gathered to every process, so all of them take the same active-set
 // decision and post-process the same result (only the first writes files).
 //
+// With `spline_multigrid` the assembled matrix is the displacement block
+// alone and SplineMultigrid applies the saddle-point operator and its
+// block-triangular preconditioner (FGMRES; contact/petsc_multigrid.hpp).
+//
 // Options: PETSc's own (`-ksp_type`, `-pc_type`, ...), inserted in the
 // options database before the solver reads them.  Default: MUMPS LDL^T on
 // the saddle-point matrix (`-ksp_type preonly -pc_type cholesky
@@ -69,6 +73,11 @@ struct PetscContactOptions {
   ContactSolverOptions contact;
   double stiffness = 1.0;   // E: the scale of the augmentation W
   int dim = 3;
+  // Geometric multigrid from the spline hierarchy (contact/petsc_multigrid)
+  // instead of the options' preconditioner: the prolongations between the
+  // nested meshes, finest first (engine/prolongation), whole on every process.
+  bool spline_multigrid = false;
+  std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> prolongations;
 };
 
 // K_part and f_part: this process's share (they sum to K and f over the

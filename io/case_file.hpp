@@ -64,9 +64,13 @@ struct LoadingSpec {
 // CHOLMOD on one process (engine/cholesky); "petsc": PETSc on one or more
 // MPI processes (contact/petsc_contact), `options` passed to PETSc's
 // options database as on a PETSc command line ("-ksp_type cg -pc_type gamg").
+// `preconditioner`: "options" (what `options` say; default MUMPS) or
+// "spline_multigrid" (geometric multigrid over the case's nested meshes
+// --refine r, ..., 0, contact/petsc_multigrid; PETSc only).
 struct SolverSpec {
   std::string type = "direct";
   std::string options;
+  std::string preconditioner = "options";
 };
 
 struct CaseSpec {
@@ -107,6 +111,8 @@ struct CaseSpec {
 
 // Throws InputError.
 CaseSpec read_case(const std::string& path);
+// Why a [solver] preconditioner cannot be used ("" when it can).
+std::string check_preconditioner(const SolverSpec& solver);
 // Checks a --degree / --refine override and the memory the mesh would need;
 // throws InputError naming the option.
 void apply_overrides(CaseSpec& spec, std::optional<int> degree, std::optional<int> refine);

@@ -196,4 +196,17 @@ NurbsPatch refine_to(const NurbsPatch& patch, int direction, const KnotVector& f
   return insert_knots(patch, direction, patch.knots(direction).knots_missing_from(finer)).patch;
 }
 
+Eigen::SparseMatrix<double> knot_insertion_matrix(const KnotVector& coarse, const KnotVector& fine) {
+  if (coarse.degree() != fine.degree())
+    throw SplineError(fmt::format("knot insertion between degrees {} and {}", coarse.degree(), fine.degree()));
+  const std::vector<double> X = coarse.knots_missing_from(fine);
+  const int nc = coarse.num_basis();
+  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(nc, nc);
+  if (!X.empty()) {
+    std::vector<double> Ubar;
+    T = refine_rows(coarse, X, T, Ubar);
+  }
+  return T.sparseView();  // the zeros of A5.4 are exact
+}
+
 }  // namespace igac

@@ -14,6 +14,7 @@
 // they are refined with the patch so that they describe the same function.
 #pragma once
 
+#include <Eigen/SparseCore>
 #include <vector>
 
 #include "engine/spline/nurbs_patch.hpp"
@@ -39,5 +40,12 @@ NurbsPatch elevate_to(const NurbsPatch& patch, int degree);
 NurbsPatch subdivide(const NurbsPatch& patch, int parts);
 // Refine direction d to the given finer knot vector (same degree).
 NurbsPatch refine_to(const NurbsPatch& patch, int direction, const KnotVector& finer);
+
+// The knot-insertion matrix T (fine.num_basis() x coarse.num_basis()) of a
+// B-spline space into a finer one of the same degree: a spline with
+// coefficients c on `coarse` has coefficients T c on `fine` (the same A5.4
+// applied to the identity; for NURBS it acts on homogeneous coefficients).
+// Throws SplineError when `fine` does not contain `coarse`.
+Eigen::SparseMatrix<double> knot_insertion_matrix(const KnotVector& coarse, const KnotVector& fine);
 
 }  // namespace igac

@@ -1,0 +1,208 @@
+#include "contact/petsc_multigrid.hpp"
+
+#include <fmt/format.h>
+#include <mpi.h>
+
+#include "contact/petsc_contact.hpp"
+
+namespace igac {
+
+using petsc::check;
+using petsc::default_option;
+using petsc::share;
+
+namespace {
+
+// Rows [row0, row0 + rows) of M (whole) into a new distributed AIJ matrix
+// with the given local sizes; columns [col0, col0 + cols) are this
+// process's diagonal block.
+Mat distributed(const RowSparse& M, PetscInt row0, PetscInt rows, PetscInt col0, PetscInt cols) {
+  Mat out = nullptr;
+  check(MatCreate(PETSC_COMM_WORLD, &out), "matrix");
+  check(MatSetSizes(out, rows, cols, PetscInt(M.rows()), PetscInt(M.cols())), "matrix");
+  check(MatSetType(out, MATAIJ), "matrix");
+  std::vector<PetscInt> d_nnz(rows, 0), o_nnz(rows, 0);
+  for (PetscInt r = 0; r < rows; ++r)
+    for (RowSparse::InnerIterator e(M, row0 + r); e; ++e)
+      ++(e.col() >= col0 && e.col() < col0 + cols ? d_nnz : o_nnz)[r];
+  check(MatXAIJSetPreallocation(out, 1, d_nnz.data(), o_nnz.data(), nullptr, nullptr), "matrix");
+  std::vector<PetscInt> idx;
+  for (PetscInt r = row0; r < row0 + rows; ++r) {
+    idx.assign(M.innerIndexPtr() + M.outerIndexPtr()[r], M.innerIndexPtr() + M.outerIndexPtr()[r + 1]);
+    if (!idx.empty())
+      check(MatSetValues(out, 1, &r, PetscInt(idx.size()), idx.data(), M.valuePtr() + M.outerIndexPtr()[r],
+                         INSERT_VALUES), "matrix");
+  }
+  check(MatAssemblyBegin(out, MAT_FINAL_ASSEMBLY), "matrix");
+  check(MatAssemblyEnd(out, MAT_FINAL_ASSEMBLY), "matrix");
+  return out;
+}
+
+Vec vector_without_array(PetscInt local, PetscInt global) {
+  Vec v = nullptr;
+  check(VecCreateMPIWithArray(PETSC_COMM_WORLD, 1, local, global, nullptr, &v), "vector");
+  return v;
+}
+
+}  // namespace
+
+SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorXd& W,
+                                 const Eigen::VectorXd& inactive_diagonal, const petsc::SaddleLayout& L,
+                                 const std::vector<RowSparse>& prolongations)
+    : A_(A), layout_(L), G_(G), W_(W), inactive_(inactive_diagonal) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  // G_A: G's pattern, values per active set.
+  B_.p = distributed(G_, L.l0 - L.n, L.local_l(), L.u0, L.local_u());
+  check(VecCreateMPI(comm, L.local_l(), L.m, &d_), "vector");
+  check(VecDuplicate(d_, &sinv_), "vector");
+  check(VecDuplicate(d_, &tl_), "vector");
+  check(VecCreateMPI(comm, L.local_u(), L.n, &tu_), "vector");
+  xu_.p = vector_without_array(L.local_u(), L.n);
+  yu_.p = vector_without_array(L.local_u(), L.n);
+  xl_.p = vector_without_array(L.local_l(), L.m);
+  yl_.p = vector_without_array(L.local_l(), L.m);
+
+  // Interpolations, coarse to fine; the finest level's rows are A's.
+  // -u_pc_mg_levels L keeps the L finest meshes (the coarsest of them then
+  // solved directly); PCMG reads the same option and finds it satisfied.
+  PetscInt wanted = PetscInt(prolongations.size()) + 1;
+  PetscBool given = PETSC_FALSE;
+  check(PetscOptionsGetInt(nullptr, "u_", "-pc_mg_levels", &wanted, &given), "options", true);
+  if (given && (wanted < 1 || wanted > PetscInt(prolongations.size()) + 1))
+    throw PetscOptionError(fmt::format("PETSc option -u_pc_mg_levels {}: the spline hierarchy has 1 to {} levels "
+                                       "(the case's --refine + 1)", wanted, prolongations.size() + 1));
+  const int nl = int(wanted) - 1;
+  P_.resize(nl);
+  for (int k = 0; k < nl; ++k) {  // prolongations[k]: level nl - k from nl - k - 1
+    const RowSparse& P = prolongations[k];
+    const auto [r0, rows] = k == 0 ? std::pair<PetscInt, PetscInt>{L.u0, L.local_u()} : share(PetscInt(P.rows()));
+    const auto [c0, cols] = share(PetscInt(P.cols()));
+    P_[nl - 1 - k].p = distributed(P, r0, rows, c0, cols);
+  }
+  check(KSPCreate(comm, &mg_), "solver");
+  check(KSPSetOptionsPrefix(mg_, "u_"), "solver");
+  check(KSPSetType(mg_, KSPPREONLY), "solver");
+  PC pc = nullptr;
+  check(KSPGetPC(mg_, &pc), "solver");
+  check(PCSetType(pc, PCMG), "solver");
+  check(PCMGSetLevels(pc, nl + 1, nullptr), "solver");
+  for (int l = 1; l <= nl; ++l) check(PCMGSetInterpolation(pc, l, P_[l - 1]), "solver");
+  check(PCMGSetGalerkin(pc, PC_MG_GALERKIN_BOTH), "solver");
+  check(KSPSetOperators(mg_, A_, A_), "solver");
+  // Chebyshev on incomplete Cholesky (ICC(0) on each process's block):
+  // point smoothers (Jacobi, SOR) lose a factor 2 per level on the sphere
+  // octant, whose elements next to its collapsed axis grow thinner with
+  // every refinement (README "Beyond one machine").
+  // Reverse Cuthill-McKee inside ICC and 4 Chebyshev steps: on hertz3d
+  // level 3 (K alone) 24 iterations against 64 with natural order and 2.
+  default_option("-u_mg_levels_ksp_type", "chebyshev");
+  default_option("-u_mg_levels_ksp_max_it", "4");
+  default_option("-u_mg_levels_pc_type", "bjacobi");
+  default_option("-u_mg_levels_sub_pc_type", "icc");
+  default_option("-u_mg_levels_sub_pc_factor_mat_ordering_type", "rcm");
+  check(KSPSetFromOptions(mg_), "options", true);
+}
+
+SplineMultigrid::~SplineMultigrid() = default;
+
+void SplineMultigrid::set_active_set(const std::vector<char>& active) {
+  const petsc::SaddleLayout& L = layout_;
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> vals;
+  PetscScalar *pd = nullptr, *ps = nullptr;
+  check(VecGetArray(d_, &pd), "vector");
+  check(VecGetArray(sinv_, &ps), "vector");
+  for (PetscInt row = L.l0 - L.n; row < L.l1 - L.n; ++row) {
+    cols.clear();
+    vals.clear();
+    for (RowSparse::InnerIterator e(G_, row); e; ++e) {
+      cols.push_back(PetscInt(e.col()));
+      vals.push_back(active[row] ? e.value() : 0.0);
+    }
+    if (!cols.empty())
+      check(MatSetValues(B_, 1, &row, PetscInt(cols.size()), cols.data(), vals.data(), INSERT_VALUES), "matrix");
+    const PetscInt i = row - (L.l0 - L.n);
+    pd[i] = active[row] ? 0.0 : inactive_[row];
+    ps[i] = active[row] ? -W_[row] : 1.0 / inactive_[row];
+  }
+  check(VecRestoreArray(sinv_, &ps), "vector");
+  check(VecRestoreArray(d_, &pd), "vector");
+  check(MatAssemblyBegin(B_, MAT_FINAL_ASSEMBLY), "matrix");
+  check(MatAssemblyEnd(B_, MAT_FINAL_ASSEMBLY), "matrix");
+}
+
+void SplineMultigrid::attach(KSP ksp) {
+  const PetscInt local = layout_.r1 - layout_.r0, N = layout_.n + layout_.m;
+  check(MatCreateShell(PETSC_COMM_WORLD, local, local, N, N, this, &S_), "matrix");
+  check(MatShellSetOperation(S_, MATOP_MULT, (void (*)(void))mult), "matrix");
+  check(MatSetOption(S_, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
+  check(KSPSetOperators(ksp, S_, S_), "solver");
+  PC pc = nullptr;
+  check(KSPGetPC(ksp, &pc), "solver");
+  check(PCSetType(pc, PCSHELL), "solver");
+  check(PCShellSetContext(pc, this), "solver");
+  check(PCShellSetApply(pc, apply), "solver");
+  check(PCShellSetName(pc, "spline multigrid (block triangular: MG on the displacements, -W on the multipliers)"),
+        "solver");
+}
+
+Mat SplineMultigrid::shell() const { return S_; }
+
+void SplineMultigrid::setup(bool rebuild) {
+  check(KSPSetReusePreconditioner(mg_, rebuild ? PETSC_FALSE : PETSC_TRUE), "solver");
+  check(KSPSetOperators(mg_, A_, A_), "solver");
+  check(KSPSetUp(mg_), "solver setup", true);
+}
+
+// x and y as the work vectors xu_, xl_, yu_, yl_ (their u and lambda parts,
+// without copies), then `part`, then everything given back.
+PetscErrorCode SplineMultigrid::on_parts(Vec x, Vec y, PetscErrorCode (SplineMultigrid::*part)()) {
+  PetscFunctionBeginUser;
+  const PetscScalar* px = nullptr;
+  PetscScalar* py = nullptr;
+  PetscCall(VecGetArrayRead(x, &px));
+  PetscCall(VecGetArray(y, &py));
+  const PetscInt nu = layout_.local_u();
+  PetscCall(VecPlaceArray(xu_, px));
+  PetscCall(VecPlaceArray(xl_, px + nu));
+  PetscCall(VecPlaceArray(yu_, py));
+  PetscCall(VecPlaceArray(yl_, py + nu));
+  PetscCall((this->*part)());
+  for (Vec v : {xu_.p, xl_.p, yu_.p, yl_.p}) PetscCall(VecResetArray(v));
+  PetscCall(VecRestoreArray(y, &py));
+  PetscCall(VecRestoreArrayRead(x, &px));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SplineMultigrid::operator_parts() {  // y = [A G_A^T; G_A D_I] x
+  PetscFunctionBeginUser;
+  PetscCall(MatMult(A_, xu_, yu_));
+  PetscCall(MatMultTransposeAdd(B_, xl_, yu_, yu_));
+  PetscCall(MatMult(B_, xu_, yl_));
+  PetscCall(VecPointwiseMult(tl_, d_, xl_));
+  PetscCall(VecAXPY(yl_, 1.0, tl_));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SplineMultigrid::preconditioner_parts() {  // y = P^-1 x
+  PetscFunctionBeginUser;
+  PetscCall(VecPointwiseMult(yl_, sinv_, xl_));  // z_l = S~^-1 r_l
+  PetscCall(MatMultTranspose(B_, yl_, tu_));
+  PetscCall(VecAYPX(tu_, -1.0, xu_));    // r_u - G_A^T z_l
+  PetscCall(KSPSolve(mg_, tu_, yu_));    // z_u = MG(r_u - G_A^T z_l)
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SplineMultigrid::mult(Mat S, Vec x, Vec y) {
+  void* self = nullptr;
+  PetscCall(MatShellGetContext(S, &self));
+  return static_cast<SplineMultigrid*>(self)->on_parts(x, y, &SplineMultigrid::operator_parts);
+}
+
+PetscErrorCode SplineMultigrid::apply(PC pc, Vec r, Vec z) {
+  void* self = nullptr;
+  PetscCall(PCShellGetContext(pc, &self));
+  return static_cast<SplineMultigrid*>(self)->on_parts(r, z, &SplineMultigrid::preconditioner_parts);
+}
+
+}  // namespace igac

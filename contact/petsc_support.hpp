@@ -1,0 +1,64 @@
+// What the PETSc solvers of contact/ share (petsc_contact.cpp and
+// petsc_multigrid.cpp; not part of igac's interface): error checking with
+// PETSc's own words, PETSc objects owned by scope, and igac's default
+// options (set unless the user gave them; never reported as unused).
+#pragma once
+
+#include <petscksp.h>
+#include <string>
+#include <utility>
+
+namespace igac::petsc {
+
+// Throws on a PETSc error: a PetscOptionError when the options may be the
+// cause (`options_phase`) and the code says so, std::bad_alloc when PETSc
+// ran out of memory, else std::runtime_error.
+void check(PetscErrorCode e, const char* what, bool options_phase = false);
+
+// Sets an option unless the user gave it; remembers it as igac's own.
+void default_option(const char* name, const char* value);
+
+// This process's contiguous share (first, count) of n rows, as PETSc splits
+// them (PETSC_DECIDE).  Collective.
+std::pair<PetscInt, PetscInt> share(PetscInt n);
+
+// PETSc objects destroyed at scope exit (also when an exception leaves).
+template <class T, PetscErrorCode (*Destroy)(T*)>
+struct Owned {
+  T p = nullptr;
+  Owned() = default;
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  Owned(Owned&& o) noexcept : p(o.p) { o.p = nullptr; }
+  Owned& operator=(Owned&& o) noexcept {
+    std::swap(p, o.p);
+    return *this;
+  }
+  ~Owned() {
+    if (p) Destroy(&p);
+  }
+  operator T() const { return p; }
+  T* operator&() { return &p; }
+};
+using OwnedMat = Owned<Mat, MatDestroy>;
+using OwnedVec = Owned<Vec, VecDestroy>;
+using OwnedKSP = Owned<KSP, KSPDestroy>;
+using OwnedIS = Owned<IS, ISDestroy>;
+using OwnedScatter = Owned<VecScatter, VecScatterDestroy>;
+using OwnedNullSpace = Owned<MatNullSpace, MatNullSpaceDestroy>;
+
+}  // namespace igac::petsc
+
+namespace igac::petsc {
+
+// The distributed layout of the saddle-point system: N = n + m equations
+// split in contiguous blocks (PETSc's default), displacements first; this
+// process owns rows [r0, r1), i.e. displacements [u0, u1) and multipliers
+// [l0, l1) (numbered from n), stored in this order in its part of a vector.
+struct SaddleLayout {
+  PetscInt n = 0, m = 0, r0 = 0, r1 = 0, u0 = 0, u1 = 0, l0 = 0, l1 = 0;
+  PetscInt local_u() const { return u1 - u0; }
+  PetscInt local_l() const { return l1 - l0; }
+};
+
+}  // namespace igac::petsc
