@@ -116,8 +116,8 @@ struct SparseCholesky::Impl {
   double flops = 0;           // of one numeric factorisation with the kept ordering
   Impl() {
     cholmod_start(&c);
-    c.print = 0;  // no "CHOLMOD warning" lines on stderr: callers read c.status (a matrix that is
-  }               // not positive definite is an expected outcome the Newton path falls back from)
+    c.print = 0;  // no "CHOLMOD warning" lines (CHOLMOD prints them on stdout, in a run's summary):
+  }               // callers read c.status; an indefinite matrix is what the Newton path falls back from
   ~Impl() {
     if (L) cholmod_free_factor(&L, &c);
     cholmod_finish(&c);
