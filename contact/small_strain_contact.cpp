@@ -124,7 +124,8 @@ std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const
   const int m = int(op.weights.size());
   std::vector<char> active(m, 0);
   const Eigen::VectorXd gap0 = op.g0.cwiseQuotient(op.weights);
-  for (int K_ = 0; K_ < m; ++K_) active[K_] = gap0[K_] <= opt.initial_gap_tolerance;
+  const bool given = int(opt.initial_active.size()) == m;
+  for (int K_ = 0; K_ < m; ++K_) active[K_] = given ? opt.initial_active[K_] : gap0[K_] <= opt.initial_gap_tolerance;
   if (k > 0 && std::count(active.begin(), active.end(), 1) < k && m > 0) {
     std::vector<int> order(m);
     for (int i = 0; i < m; ++i) order[i] = i;

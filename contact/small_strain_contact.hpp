@@ -49,6 +49,11 @@ struct ContactSolverOptions {
   double initial_gap_tolerance = 1e-9;
   // Order the contact-face equations last (see above).
   bool face_last = true;
+  // A start from the solution one mesh coarser (contact/coarse_start): the
+  // first active set instead of the closed initial gaps, and for a Krylov
+  // solver the first guess.  Empty: no such start.
+  std::vector<char> initial_active;
+  Eigen::VectorXd initial_u, initial_lambda;
 };
 
 struct ContactSolution {
@@ -70,7 +75,8 @@ struct ContactSolution {
   double peak_resident_all_ranks_gib = 0;  // summed over the processes
 };
 
-// The active set the iteration starts from: closed initial gaps; a body held
+// The active set the iteration starts from: options.initial_active when
+// given, else the closed initial gaps; a body held
 // only by contact (k free rigid motions) starts with at least the k
 // multipliers nearest to the obstacle.
 std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const ContactSolverOptions& options);
