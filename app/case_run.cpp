@@ -10,6 +10,8 @@
 #include "engine/spline/refinement.hpp"
 #include "app/case_body.hpp"
 #include "app/petsc_run.hpp"
+#include "contact/coarse_start.hpp"
+#include "engine/prolongation.hpp"
 #include "engine/geometry/side_names.hpp"
 #include "engine/spline/split.hpp"
 
@@ -356,6 +358,23 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   }
 }
 
+void start_from_coarser_mesh(const Model& m, const Model& coarser,
+                             const Eigen::SparseMatrix<double, Eigen::RowMajor>& P, const WeightedGapOperator& op,
+                             int k, ContactSolverOptions& opt) {
+  const RunResult rc = solve_model(coarser);
+  if (!rc.contact || !rc.contact->solution.converged) return;
+  auto faces = [](const Model& model) {
+    std::vector<const ContactFace*> out;
+    for (const auto& c : model.contacts) out.push_back(c.face.get());
+    return out;
+  };
+  ActiveSetStart start =
+      start_from_coarse(faces(coarser), faces(m), P, rc.contact->solution, op, k, opt.complementarity_scale);
+  opt.initial_active = std::move(start.active);
+  opt.initial_u = std::move(start.u);
+  opt.initial_lambda = std::move(start.lambda);
+}
+
 RunResult solve_model(const Model& m, const StepObserver& on_step) {
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
@@ -400,6 +419,14 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
     t0 = Clock::now();
+    if (m.spec.refine > 0) {  // nested iteration: from the solution one refinement below
+      CaseSpec spec = m.spec;
+      --spec.refine;
+      Model coarser = build_model(spec);
+      coarser.quiet = true;
+      start_from_coarser_mesh(m, coarser, prolongation(coarser.body, *coarser.dofs, body, *m.dofs), c->op,
+                              int(modes.modes.cols()), opt);
+    }
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
                         : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;

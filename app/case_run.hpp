@@ -38,6 +38,14 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen
                                                 const Eigen::VectorXd& weights, const std::vector<char>& active);
 // |int P n dGamma| summed over the pressure loads (the modelled part).
 double pressure_resultant(const Model& model);
+// Nested iteration (contact/coarse_start): the contact problem of `coarser`
+// (the case one refinement below `model`, P the prolongation from it) is
+// solved, itself started the same way, and gives the first active set and
+// first guess of the model's (in `options`).  Leaves `options` as it is
+// when the coarse solve does not converge.
+void start_from_coarser_mesh(const Model& model, const Model& coarser,
+                             const Eigen::SparseMatrix<double, Eigen::RowMajor>& P, const WeightedGapOperator& op,
+                             int free_rigid_motions, ContactSolverOptions& options);
 // Closed-form displacement of the case's reference solution, if it has one.
 std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec);
 

@@ -307,7 +307,7 @@ void set_fields(PC pc, const Eigen::MatrixXd& near_null, const SaddleLayout& L, 
 
 }  // namespace
 
-ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen::VectorXd& f_part,
+ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen::VectorXd& f_part,
                                     const WeightedGapOperator& op, const RigidModes& modes,
                                     const Eigen::MatrixXd& near_null, const PetscContactOptions& o) {
   if (!g_active) throw std::logic_error("solve_contact_petsc without a PetscSession");
@@ -341,6 +341,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
   // displacement block, the rest applied by SplineMultigrid's shell.
   OwnedMat A;
   A.p = assemble_matrix(Kp, G, Gt, GtG, L, !multigrid);
+  Eigen::SparseMatrix<double>().swap(Kp);  // PETSc holds the copy: K's memory back before the solver's
   std::optional<SplineMultigrid> mg;
   if (multigrid) mg.emplace(A, G, W, D, L, o.prolongations);
 
@@ -433,6 +434,14 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> Kp, const Eigen:
   check(VecScatterCreateToAll(xl, &l_to_all, &l_all), "vector");
 
   std::vector<char> active = initial_active_set(op, k, o.contact);
+  if (o.contact.initial_u.size() == n) {  // a start from the coarser mesh: the first guess
+    PetscScalar* px = nullptr;
+    check(VecGetArray(x, &px), "vector");
+    for (PetscInt row = L.u0; row < L.u1; ++row) px[row - L.u0] = o.contact.initial_u[row];
+    if (o.contact.initial_lambda.size() == m)
+      for (PetscInt row = L.l0; row < L.l1; ++row) px[L.local_u() + row - L.l0] = o.contact.initial_lambda[row - n];
+    check(VecRestoreArray(x, &px), "vector");
+  }
   std::set<std::vector<char>> seen;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), u = Eigen::VectorXd::Zero(n);
   RowMat aug_prev(n, n);  // G_A^T W G_A in the matrix now
