@@ -85,7 +85,7 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   const Eigen::VectorXd f_part = PetscSession::rank() == 0 ? sys.f : Eigen::VectorXd::Zero(sys.f.size()).eval();
   ContactSolution s;
   try {
-    s = solve_contact_petsc(std::move(sys.K), f_part, op, modes, rigid_motions(m), po);
+    s = solve_contact_petsc(sys.K, f_part, op, modes, rigid_motions(m), po);
   } catch (const PetscOptionError& e) {
     throw InputError(fmt::format("{}: [solver] options: {}", m.spec.path, e.what()));
   }

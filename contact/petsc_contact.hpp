@@ -81,12 +81,13 @@ struct PetscContactOptions {
 };
 
 // K_part and f_part: this process's share (they sum to K and f over the
-// processes); op, modes, near_null (n x (3 or 6): rigid motions of the free
+// processes); K_part is emptied once PETSc holds its copy (Eigen 3.4's
+// SparseMatrix has no move constructor: a by-value K was a second copy); op, modes, near_null (n x (3 or 6): rigid motions of the free
 // equations, for multigrid) whole on every process.  Collective.  A Krylov
 // solve that does not converge ends the iteration with a failed status;
 // throws PetscOptionError for a bad option, std::runtime_error for a PETSc
 // failure that is not the solver's (out of memory).
-ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double> K_part, const Eigen::VectorXd& f_part,
+ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& K_part, const Eigen::VectorXd& f_part,
                                     const WeightedGapOperator& op, const RigidModes& modes,
                                     const Eigen::MatrixXd& near_null, const PetscContactOptions& options);
 
