@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -358,24 +359,40 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   }
 }
 
-void start_from_coarser_mesh(const Model& m, const Model& coarser,
-                             const Eigen::SparseMatrix<double, Eigen::RowMajor>& P, const WeightedGapOperator& op,
-                             int k, ContactSolverOptions& opt) {
-  const RunResult rc = solve_model(coarser);
+namespace {
+// Nested iteration (contact/coarse_start): the first active set and first
+// guess of `m`'s contact iteration from the solution of the case one
+// refinement below (solved here unless `coarser` has it, itself started
+// the same way).  Nothing when that solve did not converge.
+void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedGapOperator& op, int k,
+                             ContactSolverOptions& opt) {
+  std::optional<Model> built;
+  std::optional<RunResult> solved;
+  if (!coarser.model || !coarser.result) {
+    CaseSpec spec = m.spec;
+    --spec.refine;
+    built.emplace(build_model(spec));
+    built->quiet = true;
+    solved.emplace(solve_model(*built));
+    coarser = {&*built, &*solved};
+  }
+  const RunResult& rc = *coarser.result;
   if (!rc.contact || !rc.contact->solution.converged) return;
   auto faces = [](const Model& model) {
     std::vector<const ContactFace*> out;
     for (const auto& c : model.contacts) out.push_back(c.face.get());
     return out;
   };
-  ActiveSetStart start =
-      start_from_coarse(faces(coarser), faces(m), P, rc.contact->solution, op, k, opt.complementarity_scale);
+  const Model& cm = *coarser.model;
+  ActiveSetStart start = start_from_coarse(faces(cm), faces(m), prolongation(cm.body, *cm.dofs, m.body, *m.dofs),
+                                           rc.contact->solution, op, k, opt.complementarity_scale);
   opt.initial_active = std::move(start.active);
   opt.initial_u = std::move(start.u);
   opt.initial_lambda = std::move(start.lambda);
 }
+}  // namespace
 
-RunResult solve_model(const Model& m, const StepObserver& on_step) {
+RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun coarser) {
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
   const auto t_start = Clock::now();
@@ -419,14 +436,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step) {
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
     t0 = Clock::now();
-    if (m.spec.refine > 0) {  // nested iteration: from the solution one refinement below
-      CaseSpec spec = m.spec;
-      --spec.refine;
-      Model coarser = build_model(spec);
-      coarser.quiet = true;
-      start_from_coarser_mesh(m, coarser, prolongation(coarser.body, *coarser.dofs, body, *m.dofs), c->op,
-                              int(modes.modes.cols()), opt);
-    }
+    if (m.spec.refine > 0) start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
                         : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;

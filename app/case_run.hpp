@@ -23,7 +23,15 @@ std::vector<std::string> face_names(const Model& m);
 
 // `on_step` (large deformation) sees the state after each converged load step.
 using StepObserver = std::function<void(const RunResult&, double load_factor)>;
-RunResult solve_model(const Model& model, const StepObserver& on_step = {});
+// The same case one refinement below, already solved (a study's previous
+// level): where a contact run at --refine r >= 1 starts from (nested
+// iteration, contact/coarse_start).  Without it, solve_model solves that
+// case first itself.
+struct CoarserRun {
+  const Model* model = nullptr;
+  const RunResult* result = nullptr;
+};
+RunResult solve_model(const Model& model, const StepObserver& on_step = {}, CoarserRun coarser = {});
 // The large-deformation path (app/finite_strain_run.cpp).
 RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 
@@ -38,14 +46,6 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen
                                                 const Eigen::VectorXd& weights, const std::vector<char>& active);
 // |int P n dGamma| summed over the pressure loads (the modelled part).
 double pressure_resultant(const Model& model);
-// Nested iteration (contact/coarse_start): the contact problem of `coarser`
-// (the case one refinement below `model`, P the prolongation from it) is
-// solved, itself started the same way, and gives the first active set and
-// first guess of the model's (in `options`).  Leaves `options` as it is
-// when the coarse solve does not converge.
-void start_from_coarser_mesh(const Model& model, const Model& coarser,
-                             const Eigen::SparseMatrix<double, Eigen::RowMajor>& P, const WeightedGapOperator& op,
-                             int free_rigid_motions, ContactSolverOptions& options);
 // Closed-form displacement of the case's reference solution, if it has one.
 std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec);
 

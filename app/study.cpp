@@ -33,11 +33,15 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     throw InputError(fmt::format("--levels {}: too few levels with h >= 4 h_ref to form a rate (use at least 4)", opt.levels));
   std::vector<Model> models;
   std::vector<RunResult> results;
+  models.reserve(opt.levels);  // level l - 1 is referred to while level l is solved
+  results.reserve(opt.levels);
   for (int l = 0; l < opt.levels; ++l) {
     apply_overrides(spec, {}, r0 + l);
     models.push_back(build_model(spec));
     models.back().quiet = opt.quiet;
-    results.push_back(solve_model(models.back()));
+    // Level l starts its contact iteration from level l - 1 (its mesh one refinement below).
+    const CoarserRun previous = l > 0 ? CoarserRun{&models[l - 1], &results[l - 1]} : CoarserRun{};
+    results.push_back(solve_model(models.back(), {}, previous));
     if (!opt.quiet)
       fmt::print(stderr, "level {}: h = {:.4g}, {} dofs, {:.2f} s, {}\n", l, models.back().mesh_size,
                  models.back().dofs->num_free(), results.back().timing.total, results.back().status);
