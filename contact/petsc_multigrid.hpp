@@ -23,9 +23,13 @@
 // prolongations (engine/prolongation), the coarse operators Galerkin
 // products P^T A P (so the Dirichlet eliminations and the augmentation reach
 // every level without a coarse assembly), the smoother Chebyshev on
-// block Jacobi with ICC(0) per process and the coarsest level a direct solve.  Options under the
-// prefix `u_` (`-u_mg_levels_ksp_max_it 3`, `-u_mg_levels_pc_type sor`;
-// `-u_pc_mg_levels L` keeps the L finest meshes).
+// ICC(0) per process (block Jacobi on one process, additive Schwarz with
+// overlap 1 on several) and the coarsest level a direct solve.  Options
+// under the prefix `u_` (`-u_mg_levels_ksp_max_it 3`,
+// `-u_mg_levels_pc_type sor`; `-u_pc_mg_levels L` keeps the L finest meshes).
+//
+// The first guess and the first active set come from the case one
+// refinement below (app/case_run, contact/coarse_start).
 #pragma once
 
 #include <Eigen/SparseCore>
