@@ -25,8 +25,8 @@ std::vector<std::string> face_names(const Model& m);
 using StepObserver = std::function<void(const RunResult&, double load_factor)>;
 // The same case one refinement below, already solved (a study's previous
 // level): where a contact run at --refine r >= 1 starts from (nested
-// iteration, contact/coarse_start).  Without it, solve_model solves that
-// case first itself.
+// iteration, contact/coarse_start).  Without it, the PETSc path solves that
+// case first itself; the direct path starts from the closed gaps.
 struct CoarserRun {
   const Model* model = nullptr;
   const RunResult* result = nullptr;
