@@ -97,16 +97,18 @@ SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorX
   // level 3 (K alone) 24 iterations against 64 with natural order and 2.
   default_option("-u_mg_levels_ksp_type", "chebyshev");
   default_option("-u_mg_levels_ksp_max_it", "4");
-  // Several processes: additive Schwarz with one layer of overlap rather
+  // Several processes: additive Schwarz with two layers of overlap rather
   // than block Jacobi, whose blocks cut the strong couplings at every
-  // process boundary (hertz3d level 3, 2 processes: 17 / 4 / 33 Krylov
-  // iterations against 27 / 4 / 58, 72 s against 91 s, for 1 GiB more).
-  // One process: the same smoother, without ASM's copy of the matrix.
+  // process boundary (hertz3d level 3, 2 processes, Krylov iterations of
+  // the three solves: block Jacobi 27 / 4 / 58 in 91 s and 2.9 GiB,
+  // overlap 1 17 / 4 / 33 in 63-72 s and 3.8 GiB, overlap 2 8 / 4 / 17 in
+  // 59 s and 4.2 GiB, as on one process).  One process: the same smoother,
+  // without ASM's copy of the matrix.
   int processes = 1;
   MPI_Comm_size(comm, &processes);
   if (processes > 1) {
     default_option("-u_mg_levels_pc_type", "asm");
-    default_option("-u_mg_levels_pc_asm_overlap", "1");
+    default_option("-u_mg_levels_pc_asm_overlap", "2");
   } else {
     default_option("-u_mg_levels_pc_type", "bjacobi");
   }

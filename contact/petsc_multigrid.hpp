@@ -24,7 +24,7 @@
 // products P^T A P (so the Dirichlet eliminations and the augmentation reach
 // every level without a coarse assembly), the smoother Chebyshev on
 // ICC(0) per process (block Jacobi on one process, additive Schwarz with
-// overlap 1 on several) and the coarsest level a direct solve.  Options
+// overlap 2 on several) and the coarsest level a direct solve.  Options
 // under the prefix `u_` (`-u_mg_levels_ksp_max_it 3`,
 // `-u_mg_levels_pc_type sor`; `-u_pc_mg_levels L` keeps the L finest meshes).
 //
