@@ -269,24 +269,32 @@ TEST_F(PetscPath, SplineMultigridMatchesDirectIn3D) {
 }
 
 // The point of multigrid: the iteration count (mean over the active-set
-// iterations) does not grow with the mesh.  Two and three levels of the 2D and 3D Hertz problems; the bar is
-// 1.5x from one level to the next (measured: 1.0-1.1x here, README).
+// iterations) does not grow with the mesh.  Levels 1 and 2 of 2D Hertz on
+// one process and of the 3D Hertz study (its own mesh) on two; the issue's
+// bar is 1.5x from one level to the next (measured: 8.5 -> 9 in 2D,
+// 9.2 -> 9.7 in 3D, and 9.7 at level 3, README).
 constexpr double kBoundedGrowth = 1.5;
 
 TEST_F(PetscPath, SplineMultigridIterationsStayBounded) {
   TempDir tmp("petscmglevels");
-  for (const auto& [name, elements] : {std::pair{"hertz2d", "[8, 2]"}, std::pair{"hertz3d_study", "[4, 2, 4]"}}) {
-    const std::string c = quote(coarse_case(name, elements, tmp.path()).string());
+  struct Problem {
+    const char* name;
+    const char* elements;
+    int processes;
+  };
+  for (const Problem& pr : {Problem{"hertz2d", "[8, 2]", 1}, Problem{"hertz3d_study", "[8, 2, 8]", 2}}) {
+    const std::string c = quote(coarse_case(pr.name, pr.elements, tmp.path()).string());
     std::vector<double> means;
     for (int r : {1, 2}) {
-      const std::string out = std::string(name) + std::to_string(r);
-      const auto o = run_igac(multigrid_args(c, r) + " --out " + out, tmp.path());
+      const std::string out = std::string(pr.name) + std::to_string(r);
+      const auto o = pr.processes == 1 ? run_igac(multigrid_args(c, r) + " --out " + out, tmp.path())
+                                       : run_mpi(pr.processes, multigrid_args(c, r) + " --out " + out, tmp.path());
       ASSERT_EQ(o.exit_code, 0) << o.output;
       const std::vector<int> its = summary_of(tmp.path() / out)["solver"]["krylov_iterations"];
       means.push_back(double(std::accumulate(its.begin(), its.end(), 0)) / double(its.size()));
     }
-    EXPECT_LE(means[1], kBoundedGrowth * means[0]) << name << ": " << means[0] << " -> " << means[1];
-    std::cout << name << " " << means[0] << " -> " << means[1] << "\n";
+    EXPECT_LE(means[1], kBoundedGrowth * means[0]) << pr.name << ": " << means[0] << " -> " << means[1];
+    std::cout << pr.name << " on " << pr.processes << " process(es): " << means[0] << " -> " << means[1] << "\n";
   }
 }
 
