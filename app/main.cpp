@@ -2,7 +2,7 @@
 //   igac run CASE.toml [--out DIR] [--refine N] [--degree P] [--quiet] [--no-output]
 //            [--solver direct|petsc] [--petsc-options "-ksp_type cg ..."]
 //   mpirun -n N igac run CASE.toml --solver petsc   (scripts/mpirun.sh)
-//   igac study CASE.toml --levels N [--degree P] [--out DIR] [--quiet]
+//   igac study CASE.toml --levels N [--degree P] [--out DIR] [--quiet] [--solver petsc ...] (one process)
 //   igac geometry CASE.toml --out BODY.xml
 // Exit codes: 0 converged, 1 the solve failed (summary.json says why),
 // 2 bad input (one line on stderr naming file, key and reason).
@@ -217,6 +217,10 @@ int main(int argc, char** argv) {
   study->add_option("--degree", degree, "NURBS degree p");
   study->add_option("--out", out, "output folder for study.json, study.csv, study.svg");
   study->add_flag("--quiet", quiet, "print only the table");
+  study->add_option("--solver", solver, "linear solver: direct (CHOLMOD) or petsc (one process)")
+      ->check(CLI::IsMember({"direct", "petsc"}));
+  study->add_option("--petsc-options", petsc_options, "PETSc options");
+  study->add_option("--preconditioner", preconditioner, "PETSc: options or spline_multigrid");
 
   auto* geometry = app.add_subcommand("geometry", "write the case's body (before refinement) as a G+Smo XML file");
   geometry->add_option("case", case_path, "case file (TOML)")->required();
@@ -247,10 +251,21 @@ int main(int argc, char** argv) {
       return 0;
     }
     CaseSpec spec = read_case(case_path);
+#ifndef IGAC_WITH_PETSC
+    if ((solver.empty() ? spec.solver.type : solver) == "petsc") hand_over_to_petsc_build(argv);
+#endif
+    apply_solver_options(spec, solver, petsc_options, preconditioner);
     apply_overrides(spec, degree, {});
-    if (spec.solver.type == "petsc")
-      throw InputError(fmt::format("{}: [solver] type = \"petsc\": igac study runs the direct solver; use igac run "
-                                   "for PETSc", case_path));
+    // A study writes and prints as one program: PETSc on one process (its
+    // levels beyond the direct solver's memory, e.g. the 3D study's 1.8M
+    // reference with the spline multigrid).
+    if (spec.solver.type == "petsc" && launcher_size() > 1)
+      throw InputError(fmt::format("{}: igac study runs on one process (the PETSc solver too); use igac run under "
+                                   "mpirun for one level", case_path));
+#ifdef IGAC_WITH_PETSC
+    std::optional<PetscSession> petsc;
+    if (spec.solver.type == "petsc") petsc.emplace(spec.solver.options);
+#endif
     return run_study(spec, StudyOptions{levels, out, quiet});
   } catch (const InputError& e) {
     say(fmt::format("igac: error: {}", e.what()));

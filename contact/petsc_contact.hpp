@@ -81,7 +81,8 @@ struct PetscContactOptions {
 };
 
 // K_part and f_part: this process's share (they sum to K and f over the
-// processes); K_part is emptied once PETSc holds its copy (Eigen 3.4's
+// processes); PETSc works on K_part's own arrays (one process, spline
+// multigrid) or empties it once it holds its copy (Eigen 3.4's
 // SparseMatrix has no move constructor: a by-value K was a second copy); op, modes, near_null (n x (3 or 6): rigid motions of the free
 // equations, for multigrid) whole on every process.  Collective.  A Krylov
 // solve that does not converge ends the iteration with a failed status;

@@ -298,6 +298,31 @@ TEST_F(PetscPath, SplineMultigridIterationsStayBounded) {
   }
 }
 
+// igac study with the spline multigrid (one process): the direct study's
+// errors level by level (the same discrete solutions, to the Krylov
+// tolerance); under mpirun a one-line error, nothing written.
+TEST_F(PetscPath, SplineMultigridStudyMatchesDirect) {
+  TempDir tmp("petscmgstudy");
+  const std::string c = quote(coarse_case("hertz2d", "[8, 2]", tmp.path()).string());
+  auto o = run_igac("study " + c + " --levels 4 --quiet --out direct", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = run_igac("study " + c + " --levels 4 --quiet --out mg --solver petsc --preconditioner spline_multigrid",
+               tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto d = nlohmann::json::parse(igac_test::read_file(tmp.path() / "direct" / "study.json"));
+  const auto m = nlohmann::json::parse(igac_test::read_file(tmp.path() / "mg" / "study.json"));
+  ASSERT_EQ(d["levels"].size(), m["levels"].size());
+  for (size_t l = 0; l < d["levels"].size(); ++l)
+    for (const auto& [key, value] : d["levels"][l]["errors"].items()) {
+      const double a = value, b = m["levels"][l]["errors"][key];
+      EXPECT_NEAR(b, a, 1e-6 * std::abs(a)) << "level " << l << " " << key;
+    }
+  o = run_mpi(2, "study " + c + " --levels 4 --quiet --out two --solver petsc", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("igac study runs on one process"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "two"));
+}
+
 TEST_F(PetscPath, SplineMultigridBadChoicesAreInputErrors) {
   TempDir tmp("petscmgbad");
   const std::string c = quote(coarse_case("hertz2d", "[8, 2]", tmp.path()).string());
