@@ -363,7 +363,9 @@ namespace {
 // Nested iteration (contact/coarse_start): the first active set and first
 // guess of `m`'s contact iteration from the solution of the case one
 // refinement below (solved here unless `coarser` has it, itself started
-// the same way).  Nothing when that solve did not converge.
+// the same way).  Nothing when that solve did not converge.  (The spline
+// multigrid builds the same coarse model and prolongation again for its
+// hierarchy: 0.1 s of a 74 s run at 225k unknowns, left so.)
 void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedGapOperator& op, int k,
                              ContactSolverOptions& opt) {
   std::optional<Model> built;

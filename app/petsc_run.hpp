@@ -14,7 +14,7 @@ ElementRange process_elements(const Model& model);
 // Element loads of every process summed, on every process (no-op on one).
 void sum_over_processes(Eigen::VectorXd& f);
 // The contact solve in PETSc (op with no rows: the plain linear solve).
-// `K` is emptied once PETSc holds its copy.  Throws InputError for a bad PETSc option.
+// `system.K` is consumed (solve_contact_petsc).  Throws InputError for a bad PETSc option.
 ContactSolution solve_with_petsc(const Model& model, LinearSystem& system, const WeightedGapOperator& op,
                                  const RigidModes& modes, const ContactSolverOptions& options,
                                  LinearSolverRecord& record);

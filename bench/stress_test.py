@@ -268,7 +268,7 @@ def write_markdown(rows, path, quick, elapsed, igac):
         "Iterations: Newton iterations summed over the load steps (Neo-Hookean), active-set iterations (linear). "
         "Force: |total contact force - applied force| / applied force (the follower load's resultant on the "
         "deformed face; for the displacement-driven case there is no applied force). vs Hertz: max pressure against Hertz's p0 for the same P and nu (linear cases; Hertz assumes a half space, the coarse [32, 8] mesh sits about 0.5 % below). Solve: `timing_s.total` of summary.json; wall: the whole process, with writing the CSV files and the SVG plots. NaN: non-finite tokens in "
-        "summary.json, pressure.csv and load_curve.csv, plus `null` values in summary.json.",
+        "summary.json, pressure.csv, load_curve.csv and the SVG plots, plus `null` values in summary.json.",
         "",
         "| run | variant | p | dofs | exit | status | steps | iterations | cut-backs | max pressure | vs Hertz | force rel. diff | solve (s) | wall (s) | NaN |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",

@@ -81,10 +81,12 @@ struct PetscContactOptions {
 };
 
 // K_part and f_part: this process's share (they sum to K and f over the
-// processes); PETSc works on K_part's own arrays (one process, spline
-// multigrid) or empties it once it holds its copy (Eigen 3.4's
-// SparseMatrix has no move constructor: a by-value K was a second copy); op, modes, near_null (n x (3 or 6): rigid motions of the free
-// equations, for multigrid) whole on every process.  Collective.  A Krylov
+// processes); K_part is consumed: PETSc works on its own arrays (one
+// process, spline multigrid: it ends holding K + G_A^T W G_A) or empties
+// it once it holds its copy (taken by reference: Eigen 3.4's SparseMatrix
+// has no move constructor, a by-value K was a second copy).  op, modes and
+// near_null (n x (3 or 6): rigid motions of the free equations, for
+// multigrid) are whole on every process.  Collective.  A Krylov
 // solve that does not converge ends the iteration with a failed status;
 // throws PetscOptionError for a bad option, std::runtime_error for a PETSc
 // failure that is not the solver's (out of memory).

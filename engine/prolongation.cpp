@@ -26,7 +26,8 @@ Eigen::SparseMatrix<double, Eigen::RowMajor> prolongation(const Body& coarse, co
         T[d].insert(0, 0) = 1.0;
       }
     }
-    const std::vector<int>&bc = coarse.body_cps(k), &bf = fine.body_cps(k);
+    const std::vector<int>& bc = coarse.body_cps(k);
+    const std::vector<int>& bf = fine.body_cps(k);
     for (int i = 0; i < pf.num_control_points(); ++i) {
       const std::array<int, 3> f = pf.multi_index(i);
       row.clear();

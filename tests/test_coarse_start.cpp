@@ -19,6 +19,12 @@ namespace {
 using namespace igac;
 
 constexpr double kRoundOff = 1e-13;
+// The prolongated coarse displacement against the fine solution: apart by
+// the coarse mesh's discretisation error (measured: 0.4 % in 2D, 2.2 % in 3D).
+constexpr double kCoarseAgainstFine = 0.1;
+// Two direct solves of the same discrete problem that end on the same
+// active set: the same solution up to the round-off of their Schur solves.
+constexpr double kSameSolution = 1e-10;
 
 Model model_at(const std::string& file, int refine, std::vector<int> elements, int degree) {
   CaseSpec spec = read_case(std::string(IGAC_SOURCE_DIR) + "/" + file);
@@ -113,7 +119,7 @@ void expect_start_near_the_fine_solution(const std::string& file, std::vector<in
   EXPECT_GT(active, 4 * at_most_differ) << file;  // the zone is resolved: the rim is a small part of it
   // The first guess is the coarse solution itself: close to the fine one.
   const Eigen::VectorXd& uf = rf.contact->solution.u;
-  EXPECT_LT((s.u - uf).norm(), 0.1 * uf.norm()) << file;
+  EXPECT_LT((s.u - uf).norm(), kCoarseAgainstFine * uf.norm()) << file;
 }
 
 TEST(CoarseStart, PredictsTheFineActiveSetButForItsRim) {
@@ -137,7 +143,7 @@ TEST(CoarseStart, AStudyLevelStartsFromTheLevelBelow) {
   EXPECT_LE(n.active_set_sizes.size(), 2u);
   EXPECT_LT(n.active_set_sizes.size(), p.active_set_sizes.size());
   EXPECT_EQ(n.active, p.active);
-  EXPECT_LT((n.u - p.u).norm(), 1e-10 * p.u.norm());
+  EXPECT_LT((n.u - p.u).norm(), kSameSolution * p.u.norm());
 }
 
 }  // namespace
