@@ -13,8 +13,10 @@
 #include <omp.h>
 
 #include "engine/spline/knot_vector.hpp"
-#include "app/case_body.hpp"
-#include "app/case_run.hpp"
+#include "model/case_body.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "app/launcher.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/json_out.hpp"
@@ -23,7 +25,7 @@
 #include "app/study.hpp"
 #include "io/vtk_output.hpp"
 #ifdef IGAC_WITH_PETSC
-#include "contact/petsc_contact.hpp"
+#include "solvers/petsc_contact.hpp"
 #endif
 
 using namespace igac;
@@ -40,6 +42,7 @@ int process_count() { return launcher_size(); }
 void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::string& petsc_options,
                           const std::string& preconditioner) {
   if (!solver.empty()) spec.solver.type = solver;
+  spec.solver.processes = process_count();  // the memory estimate's process count
   if (!preconditioner.empty()) spec.solver.preconditioner = preconditioner;
   if (const std::string why = check_preconditioner(spec.solver); !why.empty())
     throw InputError(fmt::format("--preconditioner {}: {}", spec.solver.preconditioner, why));

@@ -6,7 +6,9 @@
 #include <map>
 #include <optional>
 
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/study.hpp"
 #include "io/json_out.hpp"
 #include "app/output_folder.hpp"
 #include "io/plots.hpp"
@@ -14,65 +16,20 @@
 namespace igac {
 
 int run_study(CaseSpec spec, const StudyOptions& opt) {
-  if (opt.levels < 2) throw InputError(fmt::format("--levels {}: a study needs at least 2 levels", opt.levels));
-  const int r0 = spec.refine;
-  try {  // Every level's size is checked before the first level is computed.
-    CaseSpec finest = spec;
-    apply_overrides(finest, {}, r0 + opt.levels - 1);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("--levels {}: the finest level is too large: {}", opt.levels, e.what()));
-  }
   std::optional<OutputFolder> folder;  // --out checked now, written at the end
   if (!opt.out.empty()) folder.emplace(opt.out);
-  const bool exact = exact_displacement(spec).has_value();
-  const int n_ref = opt.levels - 1;
-  std::vector<int> reported;
-  for (int l = 0; l < opt.levels; ++l)
-    if (exact || l <= n_ref - 2) reported.push_back(l);  // nested bisection: h_ref = h / 2^(n_ref - l) <= h/4
-  if (reported.size() < 2)
-    throw InputError(fmt::format("--levels {}: too few levels with h >= 4 h_ref to form a rate (use at least 4)", opt.levels));
-  std::vector<Model> models;
-  std::vector<RunResult> results;
-  models.reserve(opt.levels);  // level l - 1 is referred to while level l is solved
-  results.reserve(opt.levels);
-  for (int l = 0; l < opt.levels; ++l) {
-    apply_overrides(spec, {}, r0 + l);
-    models.push_back(build_model(spec));
-    models.back().quiet = opt.quiet;
-    // Level l starts its contact iteration from level l - 1 (its mesh one refinement below).
-    const CoarserRun previous = l > 0 ? CoarserRun{&models[l - 1], &results[l - 1]} : CoarserRun{};
-    results.push_back(solve_model(models.back(), {}, previous));
+  const StudyResult study = solve_study(spec, opt.levels, opt.quiet, [&](int l, const Model& m, const RunResult& r) {
     if (!opt.quiet)
-      fmt::print(stderr, "level {}: h = {:.4g}, {} dofs, {:.2f} s, {}\n", l, models.back().mesh_size,
-                 models.back().dofs->num_free(), results.back().timing.total, results.back().status);
-    if (results.back().status != "converged")
-      throw std::runtime_error(fmt::format("level {} did not converge: {}", l, results.back().status));
-  }
-  std::vector<std::map<std::string, double>> errors(opt.levels);
+      fmt::print(stderr, "level {}: h = {:.4g}, {} dofs, {:.2f} s, {}\n", l, m.mesh_size, m.dofs->num_free(),
+                 r.timing.total, r.status);
+  });
+  const std::vector<Model>& models = study.models;
+  const std::vector<RunResult>& results = study.results;
+  const std::vector<int>& reported = study.reported;
+  const auto& errors = study.errors;
+  const bool exact = study.exact;
+  const int n_ref = opt.levels - 1;
   const Model& ref = models[n_ref];
-  const RunResult& rref = results[n_ref];
-  for (int l : reported) {
-    auto& e = errors[l];
-    const RunResult& r = results[l];
-    ErrorNorms d = exact ? *r.displacement_errors
-                         : errors_against_reference(models[l].body, r.u, ref.body, rref.u, ref.body.degree() + 1);
-    e["displacement_l2"] = d.l2;
-    e["displacement_h1"] = d.h1;
-    e["displacement_l2_rel"] = d.l2 / d.ref_l2;
-    e["displacement_h1_rel"] = d.h1 / d.ref_h1;
-    if (r.pressure_error) {
-      e["pressure_l2"] = r.pressure_error->first;
-      e["pressure_l2_rel"] = r.pressure_error->first / r.pressure_error->second;
-    }
-    if (r.contact && !exact) {
-      const ContactPressure& pref = *rref.contact->pressure;
-      const auto pe = r.contact->pressure->l2_error(
-          *ref.contacts.front().face, [&](int side, const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return pref.pressure_at(side, xi); },
-          ref.body.degree() + 2);
-      e["pressure_l2_vs_reference"] = pe.first;
-      e["pressure_l2_vs_reference_rel"] = pe.first / pe.second;
-    }
-  }
   Json j;
   j["case"] = spec.name;
   j["degree"] = spec.degree;
@@ -92,13 +49,9 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
   }
   j["levels"] = levels;
   Json rates;
-  for (const auto& [name, v0] : errors[reported.front()]) {
+  for (const auto& [name, values] : study.rates) {
     Json arr = Json::array();
-    for (size_t i = 0; i + 1 < reported.size(); ++i) {
-      const int a = reported[i], b = reported[i + 1];
-      arr.push_back(finite_or_null(std::log(errors[a][name] / errors[b][name]) /
-                                   std::log(models[a].mesh_size / models[b].mesh_size)));
-    }
+    for (double v : values) arr.push_back(finite_or_null(v));
     rates[name] = arr;
   }
   j["rates"] = rates;
@@ -118,9 +71,9 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     std::string line = fmt::format("{:>5} {:>10.4g} {:>8}", l, models[l].mesh_size, models[l].dofs->num_free());
     std::string row = fmt::format("{},{:.8g},{}", l, models[l].mesh_size, models[l].dofs->num_free());
     for (const auto& n : names) {
-      const double rate = i == 0 ? NAN : j["rates"][n][i - 1].is_null() ? NAN : j["rates"][n][i - 1].get<double>();
-      line += fmt::format(" {:>24.4e} {:>5}", errors[l][n], i == 0 ? "" : fmt::format("{:.2f}", rate));
-      row += fmt::format(",{:.8g},{}", errors[l][n], i == 0 ? "" : fmt::format("{:.4f}", rate));
+      const double rate = i == 0 ? NAN : std::isfinite(study.rates.at(n)[i - 1]) ? study.rates.at(n)[i - 1] : NAN;
+      line += fmt::format(" {:>24.4e} {:>5}", errors[l].at(n), i == 0 ? "" : fmt::format("{:.2f}", rate));
+      row += fmt::format(",{:.8g},{}", errors[l].at(n), i == 0 ? "" : fmt::format("{:.4f}", rate));
     }
     fmt::print("{}\n", line);
     csv += row + "\n";
@@ -135,7 +88,7 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     for (const auto& n : names) plotted.push_back({n, {}});
     for (int l : reported) {
       h.push_back(models[l].mesh_size);
-      for (auto& e : plotted) e.values.push_back(errors[l][e.name]);
+      for (auto& e : plotted) e.values.push_back(errors[l].at(e.name));
     }
     write_file_atomically(dir + "/study.svg", svg::render(study_figure(h, plotted, spec.name)));
     folder->commit();

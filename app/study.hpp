@@ -1,10 +1,6 @@
-// Refinement studies on nested meshes (`igac study`): the case is solved at
-// refine = r0, r0+1, ..., each level halving every knot span.  Errors are
-// taken against the closed-form solution when the case has one (Lame), else
-// against the finest level, and only for levels with h >= 4 h_ref (paper,
-// section 4.1).  Contact cases add the pressure error against Hertz and
-// against the reference.  Rates between consecutive levels:
-// log(e_l / e_{l+1}) / log(h_l / h_{l+1}).
+// SPDX-License-Identifier: BSD-3-Clause
+// `igac study`: a refinement study (model/study) printed as a table and
+// written as study.json, study.csv and study.svg into the output folder.
 #pragma once
 
 #include <optional>

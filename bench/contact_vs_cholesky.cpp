@@ -19,7 +19,9 @@
 #include <string>
 
 #include "contact/small_strain_contact.hpp"
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 
 using namespace igac;
 using Clock = std::chrono::steady_clock;

@@ -19,7 +19,9 @@
 #include <omp.h>
 #include <string>
 
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "engine/cholesky.hpp"
 #include "engine/linear_static.hpp"
 

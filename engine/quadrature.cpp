@@ -41,4 +41,22 @@ GaussRule gauss_legendre(int n) {
   return r;
 }
 
+TensorGaussRule tensor_gauss_rule(int param_dim, int n) {
+  const GaussRule g = gauss_legendre(n);
+  TensorGaussRule r;
+  const int n1 = n, n2 = param_dim > 1 ? n : 1, n3 = param_dim > 2 ? n : 1;
+  for (int k = 0; k < n3; ++k)
+    for (int j = 0; j < n2; ++j)
+      for (int i = 0; i < n1; ++i) {
+        Eigen::VectorXd s(param_dim);
+        double w = g.weights[i];
+        s[0] = g.points[i];
+        if (param_dim > 1) s[1] = g.points[j], w *= g.weights[j];
+        if (param_dim > 2) s[2] = g.points[k], w *= g.weights[k];
+        r.points.push_back(s);
+        r.weights.push_back(w);
+      }
+  return r;
+}
+
 }  // namespace igac

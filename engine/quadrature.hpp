@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include <Eigen/Dense>
+
 namespace igac {
 
 struct GaussRule {
@@ -13,5 +15,13 @@ struct GaussRule {
 };
 
 GaussRule gauss_legendre(int n);
+
+// The tensor product of n-point Gauss rules on [0, 1]^d (d = 1, 2, 3), the
+// first direction fastest.  Weights sum to 1.
+struct TensorGaussRule {
+  std::vector<Eigen::VectorXd> points;
+  std::vector<double> weights;
+};
+TensorGaussRule tensor_gauss_rule(int param_dim, int n);
 
 }  // namespace igac

@@ -12,6 +12,7 @@
 #include "contact/obstacle.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "io/gismo_xml.hpp"
+#include "model/references.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
 
@@ -195,7 +196,9 @@ CaseSpec read_case(const std::string& path) {
     if (geo.has("shape")) geo.fail("file", "give either a shape or a file, not both");
     const std::filesystem::path f = geo.string("file");
     c.geometry_file = (f.is_absolute() ? f : std::filesystem::path(path).parent_path() / f).lexically_normal().string();
-    const MultiPatch body = read_gismo_xml(c.geometry_file);  // one-line errors naming the file's line
+    auto read = std::make_shared<const MultiPatch>(read_gismo_xml(c.geometry_file));  // one-line errors naming the file's line
+    const MultiPatch& body = *read;
+    c.file_body = read;
     c.dimension = body.patches.front().space_dim();
     if (body.patches.front().param_dim() != c.dimension)
       geo.fail("file", fmt::format("{}: a {}D patch in {}D space is not a solid body", c.geometry_file,
@@ -382,13 +385,11 @@ CaseSpec read_case(const std::string& path) {
   if (root.contains("reference")) {
     const Section s(path, "reference", top.sub("reference"), {"solution"});
     c.reference = s.string("solution");
-    if (c.reference != "hertz" && c.reference != "lame" && c.reference != "none")
-      s.fail("solution", fmt::format("unknown reference solution '{}' (hertz, lame, none)", c.reference));
-    const bool round = c.shape == "quarter_disc" || c.shape == "sphere_octant" || (c.shape == "file" && c.radius > 0);
-    if (c.reference == "hertz" && (c.contacts.size() != 1 || !round))
-      s.fail("solution", "hertz needs a quarter_disc or sphere_octant (or a geometry file with its radius) with one [contact]");
-    if (c.reference == "lame" && c.shape != "quarter_annulus" && !(c.shape == "file" && c.inner_radius > 0 && c.outer_radius > 0))
-      s.fail("solution", "lame needs shape = \"quarter_annulus\" (or a geometry file with inner_radius and outer_radius)");
+    const ReferenceSolution* ref = find_reference(c.reference);
+    if (!ref && c.reference != "none")
+      s.fail("solution", fmt::format("unknown reference solution '{}' ({})", c.reference, fmt::join(reference_names(), ", ")));
+    if (ref)
+      if (const std::string why = ref->unusable(c); !why.empty()) s.fail("solution", why);
   }
   if (root.contains("loading")) {
     const Section s(path, "loading", top.sub("loading"),
@@ -440,42 +441,6 @@ CaseSpec read_case(const std::string& path) {
   return c;
 }
 
-double estimated_peak_bytes(const CaseSpec& c) {
-  // Stiffness nonzeros, and the Cholesky factor measured at fill ~10 x
-  // nnz(K)/2 in 2D (slowly growing) and ~7 x nnz(K)/2 at 18k dofs in 3D,
-  // growing like dofs^(1/3) there (nested dissection); times kCalibration, fitted so that
-  // the estimate covers the peak resident memory measured by
-  // bench/memory_guard.py (README "Memory").
-  constexpr double kCalibration = 1.35;
-  constexpr double kBase = 80.0 * (1 << 20);  // the program itself: libraries, VTK, tables
-  double cps = 1;
-  for (int e : c.elements) cps *= std::ldexp(double(e), std::min(c.refine, 60)) + c.degree;
-  const int dim = c.dim();
-  const double dofs = cps * dim;
-  const double nnz = dofs * std::pow(2.0 * c.degree + 1, dim) * dim;
-  // 2D: the fill of nested dissection grows slowly (measured: +10 % per doubling of the dofs beyond 33k).
-  const double fill = dim == 2 ? 10.0 * (1 + 0.1 * std::max(0.0, std::log2(std::max(dofs, 1.0) / 33000.0)))
-                               : 8.0 * std::cbrt(std::max(dofs, 1.0) / 18000.0);
-  // PETSc with multigrid: no factor; the matrix, its copies (assembly,
-  // PETSc, the saddle-point matrix) and the multigrid hierarchy.  PETSc
-  // with a factorisation (MUMPS, the default): a factor as CHOLMOD's.
-  const std::string& o = c.solver.options;
-  const bool multigrid = o.find("gamg") != std::string::npos || o.find("hypre") != std::string::npos ||
-                         o.find("-pc_type ml") != std::string::npos;
-  if (c.solver.type == "petsc" && multigrid) return kBase + kCalibration * 4 * 12 * nnz;
-  // The spline multigrid: K, on several processes PETSc's copy of it (one
-  // process works on K's arrays), the Galerkin levels, the ICC factors and
-  // on several processes the overlap of their subdomains.  Measured on
-  // hertz3d level 3 (225k dofs): 1.92 GiB on one process, 4.24 GiB over
-  // two (mpirun's process count from its environment).
-  if (c.solver.type == "petsc" && c.solver.preconditioner == "spline_multigrid") {
-    const char* world = std::getenv("OMPI_COMM_WORLD_SIZE");
-    const bool several = world && std::atoi(world) > 1;
-    return kBase + kCalibration * (several ? 4.9 : 2.3) * 12 * nnz;
-  }
-  return kBase + kCalibration * (12 * nnz + 10 * fill * nnz / 2);
-}
-
 std::string check_preconditioner(const SolverSpec& s) {
   if (s.preconditioner != "options" && s.preconditioner != "spline_multigrid")
     return fmt::format("unknown preconditioner '{}' (options: as [solver] options say, default MUMPS; "
@@ -483,30 +448,6 @@ std::string check_preconditioner(const SolverSpec& s) {
   if (s.preconditioner == "spline_multigrid" && s.type != "petsc")
     return "spline_multigrid runs in the PETSc solver: needs type = \"petsc\"";
   return {};
-}
-
-void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> refine) {
-  if (degree) {
-    if (*degree < 1 || *degree > 10) throw InputError(fmt::format("--degree {}: must lie in 1..10", *degree));
-    if (!c.contacts.empty() && *degree < 2) throw InputError(fmt::format("--degree {}: contact needs degree >= 2", *degree));
-    c.degree = *degree;
-  }
-  if (refine) {
-    if (*refine < 0) throw InputError(fmt::format("--refine {}: must be >= 0", *refine));
-    c.refine = *refine;
-  }
-  // Memory check before anything is built.
-  const double bytes = estimated_peak_bytes(c);
-  double elements = 1;
-  for (int e : c.elements) elements *= std::ldexp(double(e), std::min(c.refine, 60));
-  double dofs = c.dim();
-  for (int e : c.elements) dofs *= std::ldexp(double(e), std::min(c.refine, 60)) + c.degree;
-  const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (!(bytes < physical) || elements > 2e9)
-    throw InputError(fmt::format(
-        "{}: [mesh] refine = {}: {:.3g} elements and {:.3g} unknowns need about {:.3g} GiB, more than this "
-        "machine's {:.1f} GiB",
-        c.path, c.refine, elements, dofs, bytes / (1 << 30), physical / (1 << 30)));
 }
 
 }  // namespace igac

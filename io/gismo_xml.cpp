@@ -361,12 +361,6 @@ void read_topology(const Source& src, pugi::xml_node mp, const std::map<long, in
 
 }  // namespace
 
-MultiPatch single_patch_body(const NurbsPatch& patch) {
-  MultiPatch body;
-  body.patches = {patch};
-  for (int s = 1; s <= 2 * patch.param_dim(); ++s) body.boundary.push_back(PatchSide{0, face_of_gismo_side(s)});
-  return body;
-}
 
 MultiPatch read_gismo_xml(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -53,8 +53,5 @@ MultiPatch read_gismo_xml(const std::string& path);
 // or the file cannot be written.
 void write_gismo_xml(const MultiPatch& body, const std::string& path);
 
-// A one-patch body with every side on the boundary (what G+Smo's
-// gsMultiPatch(geometry) lists).
-MultiPatch single_patch_body(const NurbsPatch& patch);
 
 }  // namespace igac

@@ -1,4 +1,5 @@
 #include "io/json_out.hpp"
+#include "model/memory_estimate.hpp"
 
 #include <cmath>
 #include <filesystem>

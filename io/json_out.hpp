@@ -7,7 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/run_record.hpp"
+#include "model/model.hpp"
+#include "model/run_result.hpp"
 
 namespace igac {
 

@@ -17,7 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "io/run_record.hpp"
+#include "model/model.hpp"
+#include "model/run_result.hpp"
 #include "io/svg_plot.hpp"
 
 namespace igac {

@@ -17,110 +17,10 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
-#include "engine/quadrature.hpp"
+#include "model/field_recovery.hpp"
 #include "io/json_out.hpp"
 
 namespace igac {
-
-// ---------------------------------------------------------------- stress
-
-StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_strain) {
-  return [law = std::move(law), small_strain](const Eigen::Matrix3d& grad_u) {
-    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
-    Eigen::Matrix3d P;
-    if (!law->evaluate(F, P, nullptr)) return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()).eval();
-    // Small strain: P of the linear law is sigma itself; else sigma = P F^T / J.
-    return small_strain ? P : Eigen::Matrix3d(P * F.transpose() / F.determinant());
-  };
-}
-
-StressLaw linear_elastic_stress(double lambda, double mu) {
-  // The one linear-elastic law of materials/, from its Lame constants.
-  const MaterialParameters p{mu * (3 * lambda + 2 * mu) / (lambda + mu), lambda / (2 * (lambda + mu)), {}};
-  return cauchy_stress(std::shared_ptr<const HyperelasticLaw>(make_law("linear_elastic", p)), true);
-}
-
-double von_mises(const Eigen::Matrix3d& s) {
-  const Eigen::Matrix3d dev = s - s.trace() / 3.0 * Eigen::Matrix3d::Identity();
-  return std::sqrt(1.5 * dev.cwiseProduct(dev).sum());
-}
-
-namespace {
-
-// Tensor-product Gauss points on [0, 1]^d.
-struct LocalRule {
-  std::vector<Eigen::VectorXd> s;
-  std::vector<double> w;
-};
-LocalRule local_rule(int param_dim, int n) {
-  const GaussRule g = gauss_legendre(n);
-  LocalRule r;
-  const int n1 = n, n2 = param_dim > 1 ? n : 1, n3 = param_dim > 2 ? n : 1;
-  for (int k = 0; k < n3; ++k)
-    for (int j = 0; j < n2; ++j)
-      for (int i = 0; i < n1; ++i) {
-        Eigen::VectorXd s(param_dim);
-        double w = g.weights[i];
-        s[0] = g.points[i];
-        if (param_dim > 1) s[1] = g.points[j], w *= g.weights[j];
-        if (param_dim > 2) s[2] = g.points[k], w *= g.weights[k];
-        r.s.push_back(s);
-        r.w.push_back(w);
-      }
-  return r;
-}
-
-int max_degree(const BezierMesh& m) { return std::max({m.degree(0), m.degree(1), m.degree(2)}); }
-
-// Measure of the map dX/ds (space_dim x param_dim): |det| for volumes, the
-// length / area of the tangents for curves and surfaces.
-double measure(const Eigen::MatrixXd& J) {
-  if (J.rows() == J.cols()) return std::abs(J.determinant());
-  return std::sqrt((J.transpose() * J).determinant());
-}
-
-}  // namespace
-
-RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
-  const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
-  if (pd != dim) throw std::invalid_argument("stress recovery needs a volume mesh");
-  if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
-    throw std::invalid_argument("stress recovery needs the displacement as field 0");
-  const LocalRule rule = local_rule(pd, max_degree(mesh) + 2);
-  RecoveredStress out;
-  out.stress.resize(mesh.num_points(), 6);
-  out.von_mises.resize(mesh.num_points());
-  out.magnitude.resize(mesh.num_points());
-  static constexpr int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-
-  Eigen::VectorXd R;
-  Eigen::MatrixXd dR, J(dim, dim), G(dim, dim), M(nl, nl), B(nl, 8);
-  Eigen::RowVectorXd f(8);
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const BezierElement& el = mesh.element(e);
-    M.setZero();
-    B.setZero();
-    for (size_t q = 0; q < rule.s.size(); ++q) {
-      mesh.basis(el, rule.s[q], R, &dR);
-      J.noalias() = el.points.transpose() * dR;     // dX/ds
-      G.noalias() = el.fields[0].transpose() * dR;  // du/ds
-      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
-      grad.topLeftCorner(dim, dim) = G * J.inverse();
-      const Eigen::Matrix3d sigma = law(grad);
-      for (int c = 0; c < 6; ++c) f[c] = sigma(comp[c][0], comp[c][1]);
-      f[6] = von_mises(sigma);
-      f[7] = sigma.norm();
-      const double wt = rule.w[q] * std::abs(J.determinant());
-      M.selfadjointView<Eigen::Lower>().rankUpdate(R, wt);
-      B.noalias() += (wt * R) * f;
-    }
-    const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
-    out.stress.middleRows(e * nl, nl) = C.leftCols(6);
-    out.von_mises.segment(e * nl, nl) = C.col(6);
-    out.magnitude.segment(e * nl, nl) = C.col(7);
-  }
-  return out;
-}
 
 // ---------------------------------------------------------------- VTK grids
 
@@ -251,11 +151,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   auto grid = bezier_grid(mesh);
   // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
   // (plane strain in 2D is the 3D law with F_33 = 1).
-  const StressLaw law =
-      model.law ? cauchy_stress(std::shared_ptr<const HyperelasticLaw>(model.law.get(), [](const HyperelasticLaw*) {}),
-                                !model.spec.finite_strain())
-                : linear_elastic_stress(model.material.lambda(), model.material.mu());  // a Model made in code
-  const RecoveredStress s = recover_stress(mesh, law);
+  const RecoveredStress s = recover_stress(mesh, model_stress_law(model));
   const vtkIdType np = mesh.num_points();
   auto stress = make_array("stress", 6, np);
   const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
@@ -295,40 +191,12 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
   auto g_cell = make_array("weighted_gap", 1, ne);
   auto a_cell = make_array("active", 1, ne);
 
-  const LocalRule rule = local_rule(mesh.param_dim(), max_degree(mesh) + 3);
-  Eigen::VectorXd R;
-  Eigen::MatrixXd dR, M(nl, nl);
-  Eigen::VectorXd b(nl);
-  std::vector<int> idx;
-  std::vector<double> val;
+  const ContactPartFields fields = recover_contact_fields(mesh, side_of, sol);
+  for (vtkIdType i = 0; i < mesh.num_points(); ++i) p_point->SetValue(i, fields.point_pressure[i]);
   for (int e = 0; e < ne; ++e) {
-    const BezierElement& el = mesh.element(e);
-    M.setZero();
-    b.setZero();
-    double area = 0, p_int = 0, g_int = 0;
-    bool active = false;
-    for (size_t q = 0; q < rule.s.size(); ++q) {
-      mesh.basis(el, rule.s[q], R, &dR);
-      const double wt = rule.w[q] * measure(el.points.transpose() * dR);
-      side_of[e]->space.basis(el.parameter(rule.s[q]), idx, val);
-      for (int& K : idx) K += side_of[e]->first_multiplier;
-      double p = 0, g = 0;
-      for (size_t k = 0; k < idx.size(); ++k) {
-        p -= sol.lambda[idx[k]] * val[k];
-        g += sol.weighted_gap[idx[k]] * val[k];
-        if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
-      }
-      M.noalias() += wt * R * R.transpose();
-      b += wt * p * R;
-      area += wt;
-      p_int += wt * p;
-      g_int += wt * g;
-    }
-    const Eigen::VectorXd c = M.llt().solve(b);
-    for (int l = 0; l < nl; ++l) p_point->SetValue(vtkIdType(e) * nl + l, c[l]);
-    p_cell->SetValue(e, p_int / area);
-    g_cell->SetValue(e, g_int / area);
-    a_cell->SetValue(e, active ? 1.0 : 0.0);
+    p_cell->SetValue(e, fields.cell_pressure[e]);
+    g_cell->SetValue(e, fields.cell_weighted_gap[e]);
+    a_cell->SetValue(e, fields.cell_active[e] ? 1.0 : 0.0);
   }
   grid->GetPointData()->AddArray(p_point);
   grid->GetPointData()->SetActiveScalars("pressure");

@@ -69,7 +69,8 @@
 #include <vector>
 
 #include "engine/spline/bezier_extraction.hpp"
-#include "io/run_record.hpp"
+#include "model/model.hpp"
+#include "model/run_result.hpp"
 
 namespace igac {
 
@@ -98,27 +99,5 @@ class VtkSeries {
   std::string dir_;
   std::vector<VtkStep> steps_;
 };
-
-// --- stress recovery (exposed for tests) ---
-
-// Cauchy stress (3 x 3) from the displacement gradient grad u = du/dX
-// (3 x 3; the third row and column zero in plane strain).
-using StressLaw = std::function<Eigen::Matrix3d(const Eigen::Matrix3d& grad_u)>;
-// sigma(grad u) of a law: its P in small strain (the linear law's P is the
-// small-strain sigma), P F^T / J in large deformation.  NaN where F is inadmissible.
-StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_strain);
-// The linear_elastic law's sigma from its Lame constants.
-StressLaw linear_elastic_stress(double lambda, double mu);
-
-struct RecoveredStress {
-  Eigen::MatrixXd stress;       // num_points x 6: XX YY ZZ XY YZ XZ
-  Eigen::VectorXd von_mises;    // num_points
-  Eigen::VectorXd magnitude;    // num_points, Frobenius norm
-};
-// Element-local L2 projection (see above) for a mesh whose field 0 is the
-// displacement; rows follow the mesh's elements, then local points.
-RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law);
-
-double von_mises(const Eigen::Matrix3d& sigma);
 
 }  // namespace igac

@@ -8,7 +8,8 @@
 
 #include <random>
 
-#include "app/case_run.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "contact/coarse_start.hpp"
 #include "engine/linear_static.hpp"
 #include "engine/prolongation.hpp"

@@ -33,7 +33,8 @@
 #include "engine/linear_static.hpp"
 #include "engine/spline/refinement.hpp"
 #include "io/case_file.hpp"
-#include "app/case_run.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 
 namespace igac {
 namespace {

@@ -21,7 +21,8 @@
 #include "engine/geometry/shapes.hpp"
 #include "engine/spline/refinement.hpp"
 #include "io/case_file.hpp"
-#include "app/case_run.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 
 namespace {
 

@@ -11,7 +11,9 @@
 
 #include "contact/finite_strain_problem.hpp"
 #include "engine/linear_static.hpp"
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 
 using namespace igac;
 

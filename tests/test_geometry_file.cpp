@@ -11,8 +11,10 @@
 #include <string>
 
 #include "engine/spline/refinement.hpp"
-#include "app/case_body.hpp"
-#include "app/case_run.hpp"
+#include "model/case_body.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "io/gismo_xml.hpp"
 #include "tests/igac_process.hpp"
 

@@ -20,7 +20,8 @@
 #include "contact/pressure.hpp"
 #include "engine/error_norms.hpp"
 #include "io/case_file.hpp"
-#include "app/case_run.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 
 namespace igac {
 namespace {

@@ -10,7 +10,9 @@
 #include <sstream>
 #include <string>
 
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "tests/igac_process.hpp"
 
 namespace igac {

@@ -22,7 +22,9 @@
 #include <fstream>
 #include <map>
 
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "engine/body.hpp"
 #include "engine/spline/refinement.hpp"
 #include "io/gismo_xml.hpp"

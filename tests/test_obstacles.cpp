@@ -11,7 +11,9 @@
 #include <string>
 
 #include "contact/obstacle.hpp"
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "tests/igac_process.hpp"
 
 namespace igac {

@@ -20,7 +20,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
-#include "app/case_run.hpp"
+#include "model/model.hpp"
 #include "engine/assembly.hpp"
 #include "io/case_file.hpp"
 #include "tests/igac_process.hpp"

@@ -8,7 +8,7 @@
 
 #include <random>
 
-#include "app/case_run.hpp"
+#include "model/model.hpp"
 #include "engine/prolongation.hpp"
 #include "io/case_file.hpp"
 

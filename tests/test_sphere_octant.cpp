@@ -10,7 +10,8 @@
 #include "engine/assembly.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/spline/refinement.hpp"
-#include "app/case_run.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
 
 using namespace igac;
 

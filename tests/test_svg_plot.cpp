@@ -15,7 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_run.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "io/case_file.hpp"
 #include "io/plots.hpp"
 #include "io/svg_plot.hpp"

@@ -36,8 +36,10 @@
 #include "engine/spline/bezier_extraction.hpp"
 #include "engine/spline/refinement.hpp"
 #include "io/case_file.hpp"
-#include "app/case_run.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "io/vtk_output.hpp"
+#include "model/field_recovery.hpp"
 #include "tests/vtu_file.hpp"
 
 namespace {

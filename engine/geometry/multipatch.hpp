@@ -48,4 +48,12 @@ inline const char* gismo_side_name(int side) {
   return side >= 1 && side <= 6 ? names[side - 1] : "?";
 }
 
+// One patch as a body: every side on the boundary.
+inline MultiPatch single_patch_body(const NurbsPatch& patch) {
+  MultiPatch body;
+  body.patches = {patch};
+  for (int s = 1; s <= 2 * patch.param_dim(); ++s) body.boundary.push_back(PatchSide{0, face_of_gismo_side(s)});
+  return body;
+}
+
 }  // namespace igac

@@ -1,10 +1,12 @@
-// The PETSc path of a small-deformation run (contact/petsc_contact), seen
-// from app/case_run: which elements this process assembles, the load summed
+// SPDX-License-Identifier: BSD-3-Clause
+// The PETSc path of a small-deformation run (solvers/petsc_contact), seen
+// from solve_model: which elements this process assembles, the load summed
 // over the processes, and the contact solve in PETSc.  Built also without
 // PETSc: then a case that asks for it is a one-line input error.
 #pragma once
 
-#include "io/run_record.hpp"
+#include "model/model.hpp"
+#include "model/run_result.hpp"
 
 namespace igac {
 

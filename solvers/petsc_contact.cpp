@@ -1,7 +1,7 @@
-#include "contact/petsc_contact.hpp"
+#include "solvers/petsc_contact.hpp"
 
-#include "contact/petsc_multigrid.hpp"
-#include "contact/petsc_support.hpp"
+#include "solvers/petsc_multigrid.hpp"
+#include "solvers/petsc_support.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,13 +1,13 @@
 // The body a case describes, as it is described: the coarse multi-patch
 // geometry before degree elevation and knot refinement (what `igac geometry`
-// writes, engine/geometry/multipatch.hpp): the patches of a geometry file,
+// writes, engine/geometry/multipatch.hpp): the patches a geometry file held when the case was read,
 // or a built-in shape (engine/geometry/shapes.hpp) as one patch with every
 // side on the boundary.
 #pragma once
 
 #include "engine/geometry/multipatch.hpp"
 #include "engine/geometry/shapes.hpp"
-#include "io/case_file.hpp"
+#include "model/case_spec.hpp"
 
 namespace igac {
 

@@ -1,25 +1,16 @@
-// From a case to a solution: build the refined patch, the dofs and the loads,
-// then solve — one Cholesky solve for a linear case, the active-set contact
-// solve when the case has an obstacle.  No Newton loop, no multipliers and no
+// SPDX-License-Identifier: BSD-3-Clause
+// Solving a model: one Cholesky solve for a linear case, the active-set
+// contact solve when the case has an obstacle, the load-stepping Newton
+// driver for a hyperelastic law.  No Newton loop, no multipliers and no
 // stress recovery unless the case needs them.
 #pragma once
 
 #include <functional>
-#include <memory>
-#include <optional>
 
-#include "io/run_record.hpp"
+#include "model/model.hpp"
+#include "model/run_result.hpp"
 
 namespace igac {
-
-Model build_model(const CaseSpec& spec);
-// The sides a face name stands for on the model's body: a name of the shape
-// or of [faces], "PATCH:SIDE" with SIDE one of west east south north front
-// back or u0 u1 v0 v1 w0 w1, and on a one-patch body u0 ... w1 alone.
-// nothing when the name is unknown.
-std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name);
-// Every accepted face name, for error messages.
-std::vector<std::string> face_names(const Model& m);
 
 // `on_step` (large deformation) sees the state after each converged load step.
 using StepObserver = std::function<void(const RunResult&, double load_factor)>;
@@ -32,7 +23,7 @@ struct CoarserRun {
   const RunResult* result = nullptr;
 };
 RunResult solve_model(const Model& model, const StepObserver& on_step = {}, CoarserRun coarser = {});
-// The large-deformation path (app/finite_strain_run.cpp).
+// The large-deformation path (model/solve_finite_strain.cpp).
 RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 
 // Throws InputError (naming the case) when free rigid motions (`modes`, not
@@ -46,7 +37,5 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen
                                                 const Eigen::VectorXd& weights, const std::vector<char>& active);
 // |int P n dGamma| summed over the pressure loads (the modelled part).
 double pressure_resultant(const Model& model);
-// Closed-form displacement of the case's reference solution, if it has one.
-std::optional<ExactDisplacement> exact_displacement(const CaseSpec& spec);
 
 }  // namespace igac

@@ -1,12 +1,12 @@
-#include "app/petsc_run.hpp"
+#include "model/petsc_run.hpp"
 
 #include <fmt/format.h>
 
 #ifdef IGAC_WITH_PETSC
 #include <mpi.h>
 
-#include "app/case_run.hpp"
-#include "contact/petsc_contact.hpp"
+#include "model/model.hpp"
+#include "solvers/petsc_contact.hpp"
 #include "engine/prolongation.hpp"
 #endif
 

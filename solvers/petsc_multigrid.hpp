@@ -36,7 +36,7 @@
 #include <string>
 #include <vector>
 
-#include "contact/petsc_support.hpp"
+#include "solvers/petsc_support.hpp"
 
 namespace igac {
 

@@ -1,4 +1,5 @@
-// The large-deformation path of `igac run`: a FiniteStrainProblem driven by
+// SPDX-License-Identifier: BSD-3-Clause
+// The large-deformation path of solve_model: a FiniteStrainProblem driven by
 // the load-stepping Newton driver, with the contact report in the reference
 // and the deformed configuration and a load curve per step.
 #include <chrono>
@@ -8,20 +9,12 @@
 #include "contact/finite_strain_problem.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/linear_static.hpp"
-#include "app/case_run.hpp"
+#include "model/references.hpp"
+#include "model/solve.hpp"
 
 namespace igac {
 namespace {
 using Clock = std::chrono::steady_clock;
-
-std::vector<PatchSide> faces_named(const Model& m, const std::vector<std::string>& names) {
-  std::vector<PatchSide> out;
-  for (const auto& n : names) {
-    const auto f = *find_faces(m, n);
-    out.insert(out.end(), f.begin(), f.end());
-  }
-  return out;
-}
 
 // Mean of the last displacement component over faces (reference measure).
 double mean_face_displacement(const Body& body, const std::vector<PatchSide>& faces, const Eigen::MatrixXd& u) {
@@ -113,7 +106,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   setup.body = &body;
   setup.dofs = m.dofs.get();
   setup.law = m.law.get();
-  for (const auto& p : m.spec.pressure) setup.pressures.push_back({faces_named(m, p.faces), p.value});
+  for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value});
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts) setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
@@ -132,7 +125,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   // the face whose displacement the load curve follows
   std::vector<PatchSide> loaded;
   for (const auto& p : m.spec.pressure) {
-    const auto f = faces_named(m, p.faces);
+    const auto f = resolve_faces(m, p.faces, "pressure");
     loaded.insert(loaded.end(), f.begin(), f.end());
   }
   // Driven by a moving obstacle: follow the face it pushes, and how far it moved.
@@ -144,7 +137,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   if (loaded.empty())
     for (const auto& d : m.spec.dirichlet)
       if (d.value != 0) {
-        const auto f = faces_named(m, d.faces);
+        const auto f = resolve_faces(m, d.faces, "dirichlet");
         loaded.insert(loaded.end(), f.begin(), f.end());
       }
 
@@ -191,18 +184,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     for (int e = 0; e < f_ext.size(); ++e) resultant[component[e]] += f_ext[e];
     r.applied_force = std::abs(resultant.dot(r.contact->normal));
   }
-  if (r.contact && m.spec.reference == "hertz") {
-    double P = 0;
-    for (const auto& p : m.spec.pressure) P += p.value;
-    const int dim = body.space_dim();
-    r.hertz = dim == 2 ? hertz_cylinder(m.spec.radius, P, m.spec.E, m.spec.nu)
-                       : hertz_sphere(m.spec.radius, P, m.spec.E, m.spec.nu);
-    const HertzSolution h = *r.hertz;
-    const ContactPressure& cp = *r.contact->pressure;
-    r.pressure_error = cp.l2_error(*m.contacts.front().face,
-                                   [&](int, const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h.pressure(cp.r_of(X)); },
-                                   std::max(10, body.degree() + 1));
-  }
+  compare_with_reference(m, r);
   r.timing.total = std::chrono::duration<double>(Clock::now() - t_start).count();
   return r;
 }

@@ -1,10 +1,9 @@
-#include "app/case_body.hpp"
+#include "model/case_body.hpp"
 
 #include <fmt/format.h>
 
 #include "engine/geometry/shapes.hpp"
 #include "engine/spline/split.hpp"
-#include "io/gismo_xml.hpp"
 
 namespace igac {
 
@@ -30,7 +29,12 @@ Geometry case_geometry(const CaseSpec& spec) {
 }
 
 MultiPatch case_body(const CaseSpec& spec) {
-  if (!spec.geometry_file.empty()) return read_gismo_xml(spec.geometry_file);  // as the user wrote it
+  if (!spec.geometry_file.empty()) {
+    if (!spec.file_body)
+      throw InputError(fmt::format("{}: [geometry] file {}: the case names a geometry file but holds no patches "
+                                   "(read it with io/case_file's read_case)", spec.path, spec.geometry_file));
+    return *spec.file_body;  // as the user wrote it
+  }
   return single_patch_body(case_geometry(spec).patch);
 }
 

@@ -1,8 +1,7 @@
-// What a case is made into and what a run of it produces: the model (the
-// case, the refined geometry, the dofs, the law, the contacts) and the
-// result (displacements, contact multipliers and reports, errors, timings,
-// load steps).  Plain data: app/case_run builds and solves them, the writers
-// here (json_out, vtk_output) put them in files.
+// SPDX-License-Identifier: BSD-3-Clause
+// What a run of a model produces: displacements, contact multipliers and
+// reports, errors against a reference, timings, load steps.  Plain data:
+// model/solve fills it, io's writers (json_out, vtk_output) put it in files.
 #pragma once
 
 #include <map>
@@ -16,38 +15,8 @@
 #include "engine/error_norms.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/load_stepping.hpp"
-#include "io/case_file.hpp"
-#include "materials/hyperelastic.hpp"
 
 namespace igac {
-
-struct Model {
-  CaseSpec spec;
-  Body body;  // the refined patches, joined C0 across their interfaces
-  // Named faces: the built-in shape's names (on patch 0) and the case's
-  // [faces] sets; "PATCH:SIDE" and u0 ... w1 are found by find_faces.
-  std::map<std::string, std::vector<PatchSide>> faces;
-  std::unique_ptr<DofMap> dofs;
-  LinearElastic material{1.0, 0.0};
-  std::unique_ptr<HyperelasticLaw> law;  // the case's law (small strain too: the ParaView stress)
-  // [contact] / [[contact]]: each face with its obstacle; the multipliers of
-  // all of them are stacked in this order.
-  struct Contact {
-    std::string face_name;
-    std::unique_ptr<ContactFace> face;
-    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion)
-    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
-  };
-  std::vector<Contact> contacts;
-  double mesh_size = 0;  // largest element diameter
-  bool quiet = false;    // no progress lines
-  std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
-  int num_multipliers() const {
-    int m = 0;
-    for (const auto& c : contacts) m += c.face->num_multipliers();
-    return m;
-  }
-};
 
 struct ContactResult {
   ContactSolution solution;

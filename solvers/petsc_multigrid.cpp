@@ -1,9 +1,9 @@
-#include "contact/petsc_multigrid.hpp"
+#include "solvers/petsc_multigrid.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
 
-#include "contact/petsc_contact.hpp"
+#include "solvers/petsc_contact.hpp"
 
 namespace igac {
 

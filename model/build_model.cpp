@@ -1,0 +1,257 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// From a CaseSpec to a Model: the coarse patches refined as [mesh] asks,
+// joined into one body, the named faces, the dofs, the law, the contacts.
+#include "model/model.hpp"
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <cmath>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "engine/geometry/side_names.hpp"
+#include "engine/quadrature.hpp"
+#include "engine/spline/refinement.hpp"
+#include "engine/spline/split.hpp"
+#include "model/case_body.hpp"
+
+namespace igac {
+
+std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::string>& names, const char* section) {
+  std::vector<PatchSide> out;
+  for (const auto& n : names) {
+    auto f = find_faces(m, n);
+    if (!f)
+      throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})", m.spec.path, section, n,
+                                   m.spec.shape, fmt::join(face_names(m), ", ")));
+    for (const PatchSide& side : *f)
+      for (const PatchInterface& itf : m.body.interfaces())
+        if (side == itf.first || side == itf.second)
+          throw InputError(fmt::format("{}: [{}] faces: '{}' is the interface {} - {} inside the body, not a face on "
+                                       "its boundary",
+                                       m.spec.path, section, n, m.body.describe(itf.first),
+                                       m.body.describe(itf.second)));
+    out.insert(out.end(), f->begin(), f->end());
+  }
+  return out;
+}
+
+namespace {
+
+// `target` with every breakpoint of `have` (at least its multiplicity there)
+// added: a geometry file's own interior knots stay, so refining it is exact.
+KnotVector with_knots_of(const KnotVector& target, const KnotVector& have) {
+  std::map<double, int> mult;
+  const auto add = [&](const KnotVector& kv) {
+    const auto b = kv.breakpoints();
+    const auto m = kv.multiplicities();
+    for (size_t i = 0; i < b.size(); ++i) {
+      auto it = mult.lower_bound(b[i] - 1e-12);
+      if (it != mult.end() && std::abs(it->first - b[i]) <= 1e-12) it->second = std::max(it->second, m[i]);
+      else mult[b[i]] = m[i];
+    }
+  };
+  add(target);
+  const size_t before = mult.size();
+  add(have);
+  if (mult.size() == before) return target;  // nothing new: the usual case
+  std::vector<double> knots;
+  for (const auto& [x, m] : mult) knots.insert(knots.end(), m, x);
+  return KnotVector(target.degree(), knots);
+}
+
+double largest_element_diameter(const NurbsPatch& p) {
+  const int pd = p.param_dim();
+  std::array<std::vector<double>, 3> b;
+  std::array<int, 3> ne{1, 1, 1};
+  for (int d = 0; d < pd; ++d) {
+    b[d] = p.knots(d).breakpoints();
+    ne[d] = int(b[d].size()) - 1;
+  }
+  double h = 0;
+  for (int k = 0; k < ne[2]; ++k)
+    for (int j = 0; j < ne[1]; ++j)
+      for (int i = 0; i < ne[0]; ++i) {
+        std::vector<Eigen::VectorXd> corners;
+        for (int c = 0; c < (1 << pd); ++c) {
+          Eigen::VectorXd xi(pd);
+          const std::array<int, 3> e{i, j, k};
+          for (int d = 0; d < pd; ++d) xi[d] = b[d][e[d] + ((c >> d) & 1)];
+          corners.push_back(p.point(xi));
+        }
+        for (size_t a = 0; a < corners.size(); ++a)
+          for (size_t c = a + 1; c < corners.size(); ++c) h = std::max(h, (corners[a] - corners[c]).norm());
+      }
+  return h;
+}
+
+// Refines one coarse patch as the case asks: degree elevation to
+// [mesh] degree, then per direction the uniform or graded knots (with the
+// patch's own interior knots kept), subdivided `refine` times.
+NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const std::string& which) {
+  for (int d = 0; d < coarse.param_dim(); ++d)
+    if (coarse.degree(d) > spec.degree)
+      throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}{}: igac "
+                                   "raises the degree, never lowers it, so that the geometry stays exact",
+                                   spec.path, spec.degree, coarse.degree(d), "uvw"[d], which));
+  NurbsPatch patch = elevate_to(coarse, spec.degree);
+  for (int d = 0; d < patch.param_dim(); ++d) {
+    const GradingSpec* g = nullptr;
+    for (const auto& gs : spec.gradings)
+      if (gs.direction == d) g = &gs;
+    KnotVector target;
+    try {
+      target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start,
+                                      g->geometric_coarse ? KnotVector::CoarseSpans::geometric
+                                                          : KnotVector::CoarseSpans::uniform)
+                 : KnotVector::uniform(spec.degree, spec.elements[d]);
+      if (spec.refine > 0) target = target.subdivided(1 << spec.refine);
+    } catch (const SplineError& e) {
+      if (!g) throw;
+      throw InputError(fmt::format("{}: [mesh.grading] range_fraction = {:g}: the graded spans are too short to be "
+                                   "told apart ({}); use a larger range_fraction or fewer elements",
+                                   spec.path, g->range_fraction, e.what()));
+    }
+    patch = refine_to(patch, d, with_knots_of(target, patch.knots(d)));
+  }
+  return patch;
+}
+
+// A geometry file's patch must map its parameter cube onto the body without
+// folding: det J > 0 at every Gauss point.  Names the patch and the place.
+void check_patch_map(const CaseSpec& spec, const NurbsPatch& patch, int k) {
+  const PatchQuadrature quad(patch, gauss_points_for(spec.degree));
+  ElementData ed;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    if (ed.min_det_J > 0) continue;
+    for (int q = 0; q < ed.JxW.size(); ++q)
+      if (!(ed.JxW[q] > 0))
+        throw InputError(fmt::format("{}: [geometry] file {}: patch {} folds: its Jacobian determinant is not positive "
+                                     "at parameter ({:.4g}), point ({:.4g})",
+                                     spec.path, spec.geometry_file, k, fmt::join(ed.xi.row(q), ", "),
+                                     fmt::join(ed.X.row(q), ", ")));
+  }
+}
+
+}  // namespace
+
+std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name) {
+  if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
+  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim())) return std::vector<PatchSide>{*side};
+  return std::nullopt;
+}
+
+std::vector<std::string> face_names(const Model& m) {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : m.faces) out.push_back(k);
+  for (auto& n : parametric_side_names(m.body.num_patches(), m.body.param_dim())) out.push_back(std::move(n));
+  return out;
+}
+
+Model build_model(const CaseSpec& spec) {
+  Model m;
+  m.spec = spec;
+  // The coarse body: a built-in shape (one patch, with its face names) or
+  // the patches of a geometry file.
+  MultiPatch coarse;
+  if (spec.geometry_file.empty()) {
+    const Geometry g = case_geometry(spec);
+    coarse = MultiPatch{{g.patch}, {}, {}};
+    m.faces = g.faces;
+  } else {
+    coarse = case_body(spec);
+    for (auto& p : coarse.patches) p = normalised(p);  // knots on [0, 1], geometry unchanged
+  }
+  const bool several = coarse.patches.size() > 1;
+  std::vector<NurbsPatch> patches;
+  for (size_t k = 0; k < coarse.patches.size(); ++k) {
+    patches.push_back(refine_patch(spec, coarse.patches[k], several ? fmt::format(" of patch {}", k) : ""));
+    if (!spec.geometry_file.empty()) check_patch_map(spec, patches.back(), int(k));
+  }
+  try {
+    m.body = several ? Body(std::move(patches), coarse.interfaces) : Body(std::move(patches.front()));
+  } catch (const BodyError& e) {
+    throw InputError(fmt::format("{}: [geometry] file {}: {}", spec.path, spec.geometry_file, e.what()));
+  }
+  double h = 0;
+  for (const auto& p : m.body.patches()) h = std::max(h, largest_element_diameter(p));
+  m.mesh_size = h;
+
+  for (const auto& [name, members] : spec.face_sets) {  // [faces]: names of the user's own
+    if (find_faces(m, name))
+      throw InputError(fmt::format("{}: [faces] {}: the name is taken by a face of the body", spec.path, name));
+    m.faces[name] = resolve_faces(m, members, "faces");
+  }
+
+  std::vector<DirichletCondition> dc;
+  for (const auto& d : spec.dirichlet)
+    dc.push_back({resolve_faces(m, d.faces, "dirichlet"), d.component, d.value});
+  for (const auto& p : spec.pressure) resolve_faces(m, p.faces, "pressure");
+  // The same face and component held at two values: the conditions are
+  // applied in order, so the last one wins; say so.
+  for (size_t a = 0; a < spec.dirichlet.size(); ++a)
+    for (size_t b = a + 1; b < spec.dirichlet.size(); ++b) {
+      const auto &da = spec.dirichlet[a], &db = spec.dirichlet[b];
+      if (da.component != db.component || da.value == db.value) continue;
+      for (const auto& fa : da.faces)
+        if (std::find(db.faces.begin(), db.faces.end(), fa) != db.faces.end())
+          m.warnings.push_back(fmt::format("{}: [[dirichlet]] face '{}' component {} is given two values ({} and {}); "
+                                           "the last one applies", spec.path, fa, "xyz"[da.component], da.value,
+                                           db.value));
+    }
+  m.dofs = std::make_unique<DofMap>(m.body, dc);
+  // The case's law: the Newton path's material, and the stress of the
+  // ParaView output in both paths (small strain: the linear law's P is sigma).
+  // (A CaseSpec made in code may give only E and nu.)
+  const MaterialParameters& given = spec.material_parameters;
+  m.law = make_law(spec.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{spec.E, spec.nu, {}} : given);
+  // The small-deformation path assembles with the law's own elasticity at
+  // F = I (materials/hyperelastic.hpp): a law is written once.
+  try {
+    m.material = small_strain_material(*m.law, m.body.space_dim());
+  } catch (const MaterialError& e) {
+    throw InputError(fmt::format("{}: [material] {}", spec.path, e.what()));
+  }
+
+  for (const ContactSpec& cs : spec.contacts) {
+    const auto faces = find_faces(m, cs.face);
+    if (!faces)
+      throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", spec.path, cs.face,
+                                   spec.shape, fmt::join(face_names(m), ", ")));
+    Model::Contact c;
+    c.face_name = cs.face;
+    const auto& o = cs.obstacle;
+    try {
+      c.obstacle = find_obstacle_type(o.type)->make(o.values);
+    } catch (const std::exception& e) {
+      throw InputError(fmt::format("{}: [contact.obstacle] {}", spec.path, e.what()));
+    }
+    if (!o.motion.empty()) {
+      c.motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
+      // Small deformation: the obstacle stands where its motion puts it.
+      if (!spec.finite_strain()) c.obstacle = std::make_unique<TranslatedObstacle>(std::move(c.obstacle), c.motion);
+    }
+    try {
+      c.face = std::make_unique<ContactFace>(m.body, *faces);
+    } catch (const SplineError& e) {
+      throw InputError(fmt::format("{}: [contact] face '{}': {}", spec.path, cs.face, e.what()));
+    }
+    // A Dirichlet condition on the contact face along the obstacle's normal
+    // leaves the contact nothing to do there.
+    const Eigen::VectorXd n = initial_contact_point(*c.face, *c.obstacle).second;
+    for (const auto& d : spec.dirichlet)
+      if (std::find(d.faces.begin(), d.faces.end(), cs.face) != d.faces.end() && n.size() > d.component &&
+          std::abs(n[d.component]) > 0.5)
+        m.warnings.push_back(fmt::format("{}: [[dirichlet]] holds component {} of the contact face '{}', along the "
+                                         "obstacle's normal: the contact cannot act where it holds",
+                                         spec.path, "xyz"[d.component], cs.face));
+    if (auto why = contact_cannot_happen(*c.face, *c.obstacle))
+      throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, cs.face, *why));
+    m.contacts.push_back(std::move(c));
+  }
+  return m;
+}
+
+}  // namespace igac

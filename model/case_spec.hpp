@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A case as data: what a case file (io/case_file) or a program says to
+// simulate, free of any file format.  model/build_model makes it a Model.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engine/geometry/multipatch.hpp"
+#include "materials/hyperelastic.hpp"
+
+namespace igac {
+
+// Bad input: a one-line message naming the file, the key and the reason.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct GradingSpec {
+  int direction = 0;
+  bool at_start = true;
+  double span_fraction = 0.8, range_fraction = 0.1;
+  bool geometric_coarse = false;  // coarse = "geometric": the other spans grow from the fine size
+};
+
+struct DirichletSpec {
+  std::vector<std::string> faces;
+  int component = 0;
+  double value = 0;
+};
+
+struct PressureSpec {
+  std::vector<std::string> faces;
+  double value = 0;
+};
+
+struct ObstacleSpec {
+  std::string type;  // a registered obstacle type (contact/obstacle.hpp): plane | sphere | cylinder
+  std::map<std::string, std::vector<double>, std::less<>> values;  // its declared keys (scalars as one entry)
+  std::vector<double> motion;  // rigid translation: applied with the load factor (large deformation) or whole
+};
+
+struct ContactSpec {
+  std::string face;
+  ObstacleSpec obstacle;
+};
+
+// Large deformation (hyperelastic models): how the load is applied.
+struct LoadingSpec {
+  int steps = 10;
+  double first_increment = 0;  // > 0: overrides steps
+  double min_increment = 1e-4;
+  double max_increment = 1.0;  // caps the growth after fast steps
+  int max_newton_iterations = 30;
+  bool line_search = true;
+  bool tangent_predictor = true;  // [loading] predictor = "tangent" | "none"
+  bool follower_pressure = true;  // false: dead load (reference normal)
+};
+
+// [solver]: who solves the small-deformation linear systems.  "direct":
+// CHOLMOD on one process (engine/cholesky); "petsc": PETSc on one or more
+// MPI processes (contact/petsc_contact), `options` passed to PETSc's
+// options database as on a PETSc command line ("-ksp_type cg -pc_type gamg").
+// `preconditioner`: "options" (what `options` say; default MUMPS) or
+// "spline_multigrid" (geometric multigrid over the case's nested meshes
+// --refine r, ..., 0, contact/petsc_multigrid; PETSc only).
+struct SolverSpec {
+  std::string type = "direct";
+  std::string options;
+  std::string preconditioner = "options";
+  int processes = 1;  // MPI processes of the run (set by the launcher, not by the case file)
+};
+
+struct CaseSpec {
+  std::string path, name, description;
+  // geometry: a built-in shape, or a G+Smo XML file (one patch today)
+  std::string shape;
+  std::map<std::string, std::vector<double>, std::less<>> shape_values;  // the shape's declared keys
+  std::string geometry_file;  // as resolved (relative to the case file); then shape == "file"
+  // The patches of the geometry file as its reader found them (before any
+  // refinement); null for a built-in shape.
+  std::shared_ptr<const MultiPatch> file_body;
+  int dimension = 0;          // the body's, from the shape's registry entry or the file (0: from the shape name)
+  std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
+  double radius = 1, inner_radius = 1, outer_radius = 2;
+  std::vector<double> size;
+  // mesh
+  int degree = 2;
+  std::vector<int> elements;
+  int refine = 0;
+  std::vector<GradingSpec> gradings;  // at most one per direction
+  // material
+  std::string model = "linear_elastic";  // or a hyperelastic law: large deformation
+  double E = 1, nu = 0.3;                  // the law's small-strain equivalent (Hertz, scales)
+  MaterialParameters material_parameters;  // as the law declares them (E, nu or its own keys)
+  LoadingSpec loading;
+  // conditions and loads
+  std::vector<DirichletSpec> dirichlet;
+  std::vector<PressureSpec> pressure;
+  std::vector<double> body_force;
+  std::vector<ContactSpec> contacts;  // [contact] or [[contact]]: each face with its rigid obstacle
+  std::string reference = "none";  // hertz | lame | none
+  bool write_vtk = true;
+  SolverSpec solver;
+
+  bool finite_strain() const { return model != "linear_elastic"; }
+  int dim() const {
+    if (dimension > 0) return dimension;
+    return shape == "box" || shape == "sphere_octant" ? 3 : 2;  // a CaseSpec made in code
+  }
+};
+
+}  // namespace igac

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "model/field_recovery.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "engine/quadrature.hpp"
+
+namespace igac {
+
+
+StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_strain) {
+  return [law = std::move(law), small_strain](const Eigen::Matrix3d& grad_u) {
+    const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad_u;
+    Eigen::Matrix3d P;
+    if (!law->evaluate(F, P, nullptr)) return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()).eval();
+    // Small strain: P of the linear law is sigma itself; else sigma = P F^T / J.
+    return small_strain ? P : Eigen::Matrix3d(P * F.transpose() / F.determinant());
+  };
+}
+
+StressLaw linear_elastic_stress(double lambda, double mu) {
+  // The one linear-elastic law of materials/, from its Lame constants.
+  const MaterialParameters p{mu * (3 * lambda + 2 * mu) / (lambda + mu), lambda / (2 * (lambda + mu)), {}};
+  return cauchy_stress(std::shared_ptr<const HyperelasticLaw>(make_law("linear_elastic", p)), true);
+}
+
+double von_mises(const Eigen::Matrix3d& s) {
+  const Eigen::Matrix3d dev = s - s.trace() / 3.0 * Eigen::Matrix3d::Identity();
+  return std::sqrt(1.5 * dev.cwiseProduct(dev).sum());
+}
+
+namespace {
+
+int max_degree(const BezierMesh& m) { return std::max({m.degree(0), m.degree(1), m.degree(2)}); }
+
+// Measure of the map dX/ds (space_dim x param_dim): |det| for volumes, the
+// length / area of the tangents for curves and surfaces.
+double measure(const Eigen::MatrixXd& J) {
+  if (J.rows() == J.cols()) return std::abs(J.determinant());
+  return std::sqrt((J.transpose() * J).determinant());
+}
+
+}  // namespace
+
+RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
+  const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
+  if (pd != dim) throw std::invalid_argument("stress recovery needs a volume mesh");
+  if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
+    throw std::invalid_argument("stress recovery needs the displacement as field 0");
+  const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
+  RecoveredStress out;
+  out.stress.resize(mesh.num_points(), 6);
+  out.von_mises.resize(mesh.num_points());
+  out.magnitude.resize(mesh.num_points());
+  static constexpr int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+
+  Eigen::VectorXd R;
+  Eigen::MatrixXd dR, J(dim, dim), G(dim, dim), M(nl, nl), B(nl, 8);
+  Eigen::RowVectorXd f(8);
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    const BezierElement& el = mesh.element(e);
+    M.setZero();
+    B.setZero();
+    for (size_t q = 0; q < rule.points.size(); ++q) {
+      mesh.basis(el, rule.points[q], R, &dR);
+      J.noalias() = el.points.transpose() * dR;     // dX/ds
+      G.noalias() = el.fields[0].transpose() * dR;  // du/ds
+      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
+      grad.topLeftCorner(dim, dim) = G * J.inverse();
+      const Eigen::Matrix3d sigma = law(grad);
+      for (int c = 0; c < 6; ++c) f[c] = sigma(comp[c][0], comp[c][1]);
+      f[6] = von_mises(sigma);
+      f[7] = sigma.norm();
+      const double wt = rule.weights[q] * std::abs(J.determinant());
+      M.selfadjointView<Eigen::Lower>().rankUpdate(R, wt);
+      B.noalias() += (wt * R) * f;
+    }
+    const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
+    out.stress.middleRows(e * nl, nl) = C.leftCols(6);
+    out.von_mises.segment(e * nl, nl) = C.col(6);
+    out.magnitude.segment(e * nl, nl) = C.col(7);
+  }
+  return out;
+}
+
+StressLaw model_stress_law(const Model& model) {
+  // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
+  // (plane strain in 2D is the 3D law with F_33 = 1).
+  return model.law ? cauchy_stress(std::shared_ptr<const HyperelasticLaw>(model.law.get(), [](const HyperelasticLaw*) {}),
+                                   !model.spec.finite_strain())
+                   : linear_elastic_stress(model.material.lambda(), model.material.mu());  // a Model made in code
+}
+
+ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,
+                                         const ContactSolution& sol) {
+  const int nl = mesh.num_local(), ne = mesh.num_elements();
+  ContactPartFields out;
+  out.point_pressure.resize(mesh.num_points());
+  out.cell_pressure.resize(ne);
+  out.cell_weighted_gap.resize(ne);
+  out.cell_active.assign(ne, false);
+  const TensorGaussRule rule = tensor_gauss_rule(mesh.param_dim(), max_degree(mesh) + 3);
+  Eigen::VectorXd R;
+  Eigen::MatrixXd dR, M(nl, nl);
+  Eigen::VectorXd b(nl);
+  std::vector<int> idx;
+  std::vector<double> val;
+  for (int e = 0; e < ne; ++e) {
+    const BezierElement& el = mesh.element(e);
+    M.setZero();
+    b.setZero();
+    double area = 0, p_int = 0, g_int = 0;
+    bool active = false;
+    for (size_t q = 0; q < rule.points.size(); ++q) {
+      mesh.basis(el, rule.points[q], R, &dR);
+      const double wt = rule.weights[q] * measure(el.points.transpose() * dR);
+      side_of[e]->space.basis(el.parameter(rule.points[q]), idx, val);
+      for (int& K : idx) K += side_of[e]->first_multiplier;
+      double p = 0, g = 0;
+      for (size_t k = 0; k < idx.size(); ++k) {
+        p -= sol.lambda[idx[k]] * val[k];
+        g += sol.weighted_gap[idx[k]] * val[k];
+        if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
+      }
+      M.noalias() += wt * R * R.transpose();
+      b += wt * p * R;
+      area += wt;
+      p_int += wt * p;
+      g_int += wt * g;
+    }
+    const Eigen::VectorXd c = M.llt().solve(b);
+    out.point_pressure.segment(e * nl, nl) = c;
+    out.cell_pressure[e] = p_int / area;
+    out.cell_weighted_gap[e] = g_int / area;
+    out.cell_active[e] = active;
+  }
+  return out;
+}
+
+}  // namespace igac

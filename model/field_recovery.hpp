@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Fields recovered for output, on the Bezier elements ParaView draws
+// (io/vtk_output writes them; what is exact is said there): the stress by
+// an element-local L2 projection onto each element's rational Bezier basis,
+// and on the contact part the pressure -lambda_h likewise, with per-element
+// means of the pressure and the weighted gap.  Runs only when output is
+// written.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "contact/small_strain_contact.hpp"
+#include "contact/weighted_gap.hpp"
+#include "engine/spline/bezier_extraction.hpp"
+#include "model/model.hpp"
+
+namespace igac {
+
+
+// Cauchy stress (3 x 3) from the displacement gradient grad u = du/dX
+// (3 x 3; the third row and column zero in plane strain).
+using StressLaw = std::function<Eigen::Matrix3d(const Eigen::Matrix3d& grad_u)>;
+// sigma(grad u) of a law: its P in small strain (the linear law's P is the
+// small-strain sigma), P F^T / J in large deformation.  NaN where F is inadmissible.
+StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_strain);
+// The linear_elastic law's sigma from its Lame constants.
+StressLaw linear_elastic_stress(double lambda, double mu);
+
+struct RecoveredStress {
+  Eigen::MatrixXd stress;       // num_points x 6: XX YY ZZ XY YZ XZ
+  Eigen::VectorXd von_mises;    // num_points
+  Eigen::VectorXd magnitude;    // num_points, Frobenius norm
+};
+// Element-local L2 projection (see above) for a mesh whose field 0 is the
+// displacement; rows follow the mesh's elements, then local points.
+RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law);
+
+double von_mises(const Eigen::Matrix3d& sigma);
+
+// The stress law of a model's output: the case's law (sigma = P in small
+// strain, P F^T / J in large deformation).
+StressLaw model_stress_law(const Model& model);
+
+struct ContactPartFields {
+  Eigen::VectorXd point_pressure;          // per Bezier point: the projection of -lambda_h
+  std::vector<double> cell_pressure;       // per element: mean of -lambda_h over the reference face
+  std::vector<double> cell_weighted_gap;   // per element: mean of sum_K (Pi g)_K B_K
+  std::vector<bool> cell_active;           // a multiplier whose support meets the element is active
+};
+// `side_of[e]`: the contact side element e of `mesh` lies on.
+ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,
+                                         const ContactSolution& sol);
+
+}  // namespace igac

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What a case will cost before anything is built: the peak memory of a
+// small-deformation run, and the check that the mesh asked for fits.
+#pragma once
+
+#include <optional>
+
+#include "model/case_spec.hpp"
+
+namespace igac {
+
+// The peak memory a small-deformation run of this case is expected to need
+// (bytes), on spec.solver.processes processes: what apply_overrides
+// compares with the machine's memory.
+double estimated_peak_bytes(const CaseSpec& spec);
+// Applies a --degree / --refine override, checks it, and checks the memory
+// the mesh would need; throws InputError naming the option.
+void apply_overrides(CaseSpec& spec, std::optional<int> degree, std::optional<int> refine);
+
+}  // namespace igac

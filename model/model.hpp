@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A case made into something to solve: the refined patches joined into one
+// body, the named faces, the dofs with their Dirichlet conditions, the law
+// and the contacts (each face with its obstacle).  build_model makes it from
+// a CaseSpec; model/solve solves it.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/obstacle.hpp"
+#include "contact/pressure.hpp"
+#include "contact/weighted_gap.hpp"
+#include "engine/body.hpp"
+#include "engine/discretisation.hpp"
+#include "materials/hyperelastic.hpp"
+#include "materials/linear_elastic.hpp"
+#include "model/case_spec.hpp"
+
+namespace igac {
+
+struct Model {
+  CaseSpec spec;
+  Body body;  // the refined patches, joined C0 across their interfaces
+  // Named faces: the built-in shape's names (on patch 0) and the case's
+  // [faces] sets; "PATCH:SIDE" and u0 ... w1 are found by find_faces.
+  std::map<std::string, std::vector<PatchSide>> faces;
+  std::unique_ptr<DofMap> dofs;
+  LinearElastic material{1.0, 0.0};
+  std::unique_ptr<HyperelasticLaw> law;  // the case's law (small strain too: the ParaView stress)
+  // [contact] / [[contact]]: each face with its obstacle; the multipliers of
+  // all of them are stacked in this order.
+  struct Contact {
+    std::string face_name;
+    std::unique_ptr<ContactFace> face;
+    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion)
+    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
+  };
+  std::vector<Contact> contacts;
+  double mesh_size = 0;  // largest element diameter
+  bool quiet = false;    // no progress lines
+  std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
+  int num_multipliers() const {
+    int m = 0;
+    for (const auto& c : contacts) m += c.face->num_multipliers();
+    return m;
+  }
+};
+
+
+Model build_model(const CaseSpec& spec);
+// The sides a face name stands for on the model's body: a name of the shape
+// or of [faces], "PATCH:SIDE" with SIDE one of west east south north front
+// back or u0 u1 v0 v1 w0 w1, and on a one-patch body u0 ... w1 alone.
+// nothing when the name is unknown.
+std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name);
+// The sides of every face in `names`, checked: an unknown name or an
+// interface inside the body is an InputError naming [section].
+std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::string>& names, const char* section);
+// Every accepted face name, for error messages.
+std::vector<std::string> face_names(const Model& m);
+
+}  // namespace igac

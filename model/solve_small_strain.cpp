@@ -1,0 +1,220 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The small-deformation path of solve_model: one linear solve, or the
+// active-set contact solve; the reactions and the contact report.
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <fmt/format.h>
+
+#include "contact/coarse_start.hpp"
+#include "engine/prolongation.hpp"
+#include "model/petsc_run.hpp"
+#include "model/references.hpp"
+#include "model/solve.hpp"
+
+namespace igac {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+}  // namespace
+
+double pressure_resultant(const Model& m) {
+  const int dim = m.body.space_dim();
+  double total = 0;
+  for (const auto& p : m.spec.pressure)  // |int P n dGamma| per pressure load, on the reference faces
+    for (const auto& n : p.faces) {
+      const std::vector<PatchSide> faces = *find_faces(m, n);
+      Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);  // a face made of several sides sums them
+      for (const PatchSide& f : faces) {
+        const PatchQuadrature q = face_quadrature(m.body, f, gauss_points_for(m.body.degree()));
+        ElementData ed;
+        for (int e = 0; e < q.num_elements(); ++e) {
+          q.evaluate(e, ed, false);
+          for (int k = 0; k < ed.JxW.size(); ++k) res += p.value * ed.normal.row(k).transpose() * ed.JxW[k];
+        }
+      }
+      total += res.norm();
+    }
+  return total;
+}
+
+std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::VectorXd& lambda,
+                                                const Eigen::VectorXd& weights, const std::vector<char>& active) {
+  std::vector<ObstacleReaction> out;
+  int offset = 0;
+  for (const auto& c : m.contacts) {
+    ObstacleReaction rr{c.face_name, c.obstacle->describe(), 0.0, 0};
+    for (int K = offset; K < offset + c.face->num_multipliers(); ++K) {
+      rr.normal_force -= lambda[K] * weights[K];
+      rr.active += active[K] ? 1 : 0;
+    }
+    rr.normal_force += 0.0;  // no -0
+    offset += c.face->num_multipliers();
+    out.push_back(rr);
+  }
+  return out;
+}
+
+WeightedGapOperator assemble_contact_operator(const Model& m) {
+  std::vector<WeightedGapOperator> ops;
+  for (const auto& c : m.contacts) ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
+  return stack(ops);
+}
+
+void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f) {
+  const int k = int(modes.modes.cols());
+  if (k == 0) return;
+  if (m.contacts.empty())
+    throw InputError(fmt::format(
+        "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
+        m.spec.path, k));
+  // A frictionless contact holds a rigid motion only if the motion changes
+  // the weighted gaps: H = G * modes must have full column rank.
+  const WeightedGapOperator op = assemble_contact_operator(m);
+  const Eigen::MatrixXd H = op.G * modes.modes;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(H);
+  const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
+  int held = 0;
+  for (int i = 0; i < svd.singularValues().size(); ++i)
+    if (svd.singularValues()[i] > 1e-8 * s_max && s_max > 0) ++held;
+  if (held < k)
+    throw InputError(fmt::format(
+        "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and the frictionless contact "
+        "cannot stop them (it pushes only along the obstacle's normal); add a [[dirichlet]] condition",
+        m.spec.path, k - held));
+  // One free motion (the usual symmetric case): the load must move the body
+  // toward the obstacle, closing some gap, or nothing balances it.
+  if (k == 1) {
+    const double push = modes.modes.col(0).dot(f);
+    const double scale = H.col(0).cwiseAbs().maxCoeff();
+    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * H.col(0);  // gap change along the load's motion
+    if (std::abs(push) > 1e-12 * f.norm() && opening.minCoeff() >= -1e-12 * scale && opening.maxCoeff() > 1e-12 * scale)
+      throw InputError(fmt::format(
+          "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
+          "motion, and the load opens every gap (is the load's sign reversed?)",
+          m.spec.path));
+  }
+}
+
+namespace {
+// Nested iteration (contact/coarse_start): the first active set and first
+// guess of `m`'s contact iteration from the solution of the case one
+// refinement below (solved here unless `coarser` has it, itself started
+// the same way).  Nothing when that solve did not converge.  (The spline
+// multigrid builds the same coarse model and prolongation again for its
+// hierarchy: 0.1 s of a 74 s run at 225k unknowns, left so.)
+void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedGapOperator& op, int k,
+                             ContactSolverOptions& opt) {
+  std::optional<Model> built;
+  std::optional<RunResult> solved;
+  if (!coarser.model || !coarser.result) {
+    CaseSpec spec = m.spec;
+    --spec.refine;
+    built.emplace(build_model(spec));
+    built->quiet = true;
+    solved.emplace(solve_model(*built));
+    coarser = {&*built, &*solved};
+  }
+  const RunResult& rc = *coarser.result;
+  if (!rc.contact || !rc.contact->solution.converged) return;
+  auto faces = [](const Model& model) {
+    std::vector<const ContactFace*> out;
+    for (const auto& c : model.contacts) out.push_back(c.face.get());
+    return out;
+  };
+  const Model& cm = *coarser.model;
+  ActiveSetStart start = start_from_coarse(faces(cm), faces(m), prolongation(cm.body, *cm.dofs, m.body, *m.dofs),
+                                           rc.contact->solution, op, k, opt.complementarity_scale);
+  opt.initial_active = std::move(start.active);
+  opt.initial_u = std::move(start.u);
+  opt.initial_lambda = std::move(start.lambda);
+}
+}  // namespace
+
+RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun coarser) {
+  if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
+  RunResult r;
+  const auto t_start = Clock::now();
+  const Body& body = m.body;
+  const int dim = body.space_dim();
+  auto t0 = Clock::now();
+  Eigen::VectorXd bf = m.spec.body_force.empty()
+                           ? Eigen::VectorXd::Zero(dim)
+                           : Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim).eval();
+  // One process: every element.  PETSc on several: this process's block
+  // (the element loads summed over the processes, so f is whole everywhere).
+  const bool petsc = uses_petsc(m);
+  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.material, bf, process_elements(m));
+  sum_over_processes(sys.f);
+  for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
+  r.timing.assembly = since(t0);
+  const RigidModes modes = free_rigid_modes(body, *m.dofs);
+  r.applied_force = pressure_resultant(m);
+  SparseCholesky chol;
+  check_body_is_held(m, modes, sys.f);
+  if (m.contacts.empty() && petsc) {
+    WeightedGapOperator none;
+    none.G.resize(0, m.dofs->num_free());
+    const ContactSolution s = solve_with_petsc(m, sys, none, modes, ContactSolverOptions{}, r.linear_solver);
+    r.timing.factorization = s.factorize_s;
+    r.timing.linear_solve = s.iterations_s;
+    r.status = s.status;
+    r.u = m.dofs->expand(s.u);
+  } else if (m.contacts.empty()) {
+    t0 = Clock::now();
+    chol.factorize(sys.K);
+    r.timing.factorization = since(t0);
+    t0 = Clock::now();
+    r.u = m.dofs->expand(chol.solve(sys.f));
+    r.timing.linear_solve = since(t0);
+  } else {
+    t0 = Clock::now();
+    auto c = std::make_unique<ContactResult>();
+    c->op = assemble_contact_operator(m);
+    r.timing.assembly += since(t0);
+    ContactSolverOptions opt;
+    opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+    t0 = Clock::now();
+    // Nested iteration from the solution one refinement below: the PETSc
+    // path solves it first (a Krylov or MUMPS solve per active-set
+    // iteration: 17 -> 2 of them on hertz3d's 225k reference); the direct
+    // path takes it when it is at hand (a study's previous level) but does
+    // not solve it for itself, which costs more than the Schur columns it
+    // saves (hertz2d --refine 2: 0.39 -> 0.47 s, hertz3d_study --refine 2:
+    // 3.9 -> 4.2 s; only at 225k unknowns did it gain, 116 -> 98 s).
+    if (m.spec.refine > 0 && (petsc || coarser.result))
+      start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
+    c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
+                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
+    r.timing.factorization = c->solution.factorize_s;
+    r.timing.contact = since(t0) - c->solution.factorize_s;
+    r.status = c->solution.status;
+    if (c->solution.u.size() != m.dofs->num_free())
+      throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
+    r.u = m.dofs->expand(c->solution.u);
+    t0 = Clock::now();
+    r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
+    const Model::Contact& first = m.contacts.front();
+    const int m0 = first.face->num_multipliers();
+    std::tie(c->X0, c->normal) = initial_contact_point(*first.face, *first.obstacle);
+    c->pressure = std::make_unique<ContactPressure>(
+        *first.face, c->solution.lambda.head(m0), c->op.weights.head(m0),
+        std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
+    c->report = c->pressure->report();
+    // A rigid obstacle can only push: a net pull on the body (tensile
+    // multipliers) is a wrong result, never a converged one.
+    for (const auto& rr : r.reactions)
+      if (r.status == "converged" && rr.normal_force < -1e-9 * std::max(r.applied_force, 1e-300))
+        r.status = fmt::format("failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)",
+                               rr.face, rr.normal_force);
+    r.timing.postprocess += since(t0);
+    r.contact = std::move(c);
+  }
+  t0 = Clock::now();
+  compare_with_reference(m, r);
+  r.timing.postprocess += since(t0);
+  r.timing.total = since(t_start);
+  return r;
+}
+
+}  // namespace igac
