@@ -51,12 +51,8 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   c->solution.converged = true;
   c->op.weights = problem.multiplier_weights();
   r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
+  report_first_contact(m, *c);
   const int m0 = problem.multiplier_offset(1);
-  std::tie(c->X0, c->normal) = initial_contact_point(cf, *first.obstacle);
-  c->pressure = std::make_unique<ContactPressure>(
-      cf, c->solution.lambda.head(m0), c->op.weights.head(m0),
-      std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
-  c->report = c->pressure->report();
   // Deformed extent: the face point at the reference half width, displaced.
   ElementData ed;
   double best = std::numeric_limits<double>::infinity();

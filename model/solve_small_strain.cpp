@@ -38,23 +38,6 @@ double pressure_resultant(const Model& m) {
   return total;
 }
 
-std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::VectorXd& lambda,
-                                                const Eigen::VectorXd& weights, const std::vector<char>& active) {
-  std::vector<ObstacleReaction> out;
-  int offset = 0;
-  for (const auto& c : m.contacts) {
-    ObstacleReaction rr{c.face_name, c.obstacle->describe(), 0.0, 0};
-    for (int K = offset; K < offset + c.face->num_multipliers(); ++K) {
-      rr.normal_force -= lambda[K] * weights[K];
-      rr.active += active[K] ? 1 : 0;
-    }
-    rr.normal_force += 0.0;  // no -0
-    offset += c.face->num_multipliers();
-    out.push_back(rr);
-  }
-  return out;
-}
-
 WeightedGapOperator assemble_contact_operator(const Model& m) {
   std::vector<WeightedGapOperator> ops;
   for (const auto& c : m.contacts) ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
@@ -194,13 +177,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.u = m.dofs->expand(c->solution.u);
     t0 = Clock::now();
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
-    const Model::Contact& first = m.contacts.front();
-    const int m0 = first.face->num_multipliers();
-    std::tie(c->X0, c->normal) = initial_contact_point(*first.face, *first.obstacle);
-    c->pressure = std::make_unique<ContactPressure>(
-        *first.face, c->solution.lambda.head(m0), c->op.weights.head(m0),
-        std::vector<char>(c->solution.active.begin(), c->solution.active.begin() + m0), c->X0, c->normal);
-    c->report = c->pressure->report();
+    report_first_contact(m, *c);
     // A rigid obstacle can only push: a net pull on the body (tensile
     // multipliers) is a wrong result, never a converged one.
     for (const auto& rr : r.reactions)
