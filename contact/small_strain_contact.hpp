@@ -67,7 +67,7 @@ struct ContactSolution {
   double factorize_s = 0, schur_s = 0, iterations_s = 0;
   int schur_columns = 0;             // columns of L^-1 P G^T computed (multipliers ever active)
   int reach_rows = 0;                // rows of the contact face's reach in the factor
-  // Iterative linear solvers (contact/petsc_contact): what ran, and the
+  // Iterative linear solvers (solvers/petsc_contact): what ran, and the
   // Krylov iterations of each active-set iteration's solve.
   std::string linear_solver;
   std::vector<int> linear_iterations;

@@ -12,7 +12,7 @@
 // patches give the same one, the interface being conforming) and restricted
 // to the free equations of both DofMaps: a prescribed coarse dof is dropped
 // (a correction vanishes there), a prescribed fine dof has no row.  Geometric
-// multigrid's interpolation (contact/petsc_multigrid).
+// multigrid's interpolation (solvers/petsc_multigrid).
 #pragma once
 
 #include <Eigen/SparseCore>

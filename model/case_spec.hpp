@@ -63,11 +63,11 @@ struct LoadingSpec {
 
 // [solver]: who solves the small-deformation linear systems.  "direct":
 // CHOLMOD on one process (engine/cholesky); "petsc": PETSc on one or more
-// MPI processes (contact/petsc_contact), `options` passed to PETSc's
+// MPI processes (solvers/petsc_contact), `options` passed to PETSc's
 // options database as on a PETSc command line ("-ksp_type cg -pc_type gamg").
 // `preconditioner`: "options" (what `options` say; default MUMPS) or
 // "spline_multigrid" (geometric multigrid over the case's nested meshes
-// --refine r, ..., 0, contact/petsc_multigrid; PETSc only).
+// --refine r, ..., 0, solvers/petsc_multigrid; PETSc only).
 struct SolverSpec {
   std::string type = "direct";
   std::string options;

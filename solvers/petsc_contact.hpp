@@ -27,7 +27,7 @@
 //
 // With `spline_multigrid` the assembled matrix is the displacement block
 // alone and SplineMultigrid applies the saddle-point operator and its
-// block-triangular preconditioner (FGMRES; contact/petsc_multigrid.hpp).
+// block-triangular preconditioner (FGMRES; solvers/petsc_multigrid.hpp).
 //
 // Options: PETSc's own (`-ksp_type`, `-pc_type`, ...), inserted in the
 // options database before the solver reads them.  Default: MUMPS LDL^T on
@@ -73,7 +73,7 @@ struct PetscContactOptions {
   ContactSolverOptions contact;
   double stiffness = 1.0;   // E: the scale of the augmentation W
   int dim = 3;
-  // Geometric multigrid from the spline hierarchy (contact/petsc_multigrid)
+  // Geometric multigrid from the spline hierarchy (solvers/petsc_multigrid)
   // instead of the options' preconditioner: the prolongations between the
   // nested meshes, finest first (engine/prolongation), whole on every process.
   bool spline_multigrid = false;

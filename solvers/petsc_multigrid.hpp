@@ -1,5 +1,5 @@
 // Geometric multigrid from the spline hierarchy for the PETSc contact solve
-// (contact/petsc_contact; `[solver] preconditioner = "spline_multigrid"`).
+// (solvers/petsc_contact; `[solver] preconditioner = "spline_multigrid"`).
 //
 // The saddle-point system of one active set,
 //
@@ -29,7 +29,7 @@
 // `-u_mg_levels_pc_type sor`; `-u_pc_mg_levels L` keeps the L finest meshes).
 //
 // The first guess and the first active set come from the case one
-// refinement below (app/case_run, contact/coarse_start).
+// refinement below (model/solve_small_strain, contact/coarse_start).
 #pragma once
 
 #include <Eigen/SparseCore>
