@@ -39,28 +39,6 @@ std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::stri
 
 namespace {
 
-// `target` with every breakpoint of `have` (at least its multiplicity there)
-// added: a geometry file's own interior knots stay, so refining it is exact.
-KnotVector with_knots_of(const KnotVector& target, const KnotVector& have) {
-  std::map<double, int> mult;
-  const auto add = [&](const KnotVector& kv) {
-    const auto b = kv.breakpoints();
-    const auto m = kv.multiplicities();
-    for (size_t i = 0; i < b.size(); ++i) {
-      auto it = mult.lower_bound(b[i] - 1e-12);
-      if (it != mult.end() && std::abs(it->first - b[i]) <= 1e-12) it->second = std::max(it->second, m[i]);
-      else mult[b[i]] = m[i];
-    }
-  };
-  add(target);
-  const size_t before = mult.size();
-  add(have);
-  if (mult.size() == before) return target;  // nothing new: the usual case
-  std::vector<double> knots;
-  for (const auto& [x, m] : mult) knots.insert(knots.end(), m, x);
-  return KnotVector(target.degree(), knots);
-}
-
 double largest_element_diameter(const NurbsPatch& p) {
   const int pd = p.param_dim();
   std::array<std::vector<double>, 3> b;
@@ -113,7 +91,12 @@ NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const st
                                    "told apart ({}); use a larger range_fraction or fewer elements",
                                    spec.path, g->range_fraction, e.what()));
     }
-    patch = refine_to(patch, d, with_knots_of(target, patch.knots(d)));
+    try {
+      patch = refine_to(patch, d, target.united_with(patch.knots(d)));
+    } catch (const SplineError& e) {
+      throw InputError(fmt::format("{}: [mesh] refining direction {}{}{}: {}", spec.path, "uvw"[d], which,
+                                   spec.geometry_file.empty() ? "" : " of " + spec.geometry_file, e.what()));
+    }
   }
   return patch;
 }

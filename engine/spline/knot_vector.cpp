@@ -9,6 +9,9 @@ namespace igac {
 namespace {
 // Two knots closer than this (relative to the range) are the same breakpoint.
 constexpr double kKnotTolerance = 1e-13;
+// A breakpoint of a refinement this close (relative to the range) to one of
+// the refined knot vector's is taken to be that one (united_with).
+constexpr double kKnotSnap = 1e-10;
 }  // namespace
 
 KnotVector::KnotVector(int degree, std::vector<double> knots)
@@ -233,6 +236,31 @@ std::vector<double> KnotVector::knots_missing_from(const KnotVector& finer) cons
   }
   if (i != knots_.size()) throw SplineError("refined knot vector does not contain the original one");
   return out;
+}
+
+KnotVector KnotVector::united_with(const KnotVector& kept) const {
+  if (kept.degree() != degree_ || std::abs(kept.first() - first()) > kKnotSnap * (last() - first()) ||
+      std::abs(kept.last() - last()) > kKnotSnap * (last() - first()))
+    throw SplineError(fmt::format("cannot unite knot vectors of degree {} on [{}, {}] and degree {} on [{}, {}]", degree_,
+                                  first(), last(), kept.degree(), kept.first(), kept.last()));
+  const double snap = kKnotSnap * (last() - first());
+  const auto kb = kept.breakpoints();
+  const auto km = kept.multiplicities();
+  std::vector<std::pair<double, int>> united;  // (breakpoint, multiplicity)
+  for (size_t i = 0; i < kb.size(); ++i) united.emplace_back(kb[i], km[i]);
+  const auto b = breakpoints();
+  const auto m = multiplicities();
+  for (size_t j = 0; j < b.size(); ++j) {
+    auto same = std::find_if(united.begin(), united.begin() + kb.size(),
+                             [&](const auto& u) { return std::abs(u.first - b[j]) <= snap; });
+    if (same != united.begin() + kb.size()) same->second = std::max(same->second, m[j]);
+    else united.emplace_back(b[j], m[j]);
+  }
+  std::sort(united.begin(), united.end());
+  std::vector<double> k;
+  for (const auto& [x, mult] : united) k.insert(k.end(), mult, x);
+  if (k == knots_) return *this;
+  return KnotVector(degree_, std::move(k));
 }
 
 }  // namespace igac

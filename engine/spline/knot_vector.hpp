@@ -73,6 +73,13 @@ class KnotVector {
   KnotVector subdivided(int parts) const;
   // The knots to insert into *this to obtain `finer` (must contain *this).
   std::vector<double> knots_missing_from(const KnotVector& finer) const;
+  // This knot vector with every knot of `kept` added (at least its
+  // multiplicity there), for refining a patch whose knots are `kept`: a
+  // breakpoint of this one within 1e-10 of the range from one of `kept`'s
+  // takes `kept`'s value (a file's knot written with 12 digits is the mesh's
+  // breakpoint, not a second one beside it), so `kept` is contained exactly
+  // and kept.knots_missing_from(result) succeeds.  Same degree and range.
+  KnotVector united_with(const KnotVector& kept) const;
 
  private:
   void validate() const;
