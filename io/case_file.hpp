@@ -111,6 +111,12 @@ struct CaseSpec {
 
 // Throws InputError.
 CaseSpec read_case(const std::string& path);
+// Every key read_case accepts, sorted, as its path of tables: "name",
+// "mesh.degree", "mesh.grading.direction", "contact.obstacle.radius";
+// "faces.*" for the names of one's own in [faces].  Shapes, laws and
+// obstacles contribute their registered keys.  docs/case_file.md documents
+// each one (tests/test_docs.cpp checks both ways).
+std::vector<std::string> declared_case_keys();
 // Why a [solver] preconditioner cannot be used ("" when it can).
 std::string check_preconditioner(const SolverSpec& solver);
 // Checks a --degree / --refine override and the memory the mesh would need;
