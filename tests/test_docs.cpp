@@ -1,6 +1,10 @@
 // The documentation against the code it describes, so that neither drifts:
-// docs/case_file.md documents exactly the keys the case reader accepts
-// (declared_case_keys(), built from the same lists read_case checks).
+//  - docs/case_file.md documents exactly the keys the case reader accepts
+//    (declared_case_keys(), built from the same lists read_case checks);
+//  - README.md stays a front door (at most 200 lines);
+//  - README.md and docs/ cite nothing a clone of the repository lacks
+//    (no DESIGN.md, no ../shared) and every relative link they hold exists.
+// The commands the documents show are run by scripts/check_doc_commands.sh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,6 +43,13 @@ std::set<std::string> documented_keys(const std::string& text) {
   return keys;
 }
 
+std::vector<fs::path> documents() {
+  std::vector<fs::path> out{kRoot / "README.md"};
+  for (const auto& e : fs::directory_iterator(kRoot / "docs"))
+    if (e.path().extension() == ".md") out.push_back(e.path());
+  return out;
+}
+
 }  // namespace
 
 TEST(Docs, CaseFileReferenceDocumentsEveryDeclaredKey) {
@@ -63,4 +74,23 @@ TEST(Docs, DeclaredKeysIncludeTheRegistries) {
   for (const char* k : {"geometry.radius", "geometry.size", "material.E", "material.C10", "contact.obstacle.normal",
                         "contact.obstacle.axis", "mesh.grading.coarse", "faces.*"})
     EXPECT_TRUE(declared.count(k)) << k;
+}
+
+TEST(Docs, ReadmeIsAFrontDoorOfAtMost200Lines) {
+  const std::string text = read_text(kRoot / "README.md");
+  const auto lines = std::count(text.begin(), text.end(), '\n');
+  EXPECT_LE(lines, 200);
+}
+
+TEST(Docs, DocumentsCiteOnlyWhatTheRepositoryHolds) {
+  const std::regex link(R"(\]\(([^)#:]+)(#[^)]*)?\))");  // [text](relative/path) — no URL scheme
+  for (const auto& doc : documents()) {
+    const std::string text = read_text(doc);
+    EXPECT_EQ(text.find("DESIGN.md"), std::string::npos) << doc << " cites DESIGN.md, which is not in the repository";
+    EXPECT_EQ(text.find("../shared"), std::string::npos) << doc << " cites a path outside the repository";
+    for (std::sregex_iterator it(text.begin(), text.end(), link), end; it != end; ++it) {
+      const fs::path target = doc.parent_path() / (*it)[1].str();
+      EXPECT_TRUE(fs::exists(target)) << doc << " links to " << (*it)[1] << ", which does not exist";
+    }
+  }
 }
