@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # scripts/check_doc_commands.sh [--list]
 #
-# Runs every command that README.md and docs/*.md show in ```sh blocks, as
-# written, and fails when one exits non-zero. Each line of such a block is one
-# command; a line whose comment says "not run by the doc check" (the whole
+# Runs every command that README.md and docs/*.md show in ```sh blocks (also
+# indented ones, in a list), as written, and fails when one exits non-zero.
+# Each line of such a block is one command; a line whose comment says "not run by the doc check" (the whole
 # test suite, benchmarks of minutes) is listed and skipped. The commands run
 # in a temporary folder that links the repository's build/, cases/, bench/,
 # scripts/, tests/ and the two top-level scripts, so whatever they write
@@ -17,9 +17,9 @@ list_only=0
 # The commands, one per line: FILE<TAB>COMMAND.
 commands="$(cd "$root" && awk '
   FNR == 1 { block = 0 }
-  /^```sh[[:space:]]*$/ { block = 1; next }
-  /^```/ { block = 0; next }
-  block && NF && $1 !~ /^#/ { print FILENAME "\t" $0 }
+  /^[[:space:]]*```sh[[:space:]]*$/ { block = 1; next }
+  /^[[:space:]]*```/ { block = 0; next }
+  block && NF && $1 !~ /^#/ { sub(/^[[:space:]]+/, ""); print FILENAME "\t" $0 }
 ' README.md docs/*.md)"
 
 if [ "$list_only" = 1 ]; then
