@@ -1,5 +1,5 @@
 # Fails the build when a source file includes a header of a folder above its
-# own: materials/ < engine/ < contact/ < io/ < app/ (README "Layout").
+# own: materials/ < engine/ < contact/ < io/ < app/ (docs/design.md, "Layout").
 # Run by the check_layering target on every build.
 set(levels materials engine contact io app)
 set(bad "")

@@ -1,6 +1,6 @@
-// Case files: one TOML file per simulation (see README "How a case file
-// reads").  read_case() parses and validates everything it can without
-// building the mesh; any problem is an InputError whose one-line message
+// Case files: one TOML file per simulation (every key: docs/case_file.md).
+// read_case() parses and validates everything it can without building the
+// mesh; any problem is an InputError whose one-line message
 // names the file, the key and the reason.
 #pragma once
 
