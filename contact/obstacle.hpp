@@ -1,6 +1,6 @@
 // Rigid obstacles behind one small interface: at a point x of space an
 // obstacle gives the signed normal gap g_n (positive when x is outside it)
-// and its own outward unit normal n (DESIGN.md: g_n = (x - x_obstacle) . n).
+// and its own outward unit normal n (docs/design.md, "Gap and sign convention": g_n = (x - x_obstacle) . n).
 // The types (contact/obstacles/): plane, sphere (a circle in 2D), cylinder
 // (3D, infinite).
 #pragma once

@@ -1,5 +1,5 @@
 // Contact pressure p = -lambda (>= 0) after a solve, and its comparison with
-// Hertz (Johnson, Contact Mechanics, ch. 4; DESIGN.md):
+// Hertz (Johnson, Contact Mechanics, ch. 4; docs/design.md, "Reference solutions"):
 //   2D (force per unit length F' = 2 R P): a = sqrt(8 R^2 P (1-nu^2) / (pi E)),
 //       p0 = 4 R P / (pi a);
 //   3D (F = pi R^2 P): a = (3 pi R^3 P (1-nu^2) / (4 E))^(1/3), p0 = 3 R^2 P / (2 a^2);

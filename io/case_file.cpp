@@ -19,6 +19,27 @@
 namespace igac {
 namespace {
 
+// The keys of the tables whose keys are fixed; read_case refuses any other,
+// and declared_case_keys() lists them for docs/case_file.md's test.  The
+// keys of a shape, a law or an obstacle come from their registries.
+const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", "material", "dirichlet",
+                                     "pressure", "body_force", "contact", "reference", "output", "loading",
+                                     "faces", "solver"};
+const std::set<std::string> kGeometryKeys{"shape", "file"};  // and the shape's own
+const std::set<std::string> kGeometryFileKeys{"radius", "inner_radius", "outer_radius"};  // with file =
+const std::set<std::string> kMeshKeys{"degree", "elements", "refine", "grading"};
+const std::set<std::string> kGradingKeys{"direction", "toward", "span_fraction", "range_fraction", "coarse"};
+const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
+const std::set<std::string> kPressureKeys{"faces", "value"};
+const std::set<std::string> kBodyForceKeys{"value"};
+const std::set<std::string> kContactKeys{"face", "obstacle"};
+const std::set<std::string> kObstacleKeys{"type", "motion"};  // and the obstacle type's own
+const std::set<std::string> kReferenceKeys{"solution"};
+const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
+                                         "max_newton_iterations", "line_search", "predictor", "pressure"};
+const std::set<std::string> kOutputKeys{"vtk"};
+const std::set<std::string> kSolverKeys{"type", "options", "preconditioner"};
+
 // A view of one TOML table that knows its name for messages and refuses
 // keys it does not expect.
 class Section {
@@ -167,9 +188,7 @@ CaseSpec read_case(const std::string& path) {
   }
   CaseSpec c;
   c.path = path;
-  const Section top(path, "top level", root,
-                    {"name", "description", "geometry", "mesh", "material", "dirichlet", "pressure", "body_force",
-                     "contact", "reference", "output", "loading", "faces", "solver"});
+  const Section top(path, "top level", root, kTopKeys);
   c.name = top.string("name", std::filesystem::path(path).stem().string());
   // The name becomes a folder under out/: a plain file name, nothing that
   // climbs out of it or that a shell or a file system would read otherwise.
@@ -184,10 +203,10 @@ CaseSpec read_case(const std::string& path) {
   // which declares its keys: those, and only those, go with it.
   const toml::table& gt = top.sub("geometry");
   const ShapeType* kind = find_shape_type(gt["shape"].value_or(std::string()));
-  std::set<std::string> geo_keys{"shape", "file"};
+  std::set<std::string> geo_keys = kGeometryKeys;
   if (kind)
     for (const ShapeKey& k : kind->keys) geo_keys.insert(std::string(k.key));
-  if (gt.contains("file")) geo_keys.insert({"radius", "inner_radius", "outer_radius"});
+  if (gt.contains("file")) geo_keys.insert(kGeometryFileKeys.begin(), kGeometryFileKeys.end());
   if (!kind && !gt.contains("file"))
     for (const ShapeType* t : shape_types())
       for (const ShapeKey& k : t->keys) geo_keys.insert(std::string(k.key));
@@ -243,7 +262,7 @@ CaseSpec read_case(const std::string& path) {
   }
   const int dim = c.dim();
 
-  const Section mesh(path, "mesh", top.sub("mesh"), {"degree", "elements", "refine", "grading"});
+  const Section mesh(path, "mesh", top.sub("mesh"), kMeshKeys);
   c.degree = mesh.integer("degree");
   if (c.degree < 1) mesh.fail("degree", fmt::format("degree {} must be at least 1", c.degree));
   if (c.degree > 10) mesh.fail("degree", fmt::format("degree {} is above the supported 10", c.degree));
@@ -265,7 +284,7 @@ CaseSpec read_case(const std::string& path) {
       for (const auto& e : *gn->as_array()) gts.push_back(e.as_table());
     else mesh.fail("grading", "must be a table [mesh.grading] or tables [[mesh.grading]]");
     for (const auto* gt : gts) {
-      const Section g(path, "mesh.grading", *gt, {"direction", "toward", "span_fraction", "range_fraction", "coarse"});
+      const Section g(path, "mesh.grading", *gt, kGradingKeys);
       GradingSpec gs;
       const std::string d = g.string("direction");
       if (d != "u" && d != "v" && !(d == "w" && dim == 3))
@@ -332,29 +351,29 @@ CaseSpec read_case(const std::string& path) {
   }
 
   for (const auto* t : tables(path, root, "dirichlet")) {
-    const Section s(path, "dirichlet", *t, {"faces", "component", "value"});
+    const Section s(path, "dirichlet", *t, kDirichletKeys);
     c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.number("value", 0.0)});
   }
   for (const auto* t : tables(path, root, "pressure")) {
-    const Section s(path, "pressure", *t, {"faces", "value"});
+    const Section s(path, "pressure", *t, kPressureKeys);
     c.pressure.push_back({s.strings("faces"), s.number("value")});
   }
   if (root.contains("body_force")) {
-    const Section s(path, "body_force", top.sub("body_force"), {"value"});
+    const Section s(path, "body_force", top.sub("body_force"), kBodyForceKeys);
     c.body_force = s.numbers("value", dim);
   }
   for (const auto* contact_table : tables(path, root, "contact")) {  // [contact] or [[contact]]
-    const Section s(path, "contact", *contact_table, {"face", "obstacle"});
+    const Section s(path, "contact", *contact_table, kContactKeys);
     ContactSpec cs;
     cs.face = s.string("face");
     {
       const toml::table& ot = s.sub("obstacle");
       const std::string type = ot["type"].value_or(std::string());
       const ObstacleType* kind = find_obstacle_type(type);
-      std::set<std::string> keys{"type", "motion"};
+      std::set<std::string> keys = kObstacleKeys;
       if (kind)
         for (const ObstacleKey& k : kind->keys) keys.insert(std::string(k.key));
-      const Section o(path, "contact.obstacle", ot, kind ? keys : std::set<std::string>{"type", "motion"});
+      const Section o(path, "contact.obstacle", ot, kind ? keys : kObstacleKeys);
       cs.obstacle.type = o.string("type");
       if (!kind) {
         std::vector<std::string> names;
@@ -383,7 +402,7 @@ CaseSpec read_case(const std::string& path) {
     c.contacts.push_back(cs);
   }
   if (root.contains("reference")) {
-    const Section s(path, "reference", top.sub("reference"), {"solution"});
+    const Section s(path, "reference", top.sub("reference"), kReferenceKeys);
     c.reference = s.string("solution");
     const ReferenceSolution* ref = find_reference(c.reference);
     if (!ref && c.reference != "none")
@@ -392,9 +411,7 @@ CaseSpec read_case(const std::string& path) {
       if (const std::string why = ref->unusable(c); !why.empty()) s.fail("solution", why);
   }
   if (root.contains("loading")) {
-    const Section s(path, "loading", top.sub("loading"),
-                    {"steps", "first_increment", "min_increment", "max_increment", "max_newton_iterations", "line_search", "predictor",
-                     "pressure"});
+    const Section s(path, "loading", top.sub("loading"), kLoadingKeys);
     if (!c.finite_strain())
       s.fail("steps", "[loading] drives the large-deformation models; linear_elastic is solved in one linear step");
     LoadingSpec& l = c.loading;
@@ -420,11 +437,11 @@ CaseSpec read_case(const std::string& path) {
     l.follower_pressure = pk == "follower";
   }
   if (root.contains("output")) {
-    const Section s(path, "output", top.sub("output"), {"vtk"});
+    const Section s(path, "output", top.sub("output"), kOutputKeys);
     c.write_vtk = s.boolean("vtk", true);
   }
   if (root.contains("solver")) {
-    const Section s(path, "solver", top.sub("solver"), {"type", "options", "preconditioner"});
+    const Section s(path, "solver", top.sub("solver"), kSolverKeys);
     c.solver.type = s.string("type", "direct");
     if (c.solver.type != "direct" && c.solver.type != "petsc")
       s.fail("type", fmt::format("unknown solver '{}' (direct: CHOLMOD on one process; petsc: PETSc, also under mpirun)",
@@ -439,6 +456,36 @@ CaseSpec read_case(const std::string& path) {
   }
   apply_overrides(c, {}, {});
   return c;
+}
+
+std::vector<std::string> declared_case_keys() {
+  std::set<std::string> out;
+  const auto add = [&](const std::string& table, const auto& keys) {
+    for (const auto& k : keys) out.insert(table.empty() ? std::string(k) : table + "." + std::string(k));
+  };
+  add("", kTopKeys);
+  add("geometry", kGeometryKeys);
+  add("geometry", kGeometryFileKeys);
+  for (const ShapeType* t : shape_types())
+    for (const ShapeKey& k : t->keys) out.insert("geometry." + std::string(k.key));
+  add("mesh", kMeshKeys);
+  add("mesh.grading", kGradingKeys);
+  out.insert("material.model");
+  for (const std::string& law : law_names())
+    for (const LawParameter& p : law_parameters(law)) out.insert("material." + std::string(p.key));
+  out.insert("faces.*");  // names of one's own
+  add("dirichlet", kDirichletKeys);
+  add("pressure", kPressureKeys);
+  add("body_force", kBodyForceKeys);
+  add("contact", kContactKeys);
+  add("contact.obstacle", kObstacleKeys);
+  for (const ObstacleType* t : obstacle_types())
+    for (const ObstacleKey& k : t->keys) out.insert("contact.obstacle." + std::string(k.key));
+  add("reference", kReferenceKeys);
+  add("loading", kLoadingKeys);
+  add("output", kOutputKeys);
+  add("solver", kSolverKeys);
+  return {out.begin(), out.end()};
 }
 
 std::string check_preconditioner(const SolverSpec& s) {

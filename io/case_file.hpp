@@ -1,6 +1,6 @@
 // Case files: one TOML file per simulation (every key: docs/case_file.md).
-// read_case() parses and validates everything it can without
-// building the mesh; any problem is an InputError whose one-line message
+// read_case() parses and validates everything it can without building the
+// mesh; any problem is an InputError whose one-line message
 // names the file, the key and the reason.
 #pragma once
 
@@ -17,6 +17,12 @@ namespace igac {
 
 // Throws InputError.
 CaseSpec read_case(const std::string& path);
+// Every key read_case accepts, sorted, as its path of tables: "name",
+// "mesh.degree", "mesh.grading.direction", "contact.obstacle.radius";
+// "faces.*" for the names of one's own in [faces].  Shapes, laws and
+// obstacles contribute their registered keys.  docs/case_file.md documents
+// each one (tests/test_docs.cpp checks both ways).
+std::vector<std::string> declared_case_keys();
 // Why a [solver] preconditioner cannot be used ("" when it can).
 std::string check_preconditioner(const SolverSpec& solver);
 

@@ -1,4 +1,4 @@
-// Output files of a run: summary.json (keys in DESIGN.md), pressure.csv.
+// Output files of a run: summary.json (keys in docs/design.md, "Outputs"), pressure.csv.
 // Files are written to a temporary name and renamed, so a file that exists
 // is complete; a value that is not finite is written as null and turns the
 // status into a failure, never a NaN that looks like a number.

@@ -12,7 +12,7 @@ double estimated_peak_bytes(const CaseSpec& c) {
   // nnz(K)/2 in 2D (slowly growing) and ~7 x nnz(K)/2 at 18k dofs in 3D,
   // growing like dofs^(1/3) there (nested dissection); times kCalibration, fitted so that
   // the estimate covers the peak resident memory measured by
-  // bench/memory_guard.py (docs/benchmarks.md, "Memory").
+  // bench/memory_guard.py (docs/benchmarks.md, "Memory guard").
   constexpr double kCalibration = 1.35;
   constexpr double kBase = 80.0 * (1 << 20);  // the program itself: libraries, VTK, tables
   double cps = 1;

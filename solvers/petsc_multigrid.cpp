@@ -92,7 +92,7 @@ SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorX
   // Chebyshev on incomplete Cholesky (ICC(0) on each process's block):
   // point smoothers (Jacobi, SOR) lose a factor 2 per level on the sphere
   // octant, whose elements next to its collapsed axis grow thinner with
-  // every refinement (docs/petsc.md).
+  // every refinement (docs/petsc.md, "Why these choices").
   // Reverse Cuthill-McKee inside ICC and 4 Chebyshev steps: on hertz3d
   // level 3 (K alone) 24 iterations against 64 with natural order and 2.
   default_option("-u_mg_levels_ksp_type", "chebyshev");

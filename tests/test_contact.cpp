@@ -419,7 +419,7 @@ TEST(ContactFlatBlockZeroLoad, TouchingWithoutLoadConverges) {
 
 TEST(ContactFlatBlockZeroLoad, CaseRunReportsInsteadOfCrashing) {
   // Whatever the solver says about the unloaded block, running the case
-  // must return a status, not bring the process down (DESIGN.md: bad input
+  // must return a status, not bring the process down (docs/design.md, "Errors and exit codes": bad input
   // never crashes).  Run in a child process so that a crash fails only this
   // test.
   GTEST_FLAG_SET(death_test_style, "threadsafe");

@@ -1,8 +1,8 @@
 // The 2D Hertz benchmarks of the paper (Antolin, Buffa & Fabre 2018,
-// section 4.1; DESIGN.md): cases/hertz2d.toml (P = 0.003) and
+// section 4.1; docs/design.md, "Reference solutions"): cases/hertz2d.toml (P = 0.003) and
 // cases/hertz2d_high_load.toml (P = 0.01), quarter disc of radius R = 1,
 // E = 1, nu = 0.3, on a rigid plane.
-//  - Analytic a and p0 (Johnson) equal the values printed in DESIGN.md.
+//  - Analytic a and p0 (Johnson) equal the values printed in docs/design.md ("Reference solutions").
 //  - The computed max pressure, half width and contact force against them.
 //  - p = 3 (N3/S1): stable, no oscillation from one multiplier to the next.
 //  - A p = 2 refinement study on nested meshes: the displacement H1 rate and
@@ -28,7 +28,7 @@ namespace {
 
 const std::string kSourceDir = IGAC_SOURCE_DIR;
 
-// DESIGN.md prints a and p0 with 5 significant digits: they agree with the
+// docs/design.md prints a and p0 with 5 significant digits: they agree with the
 // formulas to half a unit in the last printed digit.
 double printed_tolerance(double v) { return 0.5 * std::pow(10.0, std::floor(std::log10(std::abs(v))) - 4); }
 
@@ -97,7 +97,7 @@ TEST(Hertz2D, DefaultCaseMatchesHertz) {
 }
 
 TEST(Hertz2D, HighLoadCaseConverges) {
-  // P = 0.01: a = 0.15 R, beyond the half-space hypothesis; DESIGN.md: a
+  // P = 0.01: a = 0.15 R, beyond the half-space hypothesis; docs/design.md ("Reference solutions"): a
   // converged numerical p0 sits about 0.6 % below Hertz.
   constexpr double kBelowHertzBand = 0.015;
   const CaseRun run = run_case("hertz2d_high_load.toml");

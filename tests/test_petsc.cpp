@@ -272,7 +272,7 @@ TEST_F(PetscPath, SplineMultigridMatchesDirectIn3D) {
 // iterations) does not grow with the mesh.  Levels 1 and 2 of 2D Hertz on
 // one process and of the 3D Hertz study (its own mesh) on two; the issue's
 // bar is 1.5x from one level to the next (measured: 8.5 -> 9 in 2D,
-// 9.2 -> 9.7 in 3D, and 9.7 at level 3, README).
+// 9.2 -> 9.7 in 3D, and 9.7 at level 3, docs/petsc.md).
 constexpr double kBoundedGrowth = 1.5;
 
 TEST_F(PetscPath, SplineMultigridIterationsStayBounded) {
