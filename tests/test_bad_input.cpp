@@ -1,10 +1,11 @@
-// Bad input never crashes and never writes a half result (DESIGN.md): each
+// Bad input never crashes and never writes a half result (README.md, "Exit
+// codes": 2 bad input, one line on stderr, nothing written): each
 // bad case in tests/data/bad_*.toml (cases/lame_cylinder.toml with one
 // defect) is run through the igac executable, which must exit with code 2
 // and print exactly one line "igac: error: FILE[:LINE]: [section] key: reason"
 // and create no output folder.  Defects that a case file cannot express
 // (knot vectors, weights) are checked through the library.  A good run, for
-// contrast, writes summary.json with the keys DESIGN.md promises.
+// contrast, writes summary.json with the keys README.md ("Outputs") lists.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,7 +31,7 @@ using igac_test::quote;
 using igac_test::run_igac;
 using igac_test::TempDir;
 
-// Exit code of igac for bad input (app/main.cpp, DESIGN.md).
+// Exit code of igac for bad input (app/main.cpp, README.md "Exit codes").
 constexpr int kBadInputExit = 2;
 
 std::string data_file(const std::string& name) { return std::string(IGAC_SOURCE_DIR) + "/tests/data/" + name; }
@@ -128,7 +129,7 @@ TEST(BadInput, StudyWithOneLevel) {
   EXPECT_TRUE(tmp.empty());
 }
 
-// DESIGN.md: bad input gives one line naming the problem and exit code 2;
+// README.md: bad input gives one line naming the problem and exit code 2;
 // a command-line typo is bad input like any other.
 TEST(BadInput, UnknownCommandLineOption) {
   TempDir tmp("bad");

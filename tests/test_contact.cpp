@@ -418,8 +418,8 @@ TEST(ContactFlatBlockZeroLoad, TouchingWithoutLoadConverges) {
 
 TEST(ContactFlatBlockZeroLoad, CaseRunReportsInsteadOfCrashing) {
   // Whatever the solver says about the unloaded block, running the case
-  // must return a status, not bring the process down (DESIGN.md: bad input
-  // never crashes).  Run in a child process so that a crash fails only this
+  // must return a status, not bring the process down (README.md, "Exit
+  // codes": a failed solve is exit 1 with a status, never a crash).  Run in a child process so that a crash fails only this
   // test.
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   EXPECT_EXIT(
