@@ -1,8 +1,9 @@
 // Golden values of every shipped case (issue 20): each cases/*.toml is run
 // through the igac executable and every number of its summary.json (and of
-// pressure.csv, and of study.json for the recorded studies) is compared with
-// the values recorded in tests/data/golden/<case>.json before the model/
-// refactor, by tests/data/golden/record.py at commit a01e0b0.  A refactor
+// pressure.csv and load_curve.csv, and of study.json for the recorded
+// studies) is compared with the values recorded in
+// tests/data/golden/<case>.json before the model/ refactor, by
+// tests/data/golden/record.py at commit a01e0b0.  A refactor
 // that moves code without changing the numerics keeps them; one that changes
 // a result has to say so by re-recording.
 //
@@ -11,7 +12,7 @@
 //    active multipliers, Newton and active-set iterations, active-set sizes,
 //    cut-backs, levels): exactly.
 //  - every other number: |a - b| <= rel max(|a|, |b|) + floor, rel = 1e-12
-//    (the issue's bar) but for the Newton history and pressure.csv below;
+//    (the issue's bar) but for the Newton history and the CSV files below;
 //    the floor is the round-off scale of the quantity, so that a value that is
 //    round-off itself (a converged residual, an error norm that is a small
 //    difference of large numbers) is held to 1e-12 of what it is a
@@ -35,10 +36,11 @@
 //      * anything else (forces, pressures, half widths, h, load factors):
 //        floor 0 (a zero, as a displacement-driven case's applied force,
 //        stays exactly zero).
-//  - pressure.csv is printed with 10 significant digits: relative 1.5e-9
-//    (one unit in the last printed digit is at most 1e-9 relative, and a
-//    change of 1e-15 can flip it), floor 1e-12 times the column's largest
-//    absolute value (the contact-edge pressures are small differences).
+//  - pressure.csv and load_curve.csv are printed with 10 significant
+//    digits: relative 1.5e-9 (one unit in the last printed digit is at most
+//    1e-9 relative, and a change of 1e-15 can flip it), floor 1e-12 times
+//    the column's largest absolute value (the contact-edge pressures are
+//    small differences).
 // The runs use one OpenMP thread: the linear assembly sums per-thread copies
 // of K, so the last digits follow the thread count, and igac lets the count
 // follow the machine's load (omp_set_dynamic).  What a change of summation
@@ -49,7 +51,7 @@
 // refactor that reorders the assembly sums, such as element colouring, may
 // fail there without changing any numerics); every other result by at most
 // 0.022 (3D) and 0.0067 (large deformation); residuals by 0.062 of their
-// tolerance; pressure.csv not at all.
+// tolerance; the CSV files not at all.
 //
 // Keys that measure the machine, not the numerics, are not recorded:
 // timing_s, newton_seconds, time_s, memory_gib (record.py, EXCLUDED).  The
@@ -109,7 +111,7 @@ class OneThread {
 };
 
 // Numbers compared, and the largest |a - b| / tolerance per kind: results
-// (1e-12), the Newton history (residual_norms) and pressure.csv.
+// (1e-12), the Newton history (residual_norms) and the CSV files.
 struct Tally {
   int numbers = 0, exact = 0;
   struct Worst {
@@ -122,7 +124,9 @@ bool close(double golden, double actual, double floor, const std::string& where,
   const double diff = std::abs(golden - actual);
   const double tol = relative * std::max(std::abs(golden), std::abs(actual)) + floor;
   ++t.numbers;
-  Tally::Worst& w = where.starts_with("pressure.csv") ? t.csv : where.find("residual_norms") != std::string::npos ? t.residual : t.result;
+  Tally::Worst& w = where.find(".csv") != std::string::npos              ? t.csv
+                    : where.find("residual_norms") != std::string::npos ? t.residual
+                                                                        : t.result;
   if (diff > 0 && tol > 0 && diff / tol > w.ratio) w = {diff / tol, where};
   if (diff <= tol) return true;
   ADD_FAILURE() << where << ": recorded " << std::setprecision(17) << golden << ", now " << actual << " (|diff| "
@@ -227,7 +231,11 @@ std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
   return rows;
 }
 
-void compare_pressure_csv(const json& g, const fs::path& file, Tally& t) {
+// A CSV file igac wrote (pressure.csv, load_curve.csv) against its record:
+// the header and the kind column exactly, empty cells empty, numbers to the
+// 10 printed digits.
+void compare_csv(const json& g, const fs::path& file, Tally& t) {
+  const std::string name = file.filename().string();
   ASSERT_TRUE(fs::exists(file)) << file;
   const auto rows = csv_rows(file);
   ASSERT_FALSE(rows.empty()) << file;
@@ -237,21 +245,22 @@ void compare_pressure_csv(const json& g, const fs::path& file, Tally& t) {
   const size_t columns = g["header"].size();
   std::vector<double> scale(columns, 0.0);
   for (const json& r : g_rows)
-    for (size_t c = 1; c < columns; ++c)
+    for (size_t c = 0; c < columns; ++c)
       if (r[c].is_number()) scale[c] = std::max(scale[c], std::abs(r[c].get<double>()));
   for (size_t i = 0; i < g_rows.size(); ++i) {
     const auto& row = rows[i + 1];
     const json& gr = g_rows[i];
-    ASSERT_EQ(row.size(), columns) << "pressure.csv row " << i + 1;
-    EXPECT_EQ(row[0], gr[0].get<std::string>()) << "pressure.csv row " << i + 1;
-    for (size_t c = 1; c < columns; ++c) {
-      const std::string where = "pressure.csv row " + std::to_string(i + 1) + " " + g["header"][c].get<std::string>();
+    ASSERT_EQ(row.size(), columns) << name << " row " << i + 1;
+    for (size_t c = 0; c < columns; ++c) {
+      const std::string where = name + " row " + std::to_string(i + 1) + " " + g["header"][c].get<std::string>();
       if (gr[c].is_null()) {
         EXPECT_EQ(row[c], "") << where;
-        continue;
+      } else if (gr[c].is_string()) {
+        EXPECT_EQ(row[c], gr[c].get<std::string>()) << where;
+      } else {
+        ASSERT_FALSE(row[c].empty()) << where;
+        close(gr[c].get<double>(), std::stod(row[c]), kCsvFloor * scale[c], where, t, kCsvRelative);
       }
-      ASSERT_FALSE(row[c].empty()) << where;
-      close(gr[c].get<double>(), std::stod(row[c]), kCsvFloor * scale[c], where, t, kCsvRelative);
     }
   }
 }
@@ -293,10 +302,14 @@ TEST_P(GoldenCase, ResultsAsRecordedBeforeTheRefactor) {
   const json actual = json::parse(igac_test::read_file(out / (study ? "study.json" : "summary.json")));
   Tally t;
   compare(golden.at("summary"), actual, study ? "study.json" : "summary.json", 0, t);
-  if (golden.contains("pressure_csv")) compare_pressure_csv(golden["pressure_csv"], out / "pressure.csv", t);
+  for (const char* csv : {"pressure.csv", "load_curve.csv"}) {
+    std::string key = csv;
+    key[key.find('.')] = '_';
+    if (golden.contains(key)) compare_csv(golden[key], out / csv, t);
+  }
   EXPECT_GT(t.numbers, 10) << "a record with numbers in it";
   std::printf("%s: %d numbers compared (%d integers exactly); largest |diff| / tolerance: results %.3g (%s), "
-              "residuals %.3g (%s), pressure.csv %.3g (%s)\n",
+              "residuals %.3g (%s), CSV files %.3g (%s)\n",
               GetParam().c_str(), t.numbers, t.exact, t.result.ratio, t.result.at.c_str(), t.residual.ratio,
               t.residual.at.c_str(), t.csv.ratio, t.csv.at.c_str());
 }

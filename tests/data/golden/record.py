@@ -7,8 +7,9 @@ For each CASE (a cases/CASE.toml, or study:CASE for `igac study CASE
 --levels 4`) runs igac into RUN_FOLDER/CASE and writes
 tests/data/golden/CASE.json (study_CASE.json): the summary.json (study.json)
 without the keys that measure the machine rather than the numerics (timings,
-seconds, memory; see EXCLUDED), plus the rows of pressure.csv when there is
-one (an empty cell as null).  The numbers are written as Python's repr, which reads back to the same
+seconds, memory; see EXCLUDED), plus the rows of pressure.csv and
+load_curve.csv when the run writes them (an empty cell as null).  The
+numbers are written as Python's repr, which reads back to the same
 double.  Re-record only on purpose: the point of the files is to hold the
 values from before a change.
 """
@@ -33,6 +34,16 @@ def strip(node):
     return node
 
 
+def cell(text):
+    """A CSV cell as a number, a string (pressure.csv's kind) or None (empty)."""
+    if text == "":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
 def main():
     igac, runs, cases = sys.argv[1], sys.argv[2], sys.argv[3:]
     here = os.path.dirname(os.path.abspath(__file__))
@@ -52,12 +63,13 @@ def main():
         with open(os.path.join(out, "study.json" if study else "summary.json")) as f:
             record = {"command": " ".join(["igac"] + cmd[1:2] + ["cases/" + name + ".toml"] + cmd[3:]),
                       "summary": strip(json.load(f))}
-        pressure = os.path.join(out, "pressure.csv")
-        if not study and os.path.exists(pressure):
-            with open(pressure) as f:
+        for csv_name in ("pressure.csv", "load_curve.csv"):
+            path = os.path.join(out, csv_name)
+            if study or not os.path.exists(path):
+                continue
+            with open(path) as f:
                 rows = list(csv.reader(f))
-            record["pressure_csv"] = {"header": rows[0], "rows": [
-                [r[0]] + [float(x) if x else None for x in r[1:]] for r in rows[1:]]}
+            record[csv_name.replace(".", "_")] = {"header": rows[0], "rows": [[cell(x) for x in r] for r in rows[1:]]}
         with open(os.path.join(here, tag + ".json"), "w") as f:
             json.dump(record, f, indent=1)
             f.write("\n")
