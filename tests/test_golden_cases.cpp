@@ -5,7 +5,9 @@
 // tests/data/golden/<case>.json before the model/ refactor, by
 // tests/data/golden/record.py at commit a01e0b0.  A refactor
 // that moves code without changing the numerics keeps them; one that changes
-// a result has to say so by re-recording.
+// a result has to say so by re-recording:
+//   python3 tests/data/golden/record.py build/igac /tmp/runs hertz2d study:lame_cylinder ...
+// (study:NAME records `igac study cases/NAME.toml --levels 4`).
 //
 // What is compared, and how closely:
 //  - strings (status, obstacle, names), booleans and JSON integers (dofs,
