@@ -6,6 +6,7 @@
 // from it reaches the same solution in fewer active-set iterations.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 
 #include "model/model.hpp"
@@ -21,8 +22,9 @@ using namespace igac;
 
 constexpr double kRoundOff = 1e-13;
 // The prolongated coarse displacement against the fine solution: apart by
-// the coarse mesh's discretisation error (measured: 0.4 % in 2D, 2.2 % in 3D).
-constexpr double kCoarseAgainstFine = 0.1;
+// the coarse mesh's discretisation error (measured: 0.4 % in 2D, 2.2 % in
+// 3D, printed by the test).  5 % (was 10 %), a margin of 2.3 on the 3D value.
+constexpr double kCoarseAgainstFine = 0.05;
 // Two direct solves of the same discrete problem that end on the same
 // active set: the same solution up to the round-off of their Schur solves.
 constexpr double kSameSolution = 1e-10;
@@ -120,6 +122,7 @@ void expect_start_near_the_fine_solution(const std::string& file, std::vector<in
   EXPECT_GT(active, 4 * at_most_differ) << file;  // the zone is resolved: the rim is a small part of it
   // The first guess is the coarse solution itself: close to the fine one.
   const Eigen::VectorXd& uf = rf.contact->solution.u;
+  std::printf("%s: coarse start against the fine solution %.3g relative\n", file.c_str(), (s.u - uf).norm() / uf.norm());
   EXPECT_LT((s.u - uf).norm(), kCoarseAgainstFine * uf.norm()) << file;
 }
 

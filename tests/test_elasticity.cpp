@@ -23,6 +23,7 @@
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "distort.hpp"
 
 namespace {
 
@@ -42,21 +43,7 @@ constexpr double kSumRoundoff = 1e-13;
 // measured 3.02 / 2.01 (p = 2) and 3.98 / 2.98 (p = 3) on the finest pair.
 constexpr double kRateBand = 0.2;
 
-// Moves every control point not on the boundary by up to `amount` in each
-// coordinate (weights untouched): a curved, non-affine, polynomial map.
-NurbsPatch distort_interior(const NurbsPatch& p, double amount, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> shift(-amount, amount);
-  Eigen::MatrixXd P = p.points();
-  for (int i = 0; i < p.num_control_points(); ++i) {
-    const auto m = p.multi_index(i);
-    bool interior = true;
-    for (int d = 0; d < p.param_dim(); ++d) interior = interior && m[d] > 0 && m[d] + 1 < p.num_basis(d);
-    if (interior)
-      for (int c = 0; c < p.space_dim(); ++c) P(i, c) += shift(rng);
-  }
-  return NurbsPatch(p.all_knots(), P, p.weights());
-}
+using igac_test::distort_interior;  // tests/support/distort.hpp
 
 std::set<int> boundary_control_points(const NurbsPatch& p) {
   std::set<int> b;

@@ -4,6 +4,7 @@
 // SVG plots beside them.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -76,8 +77,15 @@ TEST(EndToEnd, Hertz3DCoarse) {
   const double applied = j["contact"]["applied_force"], total = j["contact"]["total_force"];
   EXPECT_NEAR(total / applied, 1.0, 1e-10) << "the contact carries the load";
   const double p0 = j["analytic"]["max_pressure"], a = j["analytic"]["half_width"];
-  EXPECT_NEAR(double(j["contact"]["max_pressure"]) / p0, 1.0, 0.35) << "coarse, but the Hertz peak";
-  EXPECT_NEAR(double(j["contact"]["half_width"]) / a, 1.0, 0.35);
+  std::printf("8 x 4 x 8: peak / p0 %.6f, half width / a %.6f\n", double(j["contact"]["max_pressure"]) / p0,
+              double(j["contact"]["half_width"]) / a);
+  // Measured at a01e0b0 on this 8 x 4 x 8 mesh (1/4 of hertz3d's spans per
+  // direction): peak -1.62 %, half width -0.38 %.  3 % on both (was 35 %):
+  // a margin of 1.9 on the peak, more on the half width, whose contact edge
+  // is read inside a coarse span.
+  constexpr double kCoarseBand = 0.03;
+  EXPECT_NEAR(double(j["contact"]["max_pressure"]) / p0, 1.0, kCoarseBand) << "coarse, but the Hertz peak";
+  EXPECT_NEAR(double(j["contact"]["half_width"]) / a, 1.0, kCoarseBand);
 }
 
 TEST(EndToEnd, NeoHookean3DContactSmoke) {
@@ -109,7 +117,9 @@ TEST(EndToEnd, StudyJsonAndCsvAgree) {
   ASSERT_EQ(j["levels"].size(), 3u);
   ASSERT_EQ(rows.size(), 4u) << "header and one row per level";
   EXPECT_EQ(rows[0][0], "level");
-  // The L2 rate of the Lame cylinder at p = 2 is 3 (the closed form is the reference).
+  // The L2 rate of the Lame cylinder at p = 2 is 3 (the closed form is the
+  // reference); measured 3.084 between levels 1 and 2 (pre-asymptotic, 3.035
+  // a level further): within 0.3 of 3.
   const auto& rates = j["rates"]["displacement_l2"];
   ASSERT_EQ(rates.size(), 2u);
   EXPECT_NEAR(rates.back().get<double>(), 3.0, 0.3);

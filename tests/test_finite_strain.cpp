@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -143,8 +144,11 @@ TEST(FiniteStrainNewton, ConvergesQuadraticallyOnceTheActiveSetSettles) {
 
 TEST(FiniteStrainHertz, NeoHookeanAtSmallLoadReproducesLinearHertz) {
   // At P = 0.003 strains are ~1e-2: Neo-Hookean and linear elasticity agree
-  // to that order; DESIGN asks for a and p0 within 1 % of the linear values.
-  constexpr double kTolerance = 0.01;
+  // to that order.  Measured at a01e0b0: Neo-Hookean / linear peak 0.99200,
+  // half width 1.00807 (the half width moves by whole spans of the contact
+  // edge); 1 % leaves a margin of 1.2.  Neo-Hookean peak / Hertz p0 0.99016:
+  // 1.5 % (was 2 %), a margin of 1.5.
+  constexpr double kTolerance = 0.01, kHertzTolerance = 0.015;
   CaseSpec lin = read_case(kSource + "/cases/hertz2d.toml");
   CaseSpec nh = lin;
   nh.model = "neo_hookean";
@@ -154,16 +158,36 @@ TEST(FiniteStrainHertz, NeoHookeanAtSmallLoadReproducesLinearHertz) {
   mn.quiet = true;
   const RunResult rl = solve_model(ml), rn = solve_model(mn);
   ASSERT_EQ(rn.status, "converged");
+  std::printf("Neo-Hookean / linear: peak %.6f, half width %.6f; Neo-Hookean peak / Hertz %.6f\n",
+              rn.contact->report.max_pressure / rl.contact->report.max_pressure,
+              rn.contact->report.half_width / rl.contact->report.half_width, rn.contact->report.max_pressure / 0.045812);
   EXPECT_NEAR(rn.contact->report.max_pressure / rl.contact->report.max_pressure, 1.0, kTolerance);
   EXPECT_NEAR(rn.contact->report.half_width / rl.contact->report.half_width, 1.0, kTolerance);
-  // and both against Hertz (linear values within their own tolerances)
-  EXPECT_NEAR(rn.contact->report.max_pressure / 0.045812, 1.0, 0.02);
+  // and against Hertz (the linear values have their own test, test_hertz)
+  EXPECT_NEAR(rn.contact->report.max_pressure / 0.045812, 1.0, kHertzTolerance);
 }
 
 TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
-  // total contact force = the follower load's resultant, to the Newton tolerance
+  // Total contact force = the follower load's resultant.  Measured 3.0e-13
+  // relative (the pressure case: the last Newton step lands at round-off);
+  // the bound is what Newton's stop (|R|_inf <= 1e-9 of the force scale)
+  // guarantees summed over the ~100 loaded dofs: 1e-7.
   constexpr double kForceTolerance = 1e-7;
-  for (const char* name : {"hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement"}) {
+  // Newton's work, measured at a01e0b0 (steps: iterations):
+  //   pressure      8 steps: 9 6 6 5 6 6 6 5 = 49, no cut-back
+  //   displacement  7 steps: 6 6 5 6 5 5 5 = 38, no cut-back
+  // Bounds with a margin: at most 12 iterations in a step (the first step's 9
+  // + 3; quadratic convergence takes 5-6, a tangent that lost a term
+  // converges linearly and needs more), no cut-back, and the total within
+  // 20 % of the measured one.  (Every step's count <= max_newton_iterations
+  // = 30, the former check, holds for any converged run.)
+  constexpr int kMaxPerStep = 12;
+  struct Shipped {
+    const char* name;
+    int total_iterations;
+  };
+  for (const Shipped& c : {Shipped{"hertz2d_neohookean_pressure", 49}, Shipped{"hertz2d_neohookean_displacement", 38}}) {
+    const char* name = c.name;
     Model m = model_of(kSource + "/cases/" + name + ".toml");
     const RunResult r = solve_model(m);
     EXPECT_EQ(r.status, "converged") << name;
@@ -173,30 +197,43 @@ TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
     if (r.applied_force > 0) {
       EXPECT_NEAR(r.contact->report.total_force / r.applied_force, 1.0, kForceTolerance) << name;
     }
-    for (const auto& st : r.load_steps->steps) EXPECT_LE(st.newton_iterations, m.spec.loading.max_newton_iterations);
+    int total = 0;
+    for (const auto& st : r.load_steps->steps) {
+      EXPECT_LE(st.newton_iterations, kMaxPerStep) << name << ", step at t = " << st.load_factor;
+      EXPECT_EQ(st.cut_backs, 0) << name << ", step at t = " << st.load_factor;
+      total += st.newton_iterations;
+    }
+    EXPECT_LE(total, 1.2 * c.total_iterations) << name;
     EXPECT_EQ(r.load_curve.size(), r.load_steps->steps.size());
   }
 }
 
-// GetFEM's converged values of the two paper 4.3 cases (5-6 digits, two mesh
-// families up to N = 128: ../shared/peers/getfem-largedef/README.md,
-// section 0), within issue 11's tolerances: contact force 0.5 %, deformed
-// contact half width 3 %, nominal peak pressure 3 %.  Measured: force
-// 2e-6 and 4e-5, half width +0.0 % and -0.4 %, peak pressure -0.003 % and
-// -0.004 %.
+// GetFEM's converged values of the two paper 4.3 cases (README.md, "Large
+// deformation (Neo-Hookean, paper 4.3)": 6 digits for force and peak, 4 for
+// the half width; GetFEM's own scripts are not in this repository).
+// Tolerances from the values measured at a01e0b0 (tests/data/golden), with a
+// margin of about 2.5 above the larger of the two cases:
+//  - contact force: measured +3.4e-6 and +4.1e-5 relative -> 1e-4 (was 0.5 %);
+//  - nominal peak pressure: -0.0030 % and -0.0036 % -> 0.01 % (was 3 %);
+//  - deformed half width, read from the discrete contact edge and so
+//    bracketed by the span there: +0.024 % (pressure) -> 0.06 %, and -0.44 %
+//    (displacement, where the edge sits in a coarser span) -> 0.6 % (both
+//    were 3 %; the margin is 1.4 there, as the edge moves by whole spans).
 TEST(FiniteStrainCases, ShippedCasesMatchGetFemConvergedValues) {
+  constexpr double kForce = 1e-4, kPeak = 1e-4;
   struct Converged {
     const char* name;
     double force, half_width, max_pressure;
+    double half_width_tolerance;
   };
-  for (const Converged& c : {Converged{"hertz2d_neohookean_pressure", 0.111476, 0.4959, 0.238557},
-                             Converged{"hertz2d_neohookean_displacement", 0.366592, 0.7673, 0.570388}}) {
+  for (const Converged& c : {Converged{"hertz2d_neohookean_pressure", 0.111476, 0.4959, 0.238557, 6e-4},
+                             Converged{"hertz2d_neohookean_displacement", 0.366592, 0.7673, 0.570388, 6e-3}}) {
     Model m = model_of(kSource + "/cases/" + c.name + ".toml");
     const RunResult r = solve_model(m);
     ASSERT_EQ(r.status, "converged") << c.name;
-    EXPECT_NEAR(r.contact->report.total_force, c.force, 0.005 * c.force) << c.name;
-    EXPECT_NEAR(r.half_width_deformed, c.half_width, 0.03 * c.half_width) << c.name;
-    EXPECT_NEAR(r.contact->report.max_pressure, c.max_pressure, 0.03 * c.max_pressure) << c.name;
+    EXPECT_NEAR(r.contact->report.total_force, c.force, kForce * c.force) << c.name;
+    EXPECT_NEAR(r.half_width_deformed, c.half_width, c.half_width_tolerance * c.half_width) << c.name;
+    EXPECT_NEAR(r.contact->report.max_pressure, c.max_pressure, kPeak * c.max_pressure) << c.name;
   }
 }
 

@@ -5,8 +5,9 @@
 //  - Analytic a and p0 (Johnson) equal the values printed in docs/design.md ("Reference solutions").
 //  - The computed max pressure, half width and contact force against them.
 //  - p = 3 (N3/S1): stable, no oscillation from one multiplier to the next.
-//  - A p = 2 refinement study on nested meshes: the displacement H1 rate and
-//    the pressure rate against a refined reference (paper: ~1.5 and ~0.8).
+//  - A p = 2 refinement study on nested meshes: the displacement H1 and L2
+//    rates and the pressure rates against a refined reference and Hertz
+//    (paper: ~1.5, ~2, ~0.8, ~0.6; measured here 2.02, 3.36, 1.38, 1.27).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,10 +34,18 @@ const std::string kSourceDir = IGAC_SOURCE_DIR;
 double printed_tolerance(double v) { return 0.5 * std::pow(10.0, std::floor(std::log10(std::abs(v))) - 4); }
 
 constexpr double kR = 1.0, kE = 1.0, kNu = 0.3;
-// The acceptance bands at the default refinement (64 x 16 graded).
-constexpr double kMaxPressureBand = 0.02;   // |p_max - p0| / p0
+// Bands at the default refinement (64 x 16 graded), from the values measured
+// at a01e0b0 (tests/data/golden):
+//  - peak |p_max - p0| / p0: -0.185 % (p = 2), -0.168 % (p = 3): 0.5 % (was
+//    2 %), a margin of 2.7;
+//  - half width |a_h - a| / a: -0.76 % (P = 0.003), -1.24 % (P = 0.01), but
+//    a_h moves by whole spans of the contact edge, 3.7 % (P = 0.003) and
+//    4.1 % (P = 0.01) of a on these gradings: 5 %, about one span;
+//  - contact force against P R: -3.3e-16 and -6.7e-16, round-off of the
+//    solve (the 3D cases: <= 1.8e-15): 1e-12 (was 1e-8), a margin of 500.
+constexpr double kMaxPressureBand = 0.005;  // |p_max - p0| / p0
 constexpr double kHalfWidthBand = 0.05;     // |a_h - a| / a: a_h is bracketed by element size
-constexpr double kForceTolerance = 1e-8;    // contact force vs P R, relative (round-off of the solve)
+constexpr double kForceTolerance = 1e-12;   // contact force vs P R, relative (round-off of the solve)
 
 struct CaseRun {
   Model model;
@@ -65,7 +74,8 @@ TEST(Hertz2D, AnalyticValuesMatchDesign) {
   EXPECT_DOUBLE_EQ(low.pressure(0), low.p0);
   EXPECT_EQ(low.pressure(1.01 * low.a), 0.0);
   EXPECT_NEAR(std::numbers::pi * low.a * low.p0 / 2, 2 * kR * 0.003, 1e-15);
-  // 3D (DESIGN table): the printed formula of the paper omits pi; the table includes it.
+  // 3D (the values of cases/hertz3d.toml and hertz3d_high_load.toml): the
+  // printed formula of the paper omits pi; these include it.
   const HertzSolution s = hertz_sphere(kR, 1e-4, kE, kNu);
   EXPECT_NEAR(s.a, 0.059853, printed_tolerance(0.059853));
   EXPECT_NEAR(s.p0, 0.041872, printed_tolerance(0.041872));
@@ -86,20 +96,22 @@ TEST(Hertz2D, DefaultCaseMatchesHertz) {
   EXPECT_NEAR(rep.half_width, 0.083378, kHalfWidthBand * 0.083378);
   EXPECT_NEAR(rep.total_force, 0.003 * kR, kForceTolerance * 0.003 * kR);
   EXPECT_NEAR(r.applied_force, 0.003 * kR, kForceTolerance * 0.003 * kR);
-  // L2 pressure error against Hertz: 2.4 % measured; Hertz's half space is
-  // not the quarter disc, so it cannot go to zero, but it must be small.
+  // L2 pressure error against Hertz: 2.41 % measured; Hertz's half space is
+  // not the quarter disc, so it cannot go to zero, but it must be small:
+  // 3 % (was 5 %), a margin of 1.25.
   ASSERT_TRUE(r.pressure_error);
   const double rel = r.pressure_error->first / r.pressure_error->second;
-  EXPECT_LT(rel, 0.05);
+  EXPECT_LT(rel, 0.03);
   RecordProperty("max_pressure", std::to_string(rep.max_pressure));
   RecordProperty("half_width", std::to_string(rep.half_width));
   RecordProperty("pressure_l2_rel", std::to_string(rel));
 }
 
 TEST(Hertz2D, HighLoadCaseConverges) {
-  // P = 0.01: a = 0.15 R, beyond the half-space hypothesis; docs/design.md ("Reference solutions"): a
-  // converged numerical p0 sits about 0.6 % below Hertz.
-  constexpr double kBelowHertzBand = 0.015;
+  // P = 0.01: a = 0.15 R, beyond the half-space hypothesis: the peak sits
+  // below Hertz, measured -0.582 % at a01e0b0; 1 % (was 1.5 %), a margin of
+  // 1.7.
+  constexpr double kBelowHertzBand = 0.01;
   const CaseRun run = run_case("hertz2d_high_load.toml");
   const RunResult& r = run.result;
   ASSERT_EQ(r.status, "converged");
@@ -215,18 +227,20 @@ std::vector<StudyLevel> hertz_study(CaseSpec spec, int levels) {
 
 double rate(double e0, double e1, double h0, double h1) { return std::log(e0 / e1) / std::log(h0 / h1); }
 
-TEST(Hertz2DStudy, QuadraticRatesMatchThePaper) {
+TEST(Hertz2DStudy, QuadraticRatesStayAtTheirMeasuredValues) {
   // hertz2d (64 x 16, the paper's grading along the face and layers graded
   // toward it) at refine 0..3; refine 3 (133k dofs) is the reference, so
   // refine 0 and 1 have h_ref <= h/4 as the paper asks, and the rates are
   // taken between them.  Paper (section 4.1, P = 0.003): H1 ~ 1.5, L2 ~ 2,
-  // pressure vs reference ~ 0.8, vs Hertz ~ 0.6.  Measured here: H1 2.02,
-  // L2 3.36, pressure vs reference 1.38, vs Hertz 1.27 (pre-asymptotic on
-  // the graded layers; the paper's uniform layers gave 1.59, 3.03, 1.05,
-  // 0.98).  The lower ends are the acceptance
-  // thresholds; the upper ends catch a reference that is not one (a rate
-  // far above the smoothness of the contact solution, ~1.5 in H1).
-  constexpr double kH1RateMin = 1.3, kL2RateMin = 1.8, kPressureRefRateMin = 0.7, kPressureHertzRateMin = 0.5;
+  // pressure vs reference ~ 0.8, vs Hertz ~ 0.6.  Measured at a01e0b0: H1
+  // 2.020, L2 3.364, pressure vs reference 1.377, vs Hertz 1.265
+  // (pre-asymptotic on the graded layers; the paper's uniform layers gave
+  // 1.59, 3.03, 1.05, 0.98).  The lower ends sit 0.1-0.16 below the measured
+  // rates (was 1.3, 1.8, 0.7, 0.5, far below): a rate falls by 0.1 when the
+  // finer level's error grows by 7 % against the coarser one's.  The upper
+  // ends catch a reference that is not one (a rate far above the smoothness
+  // of the contact solution, ~1.5 in H1).
+  constexpr double kH1RateMin = 1.9, kL2RateMin = 3.2, kPressureRefRateMin = 1.25, kPressureHertzRateMin = 1.15;
   constexpr double kRateMax = 3.5;
   constexpr int kLevels = 4;
   const std::vector<StudyLevel> st = hertz_study(read_case(kSourceDir + "/cases/hertz2d.toml"), kLevels);

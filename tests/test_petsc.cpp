@@ -33,10 +33,17 @@ using igac_test::run_igac;
 using igac_test::TempDir;
 const std::string kCases = std::string(IGAC_SOURCE_DIR) + "/cases/";
 
-// The direct and the PETSc solves differ by round-off of two different
-// factorisations (CHOLMOD + dense Schur complement against MUMPS LDL^T on
-// the saddle-point matrix); 1e-8 relative is the bar.
-constexpr double kSameResult = 1e-8;
+// How far a PETSc run may sit from the direct one (contact half width, peak,
+// force; largest displacement), relative; measured at a01e0b0 and printed
+// by expect_same_result:
+//  - MUMPS LDL^T on the saddle-point matrix against CHOLMOD + dense Schur
+//    complement, round-off of two factorisations: <= 1.8e-12 (contact
+//    numbers, 2D) and 2.8e-13 (displacements, 3D): 1e-10, a margin of 55;
+//  - Krylov paths, which stop at their tolerance: field split 2.0e-12 /
+//    1.2e-11, spline multigrid 1.75e-9 (the 2D half width at refine 2) /
+//    3.0e-11: 1e-8, a margin of 5.7 (was 1e-8 for both, "the bar").
+constexpr double kSameFactorised = 1e-10;
+constexpr double kSameKrylov = 1e-8;
 
 #ifdef IGAC_WITH_PETSC
 constexpr bool kHavePetsc = true;
@@ -89,7 +96,7 @@ fs::path coarse_case(const std::string& name, const std::string& elements, const
 // `same_path` also every active set on the way (not for a PETSc run at
 // --refine >= 1, which starts from the coarser mesh's solution where the
 // direct path starts from the closed gaps).
-void expect_same_result(const fs::path& direct, const fs::path& petsc, bool same_path = true) {
+void expect_same_result(const fs::path& direct, const fs::path& petsc, double tolerance, bool same_path = true) {
   const auto d = summary_of(direct), p = summary_of(petsc);
   EXPECT_EQ(p["status"], "converged");
   EXPECT_EQ(p["solver"]["type"], "petsc");
@@ -97,9 +104,11 @@ void expect_same_result(const fs::path& direct, const fs::path& petsc, bool same
     EXPECT_EQ(p["load_steps"][0]["active_set_sizes"], d["load_steps"][0]["active_set_sizes"]);
   }
   EXPECT_EQ(p["contact"]["active"], d["contact"]["active"]);
+  double worst = 0;  // largest relative difference, printed
   for (const char* key : {"half_width", "max_pressure", "total_force"}) {
     const double a = d["contact"][key], b = p["contact"][key];
-    EXPECT_LE(std::abs(a - b), kSameResult * std::abs(a)) << key << ": direct " << a << ", petsc " << b;
+    worst = std::max(worst, std::abs(a - b) / std::abs(a));
+    EXPECT_LE(std::abs(a - b), tolerance * std::abs(a)) << key << ": direct " << a << ", petsc " << b;
   }
   const std::vector<double> ud = displacements(direct), up = displacements(petsc);
   ASSERT_EQ(ud.size(), up.size());
@@ -109,7 +118,9 @@ void expect_same_result(const fs::path& direct, const fs::path& petsc, bool same
     diff = std::max(diff, std::abs(ud[i] - up[i]));
     norm = std::max(norm, std::abs(ud[i]));
   }
-  EXPECT_LE(diff, kSameResult * norm) << "largest displacement difference " << diff << " of " << norm;
+  EXPECT_LE(diff, tolerance * norm) << "largest displacement difference " << diff << " of " << norm;
+  std::cout << petsc.filename().string() << " against direct: contact numbers " << worst << ", displacements "
+            << diff / norm << " relative\n";
 }
 
 class PetscPath : public ::testing::Test {
@@ -144,10 +155,10 @@ void expect_petsc_matches_direct(const std::string& name, const std::string& ele
   ASSERT_EQ(o.exit_code, 0) << o.output;
   o = run_igac("run " + c + " --quiet --out one --solver petsc", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  expect_same_result(tmp.path() / "direct", tmp.path() / "one");
+  expect_same_result(tmp.path() / "direct", tmp.path() / "one", kSameFactorised);
   o = run_mpi(2, "run " + c + " --quiet --out two --solver petsc", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  expect_same_result(tmp.path() / "direct", tmp.path() / "two");
+  expect_same_result(tmp.path() / "direct", tmp.path() / "two", kSameFactorised);
   EXPECT_EQ(summary_of(tmp.path() / "two")["solver"]["ranks"], 2);
 }
 
@@ -176,7 +187,7 @@ TEST_F(PetscPath, KrylovFieldSplitMatchesDirect) {
   const auto p = summary_of(tmp.path() / "krylov");
   EXPECT_EQ(p["solver"]["method"], "fgmres + fieldsplit");
   EXPECT_GT(p["solver"]["krylov_iterations"][0].get<int>(), 1);
-  expect_same_result(tmp.path() / "direct", tmp.path() / "krylov");
+  expect_same_result(tmp.path() / "direct", tmp.path() / "krylov", kSameKrylov);
 }
 
 TEST_F(PetscPath, CaseFileChoosesTheSolver) {
@@ -248,7 +259,7 @@ void expect_multigrid_matches_direct(const std::string& name, const std::string&
   ASSERT_EQ(o.exit_code, 0) << o.output;
   o = run_mpi(2, multigrid_args(c, refine) + " --out mg", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  expect_same_result(tmp.path() / "direct", tmp.path() / "mg", false);
+  expect_same_result(tmp.path() / "direct", tmp.path() / "mg", kSameKrylov, false);
   const auto s = summary_of(tmp.path() / "mg");
   const size_t direct_path = summary_of(tmp.path() / "direct")["load_steps"][0]["active_set_sizes"].size(),
                nested_path = s["load_steps"][0]["active_set_sizes"].size();
@@ -270,10 +281,12 @@ TEST_F(PetscPath, SplineMultigridMatchesDirectIn3D) {
 
 // The point of multigrid: the iteration count (mean over the active-set
 // iterations) does not grow with the mesh.  Levels 1 and 2 of 2D Hertz on
-// one process and of the 3D Hertz study (its own mesh) on two; the issue's
-// bar is 1.5x from one level to the next (measured: 8.5 -> 9 in 2D,
-// 9.2 -> 9.7 in 3D, and 9.7 at level 3, docs/petsc.md).
-constexpr double kBoundedGrowth = 1.5;
+// one process and of the 3D Hertz study (its own mesh) on two.  Measured:
+// 8.5 -> 9 in 2D (x1.06), 9.2 -> 9.7 in 3D (x1.05), and 9.7 at level 3
+// (docs/petsc.md).  At most x1.2 from one level to the next (was x1.5): a margin of
+// more than 3 on the measured growth, and a level-dependent smoother or
+// coarse grid (x1.4 per level and more) fails it.
+constexpr double kBoundedGrowth = 1.2;
 
 TEST_F(PetscPath, SplineMultigridIterationsStayBounded) {
   TempDir tmp("petscmglevels");
@@ -313,13 +326,18 @@ TEST_F(PetscPath, SplineMultigridStudyMatchesDirect) {
   const auto m = nlohmann::json::parse(igac_test::read_file(tmp.path() / "mg" / "study.json"));
   ASSERT_EQ(d["levels"].size(), m["levels"].size());
   // Errors of the same discrete solutions: the Krylov solves stop at 1e-12
-  // of the right-hand side, far below the errors' own 1e-6 digits.
-  constexpr double kSameErrors = 1e-6;
+  // of the right-hand side; an error norm is a difference of solutions and
+  // loses digits to it.  Measured 4.1e-9 relative at most: 1e-7 (was 1e-6),
+  // a margin of 24.
+  constexpr double kSameErrors = 1e-7;
+  double worst = 0;
   for (size_t l = 0; l < d["levels"].size(); ++l)
     for (const auto& [key, value] : d["levels"][l]["errors"].items()) {
       const double a = value, b = m["levels"][l]["errors"][key];
+      worst = std::max(worst, std::abs(b - a) / std::abs(a));
       EXPECT_NEAR(b, a, kSameErrors * std::abs(a)) << "level " << l << " " << key;
     }
+  std::cout << "study errors, multigrid against direct: " << worst << " relative\n";
   o = run_mpi(2, "study " + c + " --levels 4 --quiet --out two --solver petsc", tmp.path());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("igac study runs on one process"), std::string::npos) << o.output;

@@ -29,6 +29,7 @@
 #include "engine/spline/refinement.hpp"
 #include "engine/total_lagrangian.hpp"
 #include "materials/hyperelastic.hpp"
+#include "distort.hpp"
 
 namespace igac {
 namespace {
@@ -52,20 +53,7 @@ NurbsPatch refined(const NurbsPatch& patch, int degree, int parts) {
   return subdivide(elevate_to(patch, degree), parts);
 }
 
-// Moves the interior control points by up to `amount` (a curved, non-affine map).
-NurbsPatch distort_interior(const NurbsPatch& p, double amount, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> shift(-amount, amount);
-  Eigen::MatrixXd P = p.points();
-  for (int i = 0; i < p.num_control_points(); ++i) {
-    const auto m = p.multi_index(i);
-    bool interior = true;
-    for (int d = 0; d < p.param_dim(); ++d) interior = interior && m[d] > 0 && m[d] + 1 < p.num_basis(d);
-    if (interior)
-      for (int c = 0; c < p.space_dim(); ++c) P(i, c) += shift(rng);
-  }
-  return NurbsPatch(p.all_knots(), P, p.weights());
-}
+using igac_test::distort_interior;  // tests/support/distort.hpp
 
 // Random free values: a homogeneous stretch G X (large, so the stress and
 // with it the geometric stiffness matter; diagonal, so it agrees with the
