@@ -1,6 +1,5 @@
 #include "engine/load_stepping.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
@@ -11,10 +10,10 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include "engine/stopwatch.hpp"
+
 namespace igac {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Everything one KINSOL solve (one load-step attempt) works with.
 struct Attempt {
@@ -77,10 +76,10 @@ int residual_fn(N_Vector u, N_Vector f, void* data) {
 }
 
 int residual_body(Attempt& a, N_Vector u, N_Vector f) {
-  const auto t0 = Clock::now();
+  const Stopwatch clock;
   Eigen::VectorXd x = view(u), r;
   const bool ok = a.problem.residual(a.t, x, r);
-  a.summary.residual_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  a.summary.residual_seconds += clock.seconds();
   if (!ok || !r.allFinite()) {
     a.failure = "inadmissible state (det F <= 0 or a non-finite residual)";
     return 1;  // recoverable: the line search shortens the step
@@ -109,9 +108,9 @@ int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
     }
     a.active_history.push_back(set);
   }
-  const auto t0 = Clock::now();
+  const Stopwatch clock;
   const bool ok = a.problem.block_jacobian(a.t, x, a.J);
-  a.summary.jacobian_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  a.summary.jacobian_seconds += clock.seconds();
   if (!ok) {
     a.failure = "inadmissible state in the Jacobian";
     return -1;
@@ -239,7 +238,7 @@ std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, cons
 LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& opt,
                                    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
   LoadSteppingSummary summary;
-  const auto t_start = Clock::now();
+  const Stopwatch clock;
   SUNContext ctx;
   SUNContext_Create(nullptr, &ctx);
   BlockJacobian J;
@@ -296,7 +295,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   }
   SUNContext_Free(&ctx);
   summary.linear = solver.stats();
-  summary.newton_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  summary.newton_seconds = clock.seconds();
   return summary;
 }
 
