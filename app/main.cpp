@@ -282,6 +282,9 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     say_any(fmt::format("igac: error: {}: out of memory (reduce refine or degree)", case_path));
     return 1;
+  } catch (const std::logic_error& e) {  // a bug in igac, not the case or the solve: exit 3
+    say_any(fmt::format("igac: internal error: {}", e.what()));
+    return 3;
   } catch (const std::exception& e) {
     say_any(fmt::format("igac: error: {}: {}", case_path, e.what()));
     return 1;

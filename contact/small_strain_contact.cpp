@@ -3,15 +3,13 @@
 #include <algorithm>
 
 #include "engine/bordered_spd.hpp"
-#include <chrono>
+#include "engine/stopwatch.hpp"
 #include <memory>
 #include <fmt/format.h>
 #include <set>
 
 namespace igac {
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 // What the active-set iterations need of K^-1: S_AA, G K^-1 f, and
@@ -191,11 +189,11 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     for (int i = 0; i < n; ++i)
       if (on_face[i]) face_eqs.push_back(i);
   }
-  auto t0 = Clock::now();
+  Stopwatch clock;
   const Eigen::SparseMatrix<double> Kp = pin_equations(K, modes.pinned);
   chol.analyze(Kp, opt.face_last ? face_eqs : std::vector<int>{});
   chol.factorize(Kp);
-  sol.factorize_s = since(t0);
+  sol.factorize_s = clock.seconds();
 
   // G with the pinned columns removed (they carry no unknown of K_p).
   RowSparse Gp = op.G;
@@ -206,12 +204,12 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
   Eigen::VectorXd fp = f;
   for (int p : modes.pinned) fp[p] = 0.0;
 
-  t0 = Clock::now();
+  clock.restart();
   ActiveSchur schur(chol, Gp, fp, sol);
   const Eigen::VectorXd Gvf = schur.G_solve_f();
   const Eigen::MatrixXd GR = op.G * modes.modes;  // m x k
   const Eigen::VectorXd Rf = modes.modes.transpose() * f;
-  sol.schur_s += since(t0);
+  sol.schur_s += clock.seconds();
 
   // Initial active set: closed initial gaps; a body not held otherwise
   // starts with the multipliers nearest to the obstacle.
@@ -220,16 +218,16 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
 
   std::set<std::vector<char>> seen;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), c = Eigen::VectorXd::Zero(k), Gu(m);
-  const auto t_iter = Clock::now();
+  const Stopwatch iterations_clock;
   double schur_in_loop = 0;
   for (int it = 0; it < opt.max_iterations; ++it) {
     std::vector<int> A;
     for (int K_ = 0; K_ < m; ++K_)
       if (active[K_]) A.push_back(K_);
     sol.active_set_sizes.push_back(int(A.size()));
-    auto ts = Clock::now();
+    Stopwatch schur_clock;
     const Eigen::MatrixXd S_AA = schur.S_active(A);
-    schur_in_loop += since(ts);
+    schur_in_loop += schur_clock.seconds();
     const int na = int(A.size());
     // [S_AA -G_A R; -R^T G_A^T 0] [lambda_A; c] = [g0_A + G_A K^-1 f; -R^T f]
     Eigen::VectorXd r1(na);
@@ -252,25 +250,25 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     lambda.setZero();
     for (int i = 0; i < na; ++i) lambda[A[i]] = x[i];
     // G u = G v_f - G K^-1 G_A^T lambda_A + G R c
-    ts = Clock::now();
+    schur_clock.restart();
     Gu = Gvf + GR * c - schur.G_solve_Gt(A, lambda);
-    schur_in_loop += since(ts);
+    schur_in_loop += schur_clock.seconds();
     const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
     const std::vector<char> next = next_active_set(lambda, gap, active, k, opt.complementarity_scale);
     sol.weighted_gap = gap;
     if (settle_active_set(next, active, seen, it, sol)) break;
   }
   sol.schur_s += schur_in_loop;
-  sol.iterations_s = since(t_iter) - schur_in_loop;
+  sol.iterations_s = iterations_clock.seconds() - schur_in_loop;
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", opt.max_iterations);
 
   // Final displacement: one more solve with the converged multipliers.
-  t0 = Clock::now();
+  clock.restart();
   Eigen::VectorXd rhs = fp - Gp.transpose() * lambda;
   sol.u = chol.solve(rhs);
   if (k > 0) sol.u += modes.modes * c;
-  sol.iterations_s += since(t0);
+  sol.iterations_s += clock.seconds();
   sol.lambda = lambda;
   sol.active = active;
   return sol;

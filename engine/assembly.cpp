@@ -3,7 +3,7 @@
 #include "engine/sparsity.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
+#include <limits>
 #include <stdexcept>
 
 namespace igac {
@@ -123,90 +123,75 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
 
   LinearSystem s;
   s.K = coupling_pattern(quad, dofs, e_begin, e_end);
-  const int nnz = int(s.K.nonZeros());
 
-  const int n_threads = omp_get_max_threads();
-  // Each thread adds into its own copy of the values (no races, also where
-  // collapsed control points join elements that are far apart).
-  std::vector<std::vector<double>> values(n_threads);
-  std::vector<Eigen::VectorXd> rhs(n_threads);
-  std::vector<double> min_det(n_threads, std::numeric_limits<double>::infinity());
+  // Colour by colour: no two elements of a colour share an equation, so
+  // threads add straight into K's values and f (engine/sparsity.hpp).
+  const std::vector<std::vector<int>> colours = colour_elements(quad, dofs, e_begin, e_end);
+  double* val = s.K.valuePtr();  // zero: the pattern's values
+  s.f = Eigen::VectorXd::Zero(n_free);
+  double* f = s.f.data();
+  double min_det = std::numeric_limits<double>::infinity();
 
-#pragma omp parallel
+#pragma omp parallel reduction(min : min_det)
   {
-    const int tid = omp_get_thread_num();
-    values[tid].assign(nnz, 0.0);
-    rhs[tid].setZero(n_free);
-    double* val = values[tid].data();
     ElementData ed;
     Eigen::MatrixXd Ke, Gw;
     std::array<Eigen::MatrixXd, 3> Gd;  // per direction: n_loc x n_q gradients
     std::array<std::array<Eigen::MatrixXd, 3>, 3> M;
     std::vector<int> eq;
-#pragma omp for schedule(dynamic, 64)
-    for (int e = e_begin; e < e_end; ++e) {
-      quad.evaluate(e, ed, true);
-      min_det[tid] = std::min(min_det[tid], ed.min_det_J);
-      const int nl = int(ed.cps.size()), nq = int(ed.JxW.size()), nd = nl * dim;
-      // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
-      // K_(a i)(b j) = lambda M_ij + mu M_ji + mu delta_ij sum_k M_kk.
-      for (int i = 0; i < dim; ++i) {
-        Gd[i].resize(nl, nq);
-        for (int q = 0; q < nq; ++q) Gd[i].col(q) = ed.dN[q].col(i);
-      }
-      for (int i = 0; i < dim; ++i) {
-        Gw.noalias() = Gd[i] * ed.JxW.asDiagonal();
-        for (int j = i; j < dim; ++j) M[i][j].noalias() = Gw * Gd[j].transpose();
-      }
-      Eigen::MatrixXd trace = M[0][0];
-      for (int k = 1; k < dim; ++k) trace += M[k][k];
-      Ke.resize(nd, nd);
-      for (int i = 0; i < dim; ++i)
-        for (int j = 0; j < dim; ++j) {
-          const Eigen::MatrixXd& Mij = i <= j ? M[i][j] : M[j][i];
-          for (int b = 0; b < nl; ++b)
-            for (int a = 0; a < nl; ++a) {
-              const double mij = i <= j ? Mij(a, b) : Mij(b, a);  // M_ij(a, b)
-              const double mji = i <= j ? Mij(b, a) : Mij(a, b);  // M_ji(a, b)
-              Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
-            }
+    for (const std::vector<int>& colour : colours) {
+      const int n_colour = int(colour.size());
+#pragma omp for schedule(dynamic, 16)
+      for (int idx = 0; idx < n_colour; ++idx) {
+        const int e = colour[idx];
+        quad.evaluate(e, ed, true);
+        min_det = std::min(min_det, ed.min_det_J);
+        const int nl = int(ed.cps.size()), nq = int(ed.JxW.size()), nd = nl * dim;
+        // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
+        // K_(a i)(b j) = lambda M_ij + mu M_ji + mu delta_ij sum_k M_kk.
+        for (int i = 0; i < dim; ++i) {
+          Gd[i].resize(nl, nq);
+          for (int q = 0; q < nq; ++q) Gd[i].col(q) = ed.dN[q].col(i);
         }
-      eq.resize(nd);
-      for (int a = 0; a < nl; ++a)
-        for (int i = 0; i < dim; ++i) eq[a * dim + i] = dofs.equation(ed.cps[a] * dim + i);
-      for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
-        if (eq[c] >= 0) continue;
-        const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
-        if (g != 0.0)
-          for (int r = 0; r < nd; ++r)
-            if (eq[r] >= 0) rhs[tid][eq[r]] -= Ke(r, c) * g;
+        for (int i = 0; i < dim; ++i) {
+          Gw.noalias() = Gd[i] * ed.JxW.asDiagonal();
+          for (int j = i; j < dim; ++j) M[i][j].noalias() = Gw * Gd[j].transpose();
+        }
+        Eigen::MatrixXd trace = M[0][0];
+        for (int k = 1; k < dim; ++k) trace += M[k][k];
+        Ke.resize(nd, nd);
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j) {
+            const Eigen::MatrixXd& Mij = i <= j ? M[i][j] : M[j][i];
+            for (int b = 0; b < nl; ++b)
+              for (int a = 0; a < nl; ++a) {
+                const double mij = i <= j ? Mij(a, b) : Mij(b, a);  // M_ij(a, b)
+                const double mji = i <= j ? Mij(b, a) : Mij(a, b);  // M_ji(a, b)
+                Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
+              }
+          }
+        eq.resize(nd);
+        for (int a = 0; a < nl; ++a)
+          for (int i = 0; i < dim; ++i) eq[a * dim + i] = dofs.equation(ed.cps[a] * dim + i);
+        for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
+          if (eq[c] >= 0) continue;
+          const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
+          if (g != 0.0)
+            for (int r = 0; r < nd; ++r)
+              if (eq[r] >= 0) f[eq[r]] -= Ke(r, c) * g;
+        }
+        scatter_element_matrix(s.K, val, eq, Ke);
+        if (has_body_force)
+          for (int q = 0; q < nq; ++q)
+            for (int a = 0; a < nl; ++a)
+              for (int i = 0; i < dim; ++i)
+                if (eq[a * dim + i] >= 0) f[eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
       }
-      scatter_element_matrix(s.K, val, eq, Ke);
-      if (has_body_force)
-        for (int q = 0; q < nq; ++q)
-          for (int a = 0; a < nl; ++a)
-            for (int i = 0; i < dim; ++i)
-              if (eq[a * dim + i] >= 0) rhs[tid][eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
     }
   }
-  s.min_det_J = *std::min_element(min_det.begin(), min_det.end());
+  s.min_det_J = min_det;
   if (!(s.min_det_J > 0))
     throw std::runtime_error(fmt::format("the geometry map folds: det J = {:.3g} at a Gauss point", s.min_det_J));
-  // The team may have had fewer threads than omp_get_max_threads() (dynamic
-  // threads on a loaded machine): sum the copies that were filled.
-  std::vector<const double*> parts;
-  for (const auto& v : values)
-    if (!v.empty()) parts.push_back(v.data());
-  double* out = s.K.valuePtr();
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nnz; ++k) {
-    double v = 0;
-    for (const double* p : parts) v += p[k];
-    out[k] = v;
-  }
-  s.f = Eigen::VectorXd::Zero(n_free);
-  for (const auto& r : rhs)
-    if (r.size() == n_free) s.f += r;
   return s;
 }
 

@@ -9,7 +9,8 @@
 // Coincident control points of a collapsed face share their unknowns.
 //
 // a(u, v) = int sigma(u) : eps(v) dX, assembled element by element with
-// (p+1)^dim Gauss points, threaded over elements (OpenMP).  Loads: a
+// (p+1)^dim Gauss points, threaded over the elements of one colour at a time
+// (OpenMP; engine/sparsity.hpp's colouring: no per-thread copy of K).  Loads: a
 // pressure P on faces (traction -P n, n the outward normal of the body) and a
 // body force b (per unit volume).
 #pragma once

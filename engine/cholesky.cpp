@@ -1,7 +1,6 @@
 #include "engine/cholesky.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cholmod.h>
 #include <cstdlib>
 #include <dlfcn.h>
@@ -9,12 +8,10 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "engine/stopwatch.hpp"
+
 namespace igac {
 namespace {
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // A CHOLMOD view (no copy) of the lower triangle of a compressed Eigen matrix.
 cholmod_sparse view_lower(const Eigen::SparseMatrix<double>& A) {
   cholmod_sparse s{};
@@ -132,7 +129,7 @@ double SparseCholesky::factor_nonzeros() const {
 }
 
 void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A_in, const std::vector<int>& last) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   Eigen::SparseMatrix<double> A = A_in;
   A.makeCompressed();
   cholmod_sparse a = view_lower(A);
@@ -192,12 +189,12 @@ void SparseCholesky::analyze(const Eigen::SparseMatrix<double>& A_in, const std:
     for (int r = pi[k] + nscol; r < pi[k + 1]; ++r) first = std::min(first, ls[r]);
     if (first < n) I.parent[k] = I.super_of[first];
   }
-  analyze_s_ = since(t0);
+  analyze_s_ = clock.seconds();
 }
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A_in) {
   if (!analyzed()) analyze(A_in);
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   Eigen::SparseMatrix<double> A = A_in;
   A.makeCompressed();
   cholmod_sparse a = view_lower(A);
@@ -209,7 +206,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A_in) {
         "the stiffness matrix is not positive definite: the body can move rigidly "
         "(add Dirichlet conditions or contact) or the data are singular");
   if (I.c.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorisation failed (status {})", I.c.status));
-  factorize_s_ = since(t0);
+  factorize_s_ = clock.seconds();
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {

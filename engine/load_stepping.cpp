@@ -1,7 +1,7 @@
 #include "engine/load_stepping.hpp"
 
-#include <chrono>
 #include <cmath>
+#include <exception>
 #include <fmt/format.h>
 #include <memory>
 #include <optional>
@@ -11,10 +11,11 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include "engine/numerical_failure.hpp"
+#include "engine/stopwatch.hpp"
+
 namespace igac {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Everything one KINSOL solve (one load-step attempt) works with.
 struct Attempt {
@@ -26,24 +27,29 @@ struct Attempt {
   LoadSteppingSummary& summary;  // accumulates the time spent in callbacks
   LoadStepRecord record;
   std::vector<std::vector<char>> active_history;
-  std::string failure;
+  std::string failure;        // why the attempt failed (an expected, numerical reason)
+  std::exception_ptr error;   // anything else thrown in a callback: rethrown once KINSOL returns
 };
 
 Eigen::Map<Eigen::VectorXd> view(N_Vector v) { return {N_VGetArrayPointer(v), N_VGetLength(v)}; }
 
 // KINSOL calls back through C frames, which an exception must not cross:
 // every callback runs its body through this barrier, which turns an
-// exception into KINSOL's unrecoverable return code and keeps the reason.
+// exception into KINSOL's unrecoverable return code.  A NumericalFailure
+// (engine/numerical_failure.hpp) is an expected outcome of a trial state:
+// its message is the attempt's failure, and the step is cut back.  Anything
+// else (a bug: std::logic_error, std::out_of_range; std::bad_alloc) is kept
+// as it is and rethrown by solve_step once KINSOL has returned, so it leaves
+// run_load_steps with its own type instead of becoming a "failed" run.
 template <class Body>
 int guarded(Attempt& a, Body&& body) noexcept {
+  if (a.error) return -1;  // KINSOL stops at the first negative return; never evaluate past an error
   try {
     return body();
-  } catch (const std::bad_alloc&) {
-    a.failure = "out of memory in the Newton iteration";
-  } catch (const std::exception& e) {
+  } catch (const NumericalFailure& e) {
     a.failure = e.what();
   } catch (...) {
-    a.failure = "unknown error in the Newton iteration";
+    a.error = std::current_exception();
   }
   return -1;
 }
@@ -65,6 +71,13 @@ struct MatrixDeleter {
   void operator()(_generic_SUNMatrix* m) const { SUNMatDestroy(m); }
 };
 using MatrixPtr = std::unique_ptr<_generic_SUNMatrix, MatrixDeleter>;
+struct ContextOwner {
+  SUNContext ctx = nullptr;
+  ContextOwner() { SUNContext_Create(nullptr, &ctx); }
+  ~ContextOwner() { SUNContext_Free(&ctx); }
+  ContextOwner(const ContextOwner&) = delete;
+  ContextOwner& operator=(const ContextOwner&) = delete;
+};
 
 int residual_body(Attempt& a, N_Vector u, N_Vector f);
 int jacobian_body(Attempt& a, N_Vector u, N_Vector fu);
@@ -77,10 +90,10 @@ int residual_fn(N_Vector u, N_Vector f, void* data) {
 }
 
 int residual_body(Attempt& a, N_Vector u, N_Vector f) {
-  const auto t0 = Clock::now();
+  const Stopwatch clock;
   Eigen::VectorXd x = view(u), r;
   const bool ok = a.problem.residual(a.t, x, r);
-  a.summary.residual_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  a.summary.residual_seconds += clock.seconds();
   if (!ok || !r.allFinite()) {
     a.failure = "inadmissible state (det F <= 0 or a non-finite residual)";
     return 1;  // recoverable: the line search shortens the step
@@ -109,9 +122,9 @@ int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
     }
     a.active_history.push_back(set);
   }
-  const auto t0 = Clock::now();
+  const Stopwatch clock;
   const bool ok = a.problem.block_jacobian(a.t, x, a.J);
-  a.summary.jacobian_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+  a.summary.jacobian_seconds += clock.seconds();
   if (!ok) {
     a.failure = "inadmissible state in the Jacobian";
     return -1;
@@ -193,6 +206,7 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
   KINSetFuncNormTol(kin, opt.tolerance);
   KINSetScaledStepTol(kin, 1e-15);
   const int flag = KINSol(kin, u, opt.line_search ? KIN_LINESEARCH : KIN_NONE, us, fs);
+  if (a.error) std::rethrow_exception(a.error);  // the SUNDIALS objects are freed on the way out
   long iterations = 0;
   KINGetNumNonlinSolvIters(kin, &iterations);
   double fnorm = NAN;
@@ -217,7 +231,8 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
 // ramped loads, prescribed displacements and obstacle motions all enter R
 // through t).  Without a history to extrapolate, this is what keeps a first
 // step of prescribed displacement from inverting the elements next to the
-// moved face.  Nothing (nullopt) when a state is inadmissible or the matrix singular.
+// moved face.  Nothing (nullopt) when a state is inadmissible (false or a
+// NumericalFailure) or the matrix singular; anything else thrown propagates.
 std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, const Eigen::VectorXd& x, double t, double dt,
                                                  BlockJacobian& J, SaddleSolver& solver) {
   try {
@@ -229,7 +244,7 @@ std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, cons
     Eigen::VectorXd dx;
     if (!solver.solve(Eigen::VectorXd((r1 - r0) * (-dt / eps)), dx, 1e-8)) return std::nullopt;
     return Eigen::VectorXd(x + dx);
-  } catch (const std::exception&) {
+  } catch (const NumericalFailure&) {
     return std::nullopt;
   }
 }
@@ -239,9 +254,9 @@ std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, cons
 LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& opt,
                                    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step) {
   LoadSteppingSummary summary;
-  const auto t_start = Clock::now();
-  SUNContext ctx;
-  SUNContext_Create(nullptr, &ctx);
+  const Stopwatch clock;
+  const ContextOwner context;  // freed also when an error propagates
+  const SUNContext ctx = context.ctx;
   BlockJacobian J;
   SaddleSolver solver;  // one for the whole run: the symbolic analysis is kept
 
@@ -263,7 +278,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     for (int attempt = 0; attempt < 2 && !done; ++attempt) {
       if (attempt == 0 && !predicted) continue;
       Eigen::VectorXd x_try = attempt == 0 ? *predicted : x;
-      Attempt a{problem, t + dt, 1.0, J, solver, summary, {}, {}, {}};
+      Attempt a{problem, t + dt, 1.0, J, solver, summary, {}, {}, {}, {}};
       a.record.load_factor = t + dt;
       if (solve_step(a, x_try, ctx, opt)) {
         a.record.cut_backs = cut_backs;
@@ -294,9 +309,8 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
       break;
     }
   }
-  SUNContext_Free(&ctx);
   summary.linear = solver.stats();
-  summary.newton_seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
+  summary.newton_seconds = clock.seconds();
   return summary;
 }
 

@@ -21,6 +21,12 @@
 // back (increment halved) and retried from the last converged state; a step
 // that converged in few iterations lets the next one grow; below the minimum
 // increment the run ends with a clear status.  Nothing non-finite is kept.
+//
+// Exceptions: a problem may throw NumericalFailure (engine/numerical_failure.hpp)
+// from its residual or Jacobian for a trial state it cannot evaluate; the
+// step fails with that message, as when it returns false.  Anything else
+// thrown there (a bug, std::bad_alloc) leaves run_load_steps as itself, x
+// holding the last converged state.
 #pragma once
 
 #include <Eigen/Sparse>
@@ -36,7 +42,8 @@ class NonlinearProblem {
  public:
   virtual ~NonlinearProblem() = default;
   virtual int size() const = 0;
-  // R(x; t).  Return false for an inadmissible state (recoverable).
+  // R(x; t).  Return false (or throw NumericalFailure) for an inadmissible
+  // state (recoverable).
   virtual bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) = 0;
   // dR/dx at (x; t), always with the same pattern.  False: inadmissible.
   virtual bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) = 0;

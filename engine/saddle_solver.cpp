@@ -2,17 +2,15 @@
 
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "engine/bordered_spd.hpp"
 #include "engine/cholesky.hpp"
+#include "engine/stopwatch.hpp"
 
 namespace igac {
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 // GMRES on the preconditioned operator: restarted after kRestart vectors, at
@@ -226,7 +224,7 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
     if (I.m > 0) rows.tail(I.m) += J.d.cwiseAbs();
     I.norm_J = rows.size() ? rows.maxCoeff() : 0.0;
   }
-  const auto t0 = Clock::now();
+  const Stopwatch factorize_clock;
   const bool same_pattern =
       J.K.isCompressed() && I.Ks.rows() == J.K.rows() && I.Ks.nonZeros() == J.K.nonZeros() &&
       std::equal(J.K.outerIndexPtr(), J.K.outerIndexPtr() + J.K.outerSize() + 1, I.Ks.outerIndexPtr()) &&
@@ -237,7 +235,7 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   }
   if (!I.symmetric_pattern || !J.K.isCompressed()) {
     const bool ok = I.factor_full(why_);
-    stats_.factorize_s += since(t0);
+    stats_.factorize_s += factorize_clock.seconds();
     stats_.fallbacks += ok;
     return ok;
   }
@@ -267,14 +265,14 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
     I.chol().factorize(I.Ks);
   } catch (const std::runtime_error&) {  // not positive definite: this iteration by LU
     const bool ok = I.factor_full(why_);
-    stats_.factorize_s += since(t0);
+    stats_.factorize_s += factorize_clock.seconds();
     stats_.fallbacks += ok;
     return ok;
   }
-  stats_.factorize_s += since(t0);
+  stats_.factorize_s += factorize_clock.seconds();
 
   // Schur complement of the active multipliers
-  const auto t1 = Clock::now();
+  const Stopwatch schur_clock;
   I.active.clear();
   I.inactive.clear();
   for (int k = 0; k < I.m; ++k) {
@@ -301,17 +299,17 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   const Eigen::MatrixXd S = I.Y.transpose() * I.Y;
   if (!I.M.compute(S, I.BR)) {  // dependent constraints: let LU on J decide
     const bool ok = I.factor_full(why_);
-    stats_.schur_s += since(t1);
+    stats_.schur_s += schur_clock.seconds();
     stats_.fallbacks += ok;
     return ok;
   }
-  stats_.schur_s += since(t1);
+  stats_.schur_s += schur_clock.seconds();
   return true;
 }
 
 bool SaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) {
   auto& I = *impl_;
-  const auto t0 = Clock::now();
+  const Stopwatch clock;
   ++stats_.solves;
   bool ok = true;
   if (I.fallback) {
@@ -327,7 +325,7 @@ bool SaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double to
       ok = true;
     }
   }
-  stats_.solve_s += since(t0);
+  stats_.solve_s += clock.seconds();
   if (!ok || !x.allFinite()) {
     if (why_.empty()) why_ = "singular Newton matrix";
     return false;

@@ -1,6 +1,7 @@
 // The sparsity pattern of the matrices of a body and the scatter of element
 // matrices into it: the one pattern and the one scatter of the linear
-// (assembly.cpp) and the total-Lagrangian (total_lagrangian.cpp) assembly.
+// (assembly.cpp) and the total-Lagrangian (total_lagrangian.cpp) assembly,
+// and the element colouring both thread over.
 //
 // Pattern: free equations r and c are coupled when their control points
 // share an element; the matrix is compressed, column major, with sorted row
@@ -21,6 +22,18 @@ namespace igac {
 // to the last one) in the free numbering of `dofs` (n_free x n_free).
 Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
                                              int e_end = -1);
+
+// Elements [e_begin, e_end) of `quad` (e_end < 0: to the last one) in
+// colours such that no two elements of one colour write to the same free
+// equation (greedy colouring of the element graph; coincident control points
+// of a collapsed face write to one equation, so conflicts are counted in
+// equations, not control points).  Threads then add straight into K and f,
+// colour by colour: no per-thread copies of the matrix (whose memory would
+// grow with the thread count) and no reduction, and the sums do not depend
+// on the number of threads.  A tensor mesh of degree p needs (p+1)^dim
+// colours.  Element numbers are those of `quad`.
+std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
+                                              int e_end = -1);
 
 // values[k] += Ke(r, c) for every local row r and column c whose free
 // equations eq[r], eq[c] are >= 0 (prescribed ones, -1, are skipped), at the

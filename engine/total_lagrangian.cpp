@@ -16,55 +16,6 @@ namespace igac {
 
 namespace {
 
-// Elements in colours such that no two elements of one colour write to the
-// same free equation (greedy colouring of the element graph; coincident
-// control points of a collapsed face write to one equation, so conflicts are
-// counted in equations, not control points).  Threads then add straight into
-// K and f_int, colour by colour: no per-thread copies of the matrix (whose
-// memory would grow with the thread count) and no reduction.  A tensor
-// mesh of degree p needs (p+1)^dim colours.
-std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs) {
-  const int dim = dofs.dim(), n_free = dofs.num_free(), n_el = quad.num_elements();
-  // element -> the equations it writes (one per node: its first free one)
-  std::vector<int> start(n_el + 1, 0), keys, cps;
-  for (int e = 0; e < n_el; ++e) {
-    quad.control_points(e, cps);
-    const size_t first = keys.size();
-    for (int a : cps)
-      for (int i = 0; i < dim; ++i)
-        if (const int q = dofs.equation(a * dim + i); q >= 0) {
-          keys.push_back(q);
-          break;
-        }
-    std::sort(keys.begin() + first, keys.end());
-    keys.erase(std::unique(keys.begin() + first, keys.end()), keys.end());
-    start[e + 1] = int(keys.size());
-  }
-  // equation -> elements (CSR)
-  std::vector<int> key_start(n_free + 1, 0);
-  for (int k : keys) ++key_start[k + 1];
-  for (int q = 0; q < n_free; ++q) key_start[q + 1] += key_start[q];
-  std::vector<int> key_els(keys.size()), fill(key_start.begin(), key_start.end() - 1);
-  for (int e = 0; e < n_el; ++e)
-    for (int k = start[e]; k < start[e + 1]; ++k) key_els[fill[keys[k]]++] = e;
-  std::vector<int> colour(n_el, -1), stamp;  // stamp[c] == e: colour c taken by a neighbour of e
-  std::vector<std::vector<int>> out;
-  for (int e = 0; e < n_el; ++e) {
-    for (int k = start[e]; k < start[e + 1]; ++k)
-      for (int j = key_start[keys[k]]; j < key_start[keys[k] + 1]; ++j)
-        if (const int c = colour[key_els[j]]; c >= 0) stamp[c] = e;
-    int c = 0;
-    while (c < int(stamp.size()) && stamp[c] == e) ++c;
-    if (c == int(stamp.size())) {
-      stamp.push_back(-1);
-      out.emplace_back();
-    }
-    colour[e] = c;
-    out[c].push_back(e);
-  }
-  return out;
-}
-
 bool has_structure(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& pattern) {
   if (K.rows() != pattern.rows() || K.cols() != pattern.cols() || !K.isCompressed() ||
       K.nonZeros() != pattern.nonZeros())

@@ -11,7 +11,9 @@
 //    seminorm error as h^p.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <omp.h>
 #include <random>
 #include <set>
 #include <string>
@@ -249,5 +251,32 @@ void expect_lame_rates(int p) {
 
 TEST(ElasticConvergence, LameCylinderDegree2) { expect_lame_rates(2); }
 TEST(ElasticConvergence, LameCylinderDegree3) { expect_lame_rates(3); }
+
+// Threads add straight into K and f, one colour of elements at a time
+// (engine/sparsity.hpp's colouring): the sums are the same, bit for bit,
+// whatever the number of threads (the per-thread copies K had before were
+// summed in an order that depended on the schedule).  On the sphere octant
+// (a face collapsed onto its pole line joins elements far apart), the
+// quarter disc and a body of two patches, with a body force so that f
+// comes from the elements too; more threads than cores interleave the
+// most.  A race (two elements of one colour sharing an equation) would lose
+// additions.
+TEST(ElasticAssembly, SameSumsWhateverTheThreadCount) {
+  for (const std::string name : {"hertz3d_study", "hertz2d", "hertz2d_two_patches"}) {
+    const igac::CaseSpec spec = igac::read_case(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
+    const igac::Model m = igac::build_model(spec);
+    const Eigen::VectorXd g = Eigen::VectorXd::Constant(m.body.space_dim(), -0.3);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const igac::LinearSystem one = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g);
+    omp_set_num_threads(5);
+    const igac::LinearSystem five = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g);
+    omp_set_num_threads(threads);
+    ASSERT_EQ(one.K.nonZeros(), five.K.nonZeros()) << name;
+    EXPECT_TRUE(std::equal(one.K.valuePtr(), one.K.valuePtr() + one.K.nonZeros(), five.K.valuePtr())) << name;
+    EXPECT_TRUE(one.f == five.f) << name;
+    EXPECT_GT(one.K.norm(), 0) << name;
+  }
+}
 
 }  // namespace

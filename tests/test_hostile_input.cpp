@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/load_stepping.hpp"
+#include "engine/numerical_failure.hpp"
 #include "tests/igac_process.hpp"
 
 namespace {
@@ -177,14 +178,16 @@ TEST(HostileInput, SelfContradictingCaseIsWarnedAbout) {
   EXPECT_EQ(q.output.find("warning"), std::string::npos) << "--quiet prints nothing but errors";
 }
 
-// A problem whose residual throws on its second call: the exception must not
+// A problem whose residual throws a NumericalFailure (an expected one: the
+// state cannot be evaluated) on its second call: the exception must not
 // cross KINSOL's C frames; the step fails with the reason, the driver cuts
-// back and finally ends with a status naming it.
+// back and finally ends with a status naming it.  (Other exceptions
+// propagate: tests/test_load_stepping.cpp.)
 class ThrowingProblem final : public igac::NonlinearProblem {
  public:
   int size() const override { return 1; }
   bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
-    if (++calls_ >= 2) throw std::runtime_error("material law blew up");
+    if (++calls_ >= 2) throw igac::NumericalFailure("material law blew up");
     r.resize(1);
     r[0] = x[0] - t;
     return true;

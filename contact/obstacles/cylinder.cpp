@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "engine/numerical_failure.hpp"
+
 namespace igac {
 
 RigidCylinder::RigidCylinder(Eigen::VectorXd point, Eigen::VectorXd axis, double radius)
@@ -20,7 +22,7 @@ ObstacleProbe RigidCylinder::probe(const Eigen::VectorXd& x, bool with_derivativ
   const Eigen::VectorXd rel = x - point_;
   const Eigen::VectorXd d = rel - rel.dot(axis_) * axis_;
   const double r = d.norm();
-  if (!(r > 0)) throw std::runtime_error("a point sits on the axis of the rigid cylinder: no normal there");
+  if (!(r > 0)) throw NumericalFailure("a point sits on the axis of the rigid cylinder: no normal there");
   ObstacleProbe p{r - radius_, d / r, {}};
   if (with_derivative)
     p.normal_derivative =

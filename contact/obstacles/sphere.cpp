@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "engine/numerical_failure.hpp"
+
 namespace igac {
 
 RigidSphere::RigidSphere(Eigen::VectorXd centre, double radius) : centre_(std::move(centre)), radius_(radius) {
@@ -14,7 +16,7 @@ RigidSphere::RigidSphere(Eigen::VectorXd centre, double radius) : centre_(std::m
 ObstacleProbe RigidSphere::probe(const Eigen::VectorXd& x, bool with_derivative) const {
   const Eigen::VectorXd d = x - centre_;
   const double r = d.norm();
-  if (!(r > 0)) throw std::runtime_error("a point sits at the centre of the rigid sphere: no normal there");
+  if (!(r > 0)) throw NumericalFailure("a point sits at the centre of the rigid sphere: no normal there");
   ObstacleProbe p{r - radius_, d / r, {}};
   if (with_derivative)
     p.normal_derivative = (Eigen::MatrixXd::Identity(x.size(), x.size()) - p.normal * p.normal.transpose()) / r;
