@@ -171,9 +171,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
               Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
             }
         }
-      eq.resize(nd);
-      for (int a = 0; a < nl; ++a)
-        for (int i = 0; i < dim; ++i) eq[a * dim + i] = dofs.equation(ed.cps[a] * dim + i);
+      dofs.element_equations(ed.cps, eq);
       for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
         if (eq[c] >= 0) continue;
         const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
