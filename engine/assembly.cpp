@@ -1,5 +1,6 @@
 #include <algorithm>
 #include "engine/assembly.hpp"
+#include "engine/follower_pressure.hpp"
 #include "engine/sparsity.hpp"
 
 #include <fmt/format.h>
@@ -210,20 +211,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
 
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f) {
-  const int dim = body.space_dim();
-  for (const PatchSide& face : faces) {
-    const PatchQuadrature quad = face_quadrature(body, face, gauss_points_for(body.degree()));
-    ElementData ed;
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q)
-        for (size_t a = 0; a < ed.cps.size(); ++a)
-          for (int i = 0; i < dim; ++i) {
-            const int eq = dofs.equation(ed.cps[a] * dim + i);
-            if (eq >= 0) f[eq] -= pressure * ed.normal(q, i) * ed.N(q, a) * ed.JxW[q];
-          }
-    }
-  }
+  add_dead_pressure(body, dofs, faces, pressure, f);  // the one face loop of the pressure loads
 }
 
 }  // namespace igac

@@ -78,7 +78,8 @@ struct ElementRange {
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
                                         const Eigen::VectorXd& body_force, ElementRange elements = {});
-// Adds the work of a pressure P on the faces to f (free numbering).
+// Adds the work of a pressure P on the faces to f (free numbering): the dead
+// pressure of follower_pressure.hpp (one face loop for both).
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f);
 // The number of Gauss points per direction used everywhere for degree p.
