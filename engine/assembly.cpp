@@ -139,24 +139,25 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     values[tid].assign(nnz, 0.0);
     rhs[tid].setZero(n_free);
     double* val = values[tid].data();
-    ElementData ed;
+    ElementValues<2, 2> v2;  // of the one element kernel (element_values.hpp)
+    ElementValues<3, 3> v3;
     Eigen::MatrixXd Ke, Gw;
     std::array<Eigen::MatrixXd, 3> Gd;  // per direction: n_loc x n_q gradients
     std::array<std::array<Eigen::MatrixXd, 3>, 3> M;
     std::vector<int> eq;
-#pragma omp for schedule(dynamic, 64)
-    for (int e = e_begin; e < e_end; ++e) {
+    auto assemble_element = [&](int e, auto& ed) {
       quad.evaluate(e, ed, true);
       min_det[tid] = std::min(min_det[tid], ed.min_det_J);
-      const int nl = int(ed.cps.size()), nq = int(ed.JxW.size()), nd = nl * dim;
+      const int nl = ed.n_loc, nq = ed.n_q, nd = nl * dim;
       // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
       // K_(a i)(b j) = lambda M_ij + mu M_ji + mu delta_ij sum_k M_kk.
       for (int i = 0; i < dim; ++i) {
         Gd[i].resize(nl, nq);
-        for (int q = 0; q < nq; ++q) Gd[i].col(q) = ed.dN[q].col(i);
+        for (int q = 0; q < nq; ++q)
+          for (int a = 0; a < nl; ++a) Gd[i](a, q) = ed.gradients(q)[a * dim + i];
       }
       for (int i = 0; i < dim; ++i) {
-        Gw.noalias() = Gd[i] * ed.JxW.asDiagonal();
+        Gw.noalias() = Gd[i] * Eigen::Map<const Eigen::VectorXd>(ed.JxW.data(), nq).asDiagonal();
         for (int j = i; j < dim; ++j) M[i][j].noalias() = Gw * Gd[j].transpose();
       }
       Eigen::MatrixXd trace = M[0][0];
@@ -186,6 +187,13 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
           for (int a = 0; a < nl; ++a)
             for (int i = 0; i < dim; ++i)
               if (eq[a * dim + i] >= 0) rhs[tid][eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
+    };
+#pragma omp for schedule(dynamic, 64)
+    for (int e = e_begin; e < e_end; ++e) {
+      if (dim == 2)
+        assemble_element(e, v2);
+      else
+        assemble_element(e, v3);
     }
   }
   s.min_det_J = *std::min_element(min_det.begin(), min_det.end());
