@@ -27,8 +27,11 @@ Eigen::Matrix<double, dim, 1> area_derivative(double sigma, const Eigen::Matrix<
 
 // Pressure p on the faces: f_ext -= p int N_A a dxi, with a the area vector
 // of the current face (u given) or of the reference face (u null); when K is
-// given, K += p int N_A da/du dxi (= -d f_ext / du).  Per face element: the
-// element vector and matrix, then the one scatter (sparsity.hpp).
+// given, K += p int N_A da/du dxi (= -d f_ext / du).  Per face point: the
+// point's contribution as an element vector and matrix, then the one scatter
+// (sparsity.hpp); per point rather than per element, so that f and K add
+// the terms in the order they always have (the shipped results stay the
+// same to the bit).
 void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                     const Eigen::MatrixXd* u, Eigen::VectorXd& f, Eigen::SparseMatrix<double>* K) {
   const FaceQuadrature quad(body, faces, gauss_points_for(body.degree()));
@@ -41,30 +44,35 @@ void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<Patc
     const double sigma = face_orientation(quad.side(s).face, dim);
     const int nl = v.n_loc, nd = nl * dim;
     dofs.element_equations(v.cps, eq);
-    fe.setZero(nd);
-    if (K) Ke.setZero(nd, nd);
-    thread_local std::vector<Vec> x;  // current (or reference) control points
-    x.resize(nl);
-    for (int a = 0; a < nl; ++a) x[a] = u ? Vec(v.X_cp[a] + u->row(v.cps[a]).transpose()) : v.X_cp[a];
+    thread_local Eigen::Matrix<double, Eigen::Dynamic, dim> x;  // current (or reference) control points
+    thread_local Eigen::Matrix<double, Eigen::Dynamic, pd> dR;  // dR_a/dxi_d at the point
+    x.resize(nl, dim);
+    dR.resize(nl, pd);
+    for (int a = 0; a < nl; ++a) {
+      x.row(a) = v.X_cp[a].transpose();
+      if (u) x.row(a) += u->row(v.cps[a]);
+    }
     for (int q = 0; q < v.n_q; ++q) {
-      const double* dR = v.parametric_derivatives(q);  // [a * pd + d]
-      Eigen::Matrix<double, dim, pd> T = Eigen::Matrix<double, dim, pd>::Zero();
+      const double* dRq = v.parametric_derivatives(q);  // [a * pd + d]
       for (int a = 0; a < nl; ++a)
-        for (int d = 0; d < pd; ++d) T.col(d) += dR[a * pd + d] * x[a];
+        for (int d = 0; d < pd; ++d) dR(a, d) = dRq[a * pd + d];
+      const Eigen::Matrix<double, dim, pd> T = x.transpose() * dR;
       const Vec area = oriented_area<dim>(sigma, T);
       const double pw = p * v.w[q];
+      fe.resize(nd);
       for (int a = 0; a < nl; ++a)
-        for (int i = 0; i < dim; ++i) fe[a * dim + i] -= pw * v.N(q, a) * area[i];
+        for (int i = 0; i < dim; ++i) fe[a * dim + i] = -(pw * v.N(q, a) * area[i]);
+      scatter_element_vector(eq, fe, f.data());
       if (!K) continue;
+      Ke.resize(nd, nd);
       for (int b = 0; b < nl; ++b)
         for (int k = 0; k < dim; ++k) {
-          const Vec da = area_derivative<dim>(sigma, T, dR + b * pd, k);
+          const Vec da = area_derivative<dim>(sigma, T, dRq + b * pd, k);
           for (int a = 0; a < nl; ++a)
-            for (int i = 0; i < dim; ++i) Ke(a * dim + i, b * dim + k) += pw * v.N(q, a) * da[i];
+            for (int i = 0; i < dim; ++i) Ke(a * dim + i, b * dim + k) = pw * v.N(q, a) * da[i];
         }
+      scatter_element_matrix(*K, K->valuePtr(), eq, Ke);
     }
-    scatter_element_vector(eq, fe, f.data());
-    if (K) scatter_element_matrix(*K, K->valuePtr(), eq, Ke);
   });
 }
 
