@@ -37,7 +37,7 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 }
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                                           Eigen::SparseMatrix<double>* K, ContactEval& out) const {
+                                           Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling) const {
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
@@ -53,7 +53,11 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
     contact_quadratures_[c].for_each_point([&](const auto& v, int q, const std::vector<int>& Ks,
                                                const std::vector<double>& B) {
       constexpr int dim = std::remove_cvref_t<decltype(v)>::space_dim;
-      const ObstacleProbe pr = obstacle.probe(v.X[q] + v.interpolate(q, u), K != nullptr);
+      const ObstacleProbe pr = obstacle.probe(v.displaced(q, u), K != nullptr);
+      if (!coupling) {  // the gaps alone
+        for (size_t k = 0; k < Ks.size(); ++k) out.gamma[offset + Ks[k]] += pr.gap * (B[k] * v.JxW[q]);  // as below, to the bit
+        return;
+      }
       dofs.element_equations(v.cps, eq);
       double lambda_B = 0;  // sum_K lambda_K B_K at the point
       for (size_t k = 0; k < Ks.size(); ++k) {
@@ -159,7 +163,7 @@ std::vector<char> FiniteStrainProblem::active_set(double t, const Eigen::VectorX
   if (m_ == 0) return {};
   const Eigen::VectorXd lambda = x.tail(m_);
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce);
+  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, false);
   return decide_active(ce.gamma, lambda);
 }
 
@@ -176,7 +180,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
 Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce);
+  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce, false);
   return ce.gamma.cwiseQuotient(weights_);
 }
 

@@ -89,11 +89,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
     Eigen::VectorXd gamma;                                // m
     std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value)
   };
-  // gamma and dgamma/du at displacement u (ContactQuadrature, the one face
-  // loop); when K is not null, adds the obstacle's curvature term
-  // int lambda B N_A N_B dn/dx to it.
+  // gamma and (with `coupling`) dgamma/du at displacement u
+  // (ContactQuadrature, the one face loop); when K is not null, adds the
+  // obstacle's curvature term int lambda B N_A N_B dn/dx to it.
   void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                        Eigen::SparseMatrix<double>* K, ContactEval& out) const;
+                        Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;

@@ -71,7 +71,7 @@ Eigen::VectorXd exact_weighted_gaps(const Eigen::MatrixXd& u, const ContactFace&
   Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
   ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
-    const double g = obstacle.probe(ev.X[q] + ev.interpolate(q, u)).gap;
+    const double g = obstacle.probe(ev.displaced(q, u)).gap;
     for (size_t k = 0; k < K.size(); ++k) {
       num[K[k]] += g * B[k] * ev.JxW[q];
       den[K[k]] += B[k] * ev.JxW[q];

@@ -52,12 +52,13 @@ struct ElementValues {
   const double* gradients(int q) const { return dR_dX.data() + size_t(q) * n_loc * sd; }
   // dR_a/dxi at point q: [a * pd + d]
   const double* parametric_derivatives(int q) const { return dR_dxi.data() + size_t(q) * n_loc * pd; }
-  // sum_a R_a v_a at point q for one row per control point of the body.
+  // The current position X + u(X) at point q, u given per body control point
+  // (one row each): the terms R_a u_a are added to X one by one.
   template <class Field>
-  Point interpolate(int q, const Field& v) const {
-    Point s = Point::Zero();
-    for (int a = 0; a < n_loc; ++a) s += N(q, a) * v.row(cps[a]).transpose();
-    return s;
+  Point displaced(int q, const Field& u) const {
+    Point x = X[q];
+    for (int a = 0; a < n_loc; ++a) x += N(q, a) * u.row(cps[a]).transpose();
+    return x;
   }
 };
 

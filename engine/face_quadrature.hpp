@@ -1,11 +1,14 @@
-// The one face loop of igac: Gauss quadrature over a list of sides of a body
-// (a face of a multi-patch body may span several), tabulated once, that
-// hands each face element's values (ElementValues<dim - 1, dim>: basis,
+// The one face loop of engine/ and contact/: Gauss quadrature over a list of
+// sides of a body (a face of a multi-patch body may span several), tabulated
+// once, that hands each face element's values (ElementValues<dim - 1, dim>: basis,
 // parametric derivatives, points, weights, outward normals, body control
 // points) to a visitor.  The follower and dead pressure
 // (follower_pressure.cpp), the weighted gaps and the large-deformation
 // contact (contact/weighted_gap.hpp, ContactQuadrature, which adds the
-// multiplier basis at each point) go through it.
+// multiplier basis at each point), the pressure report's L2 error and face
+// samples (contact/pressure.cpp) go through it.  Not yet: the face integrals
+// of app/ (reports, the deformed half-width), which still walk a
+// PatchQuadrature with ElementData.
 //
 // The visitor is called as visit(int side, const ElementValues<dim - 1, dim>&
 // values) per face element, sides in the given order and elements of a side
