@@ -5,9 +5,9 @@
 // and, on faces, the outward unit normal (the FEValues role).
 //
 // ElementValues is the one element-values object of the engine: the linear
-// and the total-Lagrangian assembly, the follower pressure and every face
-// loop (engine/face_quadrature.hpp, the weighted gaps and the
-// large-deformation contact of contact/) read it, and
+// and the total-Lagrangian assembly, the pressure loads and the face loop of
+// engine/ and contact/ (face_quadrature.hpp: the weighted gaps, the
+// large-deformation contact) read it, and
 // PatchQuadrature::evaluate (discretisation.cpp) is the one kernel that
 // fills it.  ElementData (discretisation.hpp) is the same values in
 // run-time-sized matrices for callers that do not know the dimension (error
