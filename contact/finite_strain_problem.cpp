@@ -1,11 +1,12 @@
 #include "contact/finite_strain_problem.hpp"
 
-#include <optional>
-
 #include <algorithm>
 #include <fmt/format.h>
+#include <optional>
+#include <type_traits>
 
 #include "engine/follower_pressure.hpp"
+#include "engine/sparsity.hpp"
 
 namespace igac {
 FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move(setup)) {
@@ -18,11 +19,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
-    for (const auto& c : s_.contacts) {
-      face_quadratures_.emplace_back();
-      for (const ContactSide& side : c.face->sides)
-        face_quadratures_.back().push_back(side.quadrature(c.face->quadrature_points()));
-    }
+    for (const auto& c : s_.contacts) contact_quadratures_.emplace_back(*c.face);
     // K_K on the reference faces: the small-deformation operator's weights
     for (size_t k = 0; k < s_.contacts.size(); ++k)
       weights_.segment(offsets_[k], offsets_[k + 1] - offsets_[k]) =
@@ -40,15 +37,12 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 }
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                                           bool tangent, ContactEval& out) const {
-  const int dim = s_.body->space_dim();
+                                           Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling) const {
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
-  out.curvature.clear();
-  ElementData ed;
-  std::vector<int> kidx;
-  std::vector<double> kval;
+  std::vector<int> eq;
+  Eigen::MatrixXd Kc;
   for (size_t c = 0; c < s_.contacts.size(); ++c) {
     const auto& contact = s_.contacts[c];
     const int offset = offsets_[c];
@@ -56,41 +50,36 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
     std::optional<TranslatedObstacle> moved;
     if (contact.motion.size() > 0) moved.emplace(*contact.obstacle, t * contact.motion);
     const Obstacle& obstacle = moved ? static_cast<const Obstacle&>(*moved) : *contact.obstacle;
-    for (size_t si = 0; si < contact.face->sides.size(); ++si) {
-    const ContactSide& side = contact.face->sides[si];
-    const int side_offset = offset + side.first_multiplier;
-    const PatchQuadrature& quad = face_quadratures_[c][si];
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q) {
-        Eigen::VectorXd x = ed.X.row(q).transpose();
-        for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
-        const ObstacleProbe pr = obstacle.probe(x, tangent);
-        side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
-        double lambda_B = 0;  // sum_K lambda_K B_K at the point
-        for (size_t k = 0; k < kidx.size(); ++k) {
-          const int K = side_offset + kidx[k];
-          const double bw = kval[k] * ed.JxW[q];
-          out.gamma[K] += pr.gap * bw;
-          lambda_B += lambda[K] * bw;
-          for (size_t a = 0; a < ed.cps.size(); ++a)
-            for (int i = 0; i < dim; ++i) {
-              const int eq = dofs.equation(ed.cps[a] * dim + i);
-              if (eq >= 0) out.G.emplace_back(K, eq, bw * ed.N(q, a) * pr.normal[i]);
-            }
-        }
-        if (tangent && lambda_B != 0.0 && pr.normal_derivative.squaredNorm() > 0)
-          for (size_t a = 0; a < ed.cps.size(); ++a)
-            for (size_t b = 0; b < ed.cps.size(); ++b)
-              for (int i = 0; i < dim; ++i)
-                for (int j = 0; j < dim; ++j) {
-                  const int r = dofs.equation(ed.cps[a] * dim + i), cc = dofs.equation(ed.cps[b] * dim + j);
-                  if (r >= 0 && cc >= 0)
-                    out.curvature.emplace_back(r, cc, lambda_B * ed.N(q, a) * ed.N(q, b) * pr.normal_derivative(i, j));
-                }
+    contact_quadratures_[c].for_each_point([&](const auto& v, int q, const std::vector<int>& Ks,
+                                               const std::vector<double>& B) {
+      constexpr int dim = std::remove_cvref_t<decltype(v)>::space_dim;
+      const ObstacleProbe pr = obstacle.probe(v.displaced(q, u), K != nullptr);
+      if (!coupling) {  // the gaps alone
+        for (size_t k = 0; k < Ks.size(); ++k) out.gamma[offset + Ks[k]] += pr.gap * (B[k] * v.JxW[q]);  // as below, to the bit
+        return;
       }
-    }
-    }
+      dofs.element_equations(v.cps, eq);
+      double lambda_B = 0;  // sum_K lambda_K B_K at the point
+      for (size_t k = 0; k < Ks.size(); ++k) {
+        const int row = offset + Ks[k];
+        const double bw = B[k] * v.JxW[q];
+        out.gamma[row] += pr.gap * bw;
+        lambda_B += lambda[row] * bw;
+        for (int a = 0; a < v.n_loc; ++a)
+          for (int i = 0; i < dim; ++i)
+            if (eq[a * dim + i] >= 0) out.G.emplace_back(row, eq[a * dim + i], bw * v.N(q, a) * pr.normal[i]);
+      }
+      // the obstacle's curvature: lambda_B N_a N_b dn/dx, into K by the one scatter
+      if (!K || lambda_B == 0.0 || !(pr.normal_derivative.squaredNorm() > 0)) return;
+      const int nd = v.n_loc * dim;
+      Kc.resize(nd, nd);
+      for (int b = 0; b < v.n_loc; ++b)
+        for (int j = 0; j < dim; ++j)
+          for (int a = 0; a < v.n_loc; ++a)
+            for (int i = 0; i < dim; ++i)
+              Kc(a * dim + i, b * dim + j) = lambda_B * v.N(q, a) * v.N(q, b) * pr.normal_derivative(i, j);
+      scatter_element_matrix(*K, K->valuePtr(), eq, Kc);
+    });
   }
 }
 
@@ -114,11 +103,11 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   if (m_ > 0) {
     const Eigen::VectorXd lambda = x.tail(m_);
     ContactEval ce;
-    evaluate_contact(t, u, lambda, false, ce);
+    evaluate_contact(t, u, lambda, nullptr, ce);
     for (const auto& g : ce.G) r[g.col()] += lambda[g.row()] * g.value();
-    last_active_ = decide_active(ce.gamma, lambda);
+    const std::vector<char> active = decide_active(ce.gamma, lambda);  // of (t, x), as active_set
     for (int K = 0; K < m_; ++K)
-      r[n_ + K] = last_active_[K] ? s_.complementarity_scale * ce.gamma[K] : weights_[K] * lambda[K];
+      r[n_ + K] = active[K] ? s_.complementarity_scale * ce.gamma[K] : weights_[K] * lambda[K];
   }
   return true;
 }
@@ -136,14 +125,13 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   if (m_ > 0) {
     const Eigen::VectorXd lambda = x.tail(m_);
     ContactEval ce;
-    evaluate_contact(t, u, lambda, true, ce);
+    evaluate_contact(t, u, lambda, &J.K, ce);  // adds the curvature term to K (face couplings: in the pattern)
     const auto active = decide_active(ce.gamma, lambda);
     J.B.setFromTriplets(ce.G.begin(), ce.G.end());
     for (int K = 0; K < m_; ++K) {
       if (active[K]) J.s[K] = s_.complementarity_scale;
       else J.d[K] = weights_[K];
     }
-    for (const auto& c : ce.curvature) J.K.coeffRef(c.row(), c.col()) += c.value();  // face couplings: in the pattern
   }
   // The follower load stiffness is the only unsymmetric part: the solver
   // factorises K without it (symmetric, and K R = 0 for the translations
@@ -165,12 +153,18 @@ bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::Sp
   return true;
 }
 
-int FiniteStrainProblem::active_set_size(const Eigen::VectorXd& x) const {
-  const auto a = active_set(x);
+int FiniteStrainProblem::active_set_size(double t, const Eigen::VectorXd& x) const {
+  const auto a = active_set(t, x);
   return int(std::count(a.begin(), a.end(), 1));
 }
 
-std::vector<char> FiniteStrainProblem::active_set(const Eigen::VectorXd&) const { return last_active_; }
+std::vector<char> FiniteStrainProblem::active_set(double t, const Eigen::VectorXd& x) const {
+  if (m_ == 0) return {};
+  const Eigen::VectorXd lambda = x.tail(m_);
+  ContactEval ce;
+  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, false);
+  return decide_active(ce.gamma, lambda);
+}
 
 double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   const Eigen::MatrixXd u = displacement(t, x);
@@ -185,7 +179,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
 Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), x.tail(m_), false, ce);
+  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce, false);
   return ce.gamma.cwiseQuotient(weights_);
 }
 

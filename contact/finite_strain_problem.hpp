@@ -61,8 +61,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // pattern), B = dgamma/du (m x n), s = c on active rows, d = K_K on
   // inactive ones, and the body's rigid motions (held by contact).
   bool block_jacobian(double t, const Eigen::VectorXd& x, BlockJacobian& J) override;
-  int active_set_size(const Eigen::VectorXd& x) const override;
-  std::vector<char> active_set(const Eigen::VectorXd& x) const override;
+  // The active set of (t, x), K_K lambda_K + c gamma_K(t, x) < 0: the one
+  // residual and Jacobian at (t, x) use (each decides it from its own x).
+  int active_set_size(double t, const Eigen::VectorXd& x) const override;
+  std::vector<char> active_set(double t, const Eigen::VectorXd& x) const override;
   double force_scale(double t, const Eigen::VectorXd& x) override;
 
   // Displacement per control point at load factor t.
@@ -80,9 +82,12 @@ class FiniteStrainProblem final : public NonlinearProblem {
   struct ContactEval {
     Eigen::VectorXd gamma;                                // m
     std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value)
-    std::vector<Eigen::Triplet<double>> curvature;        // (free eq, free eq, value), lambda-weighted
   };
-  void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda, bool tangent, ContactEval& out) const;
+  // gamma and (with `coupling`) dgamma/du at displacement u
+  // (ContactQuadrature, the one face loop); when K is not null, adds the
+  // obstacle's curvature term int lambda B N_A N_B dn/dx to it.
+  void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
+                        Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;
@@ -91,9 +96,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd weights_;          // K_K
   RigidModes modes_;                 // of the free displacements
   BlockJacobian blocks_;             // jacobian()'s, reused across calls
-  std::vector<std::vector<PatchQuadrature>> face_quadratures_;  // per contact, per side: tabulated once
+  std::vector<ContactQuadrature> contact_quadratures_;  // per contact: tabulated once
   std::vector<int> offsets_;         // first multiplier of each contact
-  mutable std::vector<char> last_active_;
 };
 
 }  // namespace igac

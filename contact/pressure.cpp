@@ -197,21 +197,18 @@ std::pair<double, double> ContactPressure::l2_error(
     int points) const {
   if (mesh.sides.size() != cf_.sides.size())
     throw std::invalid_argument("pressure error: the two contact faces have different sides");
-  ElementData ed;
   double e2 = 0, n2 = 0;
-  for (int s = 0; s < int(mesh.sides.size()); ++s) {
-    const PatchQuadrature quad = mesh.sides[s].quadrature(points);
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q) {
-        const Eigen::VectorXd xi = ed.xi.row(q).transpose();
-        const double ref = p(s, xi, ed.X.row(q).transpose());
-        const double ph = pressure_at(s, xi);
-        e2 += (ph - ref) * (ph - ref) * ed.JxW[q];
-        n2 += ref * ref * ed.JxW[q];
-      }
+  Eigen::VectorXd xi, X;
+  mesh.face_quadrature(points).for_each_element([&](int s, const auto& v) {
+    for (int q = 0; q < v.n_q; ++q) {
+      xi = v.xi[q];
+      X = v.X[q];
+      const double ref = p(s, xi, X);
+      const double ph = pressure_at(s, xi);
+      e2 += (ph - ref) * (ph - ref) * v.JxW[q];
+      n2 += ref * ref * v.JxW[q];
     }
-  }
+  });
   return {std::sqrt(e2), std::sqrt(n2)};
 }
 
@@ -222,7 +219,7 @@ namespace {
 template <class Visit>
 void for_each_face_sample(const ContactFace& cf, Visit&& visit) {
   const Eigen::VectorXd no_normal;
-  for (const ContactSide& s : cf.sides) {
+  auto corners = [&](const ContactSide& s) {
     const NurbsPatch& fp = s.face_patch;
     for (int i = 0; i < fp.num_control_points(); ++i) {
       const auto mi = fp.multi_index(i);
@@ -230,14 +227,13 @@ void for_each_face_sample(const ContactFace& cf, Visit&& visit) {
       for (int d = 0; d < fp.param_dim(); ++d) corner = corner && (mi[d] == 0 || mi[d] == fp.num_basis(d) - 1);
       if (corner) visit(fp.points().row(i).transpose().eval(), no_normal);
     }
-    const PatchQuadrature quad = s.quadrature(gauss_points_for(cf.degree));
-    ElementData ed;
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q)
-        visit(ed.X.row(q).transpose().eval(), ed.normal.row(q).transpose().eval());
-    }
-  }
+  };
+  int next = 0;  // side by side: its corners, then its points
+  cf.face_quadrature(gauss_points_for(cf.degree)).for_each_element([&](int s, const auto& v) {
+    while (next <= s) corners(cf.sides[next++]);
+    for (int q = 0; q < v.n_q; ++q) visit(Eigen::VectorXd(v.X[q]), Eigen::VectorXd(v.normal[q]));
+  });
+  while (next < int(cf.sides.size())) corners(cf.sides[next++]);
 }
 
 }  // namespace

@@ -22,9 +22,18 @@ ContactFace::ContactFace(const Body& body, const std::vector<PatchSide>& list) :
 
 int ContactFace::quadrature_points() const { return gauss_points_for(degree) + 1; }
 
-ContactQuadrature::ContactQuadrature(const ContactFace& cf) : cf_(&cf) {
-  for (const ContactSide& side : cf.sides) quads_.push_back(side.quadrature(cf.quadrature_points()));
+FaceQuadrature ContactFace::face_quadrature(int points) const {
+  std::vector<PatchSide> list;
+  std::vector<PatchQuadrature> quads;
+  for (const ContactSide& s : sides) {
+    list.push_back(s.side);
+    quads.push_back(s.quadrature(points));
+  }
+  return FaceQuadrature(std::move(list), std::move(quads));
 }
+
+ContactQuadrature::ContactQuadrature(const ContactFace& cf)
+    : cf_(&cf), faces_(cf.face_quadrature(cf.quadrature_points())) {}
 
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle) {
   const int dim = dofs.dim(), m = cf.num_multipliers();
@@ -32,18 +41,18 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
   std::vector<Eigen::Triplet<double>> trip;
-  ContactQuadrature(cf).for_each_point([&](const ElementData& ed, int q, const std::vector<int>& K,
+  ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
-    const ObstacleProbe pr = obstacle.probe(ed.X.row(q).transpose());
+    const ObstacleProbe pr = obstacle.probe(ev.X[q]);
     for (size_t k = 0; k < K.size(); ++k) {
-      const double bw = B[k] * ed.JxW[q];
+      const double bw = B[k] * ev.JxW[q];
       if (bw == 0.0) continue;
       op.weights[K[k]] += bw;
       op.g0[K[k]] += pr.gap * bw;
-      for (size_t a = 0; a < ed.cps.size(); ++a)
+      for (int a = 0; a < ev.n_loc; ++a)
         for (int i = 0; i < dim; ++i) {
-          const int dof = ed.cps[a] * dim + i;
-          const double v = bw * ed.N(q, a) * pr.normal[i];
+          const int dof = ev.cps[a] * dim + i;
+          const double v = bw * ev.N(q, a) * pr.normal[i];
           if (dofs.equation(dof) >= 0)
             trip.emplace_back(K[k], dofs.equation(dof), v);
           else
@@ -60,14 +69,12 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
 Eigen::VectorXd exact_weighted_gaps(const Eigen::MatrixXd& u, const ContactFace& cf, const Obstacle& obstacle) {
   const int m = cf.num_multipliers();
   Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
-  ContactQuadrature(cf).for_each_point([&](const ElementData& ed, int q, const std::vector<int>& K,
+  ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
-    Eigen::VectorXd x = ed.X.row(q).transpose();
-    for (size_t a = 0; a < ed.cps.size(); ++a) x += ed.N(q, a) * u.row(ed.cps[a]).transpose();
-    const double g = obstacle.probe(x).gap;
+    const double g = obstacle.probe(ev.displaced(q, u)).gap;
     for (size_t k = 0; k < K.size(); ++k) {
-      num[K[k]] += g * B[k] * ed.JxW[q];
-      den[K[k]] += B[k] * ed.JxW[q];
+      num[K[k]] += g * B[k] * ev.JxW[q];
+      den[K[k]] += B[k] * ev.JxW[q];
     }
   });
   return num.cwiseQuotient(den);

@@ -13,6 +13,7 @@
 #include "contact/multiplier_space.hpp"
 #include "contact/obstacle.hpp"
 #include "engine/assembly.hpp"
+#include "engine/face_quadrature.hpp"
 
 namespace igac {
 
@@ -39,40 +40,41 @@ struct ContactFace {
   int num_multipliers() const { return sides.back().first_multiplier + sides.back().space.size(); }
   // Gauss points per direction of the contact integrals.
   int quadrature_points() const;
+  // The face loop over every side with `points` Gauss points per direction.
+  FaceQuadrature face_quadrature(int points) const;
 };
 
 // The quadrature of the contact integrals over every side of a contact face,
-// tabulated once ((p+2) Gauss points per face direction): at each point the
-// element values (N, X, JxW, body control points) and the nonzero
-// multiplier functions B_K (K in the face's numbering).  The one face loop of
-// the weighted gaps, their linearisation and the large-deformation contact.
-// Keeps a pointer to `cf`, which must outlive it.
+// tabulated once ((p+2) Gauss points per face direction): the face loop of
+// engine/ (FaceQuadrature) with, at each point, the nonzero multiplier
+// functions B_K (K in the face's numbering).  The one face loop of the
+// weighted gaps, their linearisation and the large-deformation contact
+// (FiniteStrainProblem).  Keeps a pointer to `cf`, which must outlive it.
 class ContactQuadrature {
  public:
   explicit ContactQuadrature(const ContactFace& cf);
-  // visit(const ElementData& ed, int q, const std::vector<int>& K, const std::vector<double>& B)
+  // visit(const ElementValues<dim - 1, dim>& v, int q, const std::vector<int>& K,
+  //       const std::vector<double>& B) per face point: a generic lambda
+  // (`const auto& v`) serves 2D and 3D.
   template <class Visit>
   void for_each_point(Visit&& visit) const {
-    ElementData ed;
     std::vector<int> kidx;
     std::vector<double> kval;
-    for (size_t s = 0; s < quads_.size(); ++s) {
+    Eigen::VectorXd xi;
+    faces_.for_each_element([&](int s, const auto& v) {
       const ContactSide& side = cf_->sides[s];
-      for (int e = 0; e < quads_[s].num_elements(); ++e) {
-        quads_[s].evaluate(e, ed, false);
-        for (int q = 0; q < ed.JxW.size(); ++q) {
-          side.space.basis(ed.xi.row(q).transpose(), kidx, kval);
-          for (int& K : kidx) K += side.first_multiplier;
-          visit(static_cast<const ElementData&>(ed), q, static_cast<const std::vector<int>&>(kidx),
-                static_cast<const std::vector<double>&>(kval));
-        }
+      for (int q = 0; q < v.n_q; ++q) {
+        xi = v.xi[q];
+        side.space.basis(xi, kidx, kval);
+        for (int& K : kidx) K += side.first_multiplier;
+        visit(v, q, static_cast<const std::vector<int>&>(kidx), static_cast<const std::vector<double>&>(kval));
       }
-    }
+    });
   }
 
  private:
   const ContactFace* cf_;
-  std::vector<PatchQuadrature> quads_;
+  FaceQuadrature faces_;
 };
 
 struct WeightedGapOperator {

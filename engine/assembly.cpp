@@ -1,5 +1,6 @@
 #include <algorithm>
 #include "engine/assembly.hpp"
+#include "engine/follower_pressure.hpp"
 #include "engine/sparsity.hpp"
 
 #include <fmt/format.h>
@@ -134,58 +135,63 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
 
 #pragma omp parallel reduction(min : min_det)
   {
-    ElementData ed;
+    ElementValues<2, 2> v2;  // of the one element kernel (element_values.hpp)
+    ElementValues<3, 3> v3;
     Eigen::MatrixXd Ke, Gw;
     std::array<Eigen::MatrixXd, 3> Gd;  // per direction: n_loc x n_q gradients
     std::array<std::array<Eigen::MatrixXd, 3>, 3> M;
     std::vector<int> eq;
+    auto assemble_element = [&](int e, auto& ed) {
+      quad.evaluate(e, ed, true);
+      min_det = std::min(min_det, ed.min_det_J);
+      const int nl = ed.n_loc, nq = ed.n_q, nd = nl * dim;
+      // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
+      // K_(a i)(b j) = lambda M_ij + mu M_ji + mu delta_ij sum_k M_kk.
+      for (int i = 0; i < dim; ++i) {
+        Gd[i].resize(nl, nq);
+        for (int q = 0; q < nq; ++q)
+          for (int a = 0; a < nl; ++a) Gd[i](a, q) = ed.gradients(q)[a * dim + i];
+      }
+      for (int i = 0; i < dim; ++i) {
+        Gw.noalias() = Gd[i] * Eigen::Map<const Eigen::VectorXd>(ed.JxW.data(), nq).asDiagonal();
+        for (int j = i; j < dim; ++j) M[i][j].noalias() = Gw * Gd[j].transpose();
+      }
+      Eigen::MatrixXd trace = M[0][0];
+      for (int k = 1; k < dim; ++k) trace += M[k][k];
+      Ke.resize(nd, nd);
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j) {
+          const Eigen::MatrixXd& Mij = i <= j ? M[i][j] : M[j][i];
+          for (int b = 0; b < nl; ++b)
+            for (int a = 0; a < nl; ++a) {
+              const double mij = i <= j ? Mij(a, b) : Mij(b, a);  // M_ij(a, b)
+              const double mji = i <= j ? Mij(b, a) : Mij(a, b);  // M_ji(a, b)
+              Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
+            }
+        }
+      dofs.element_equations(ed.cps, eq);
+      for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
+        if (eq[c] >= 0) continue;
+        const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
+        if (g != 0.0)
+          for (int r = 0; r < nd; ++r)
+            if (eq[r] >= 0) f[eq[r]] -= Ke(r, c) * g;
+      }
+      scatter_element_matrix(s.K, val, eq, Ke);
+      if (has_body_force)
+        for (int q = 0; q < nq; ++q)
+          for (int a = 0; a < nl; ++a)
+            for (int i = 0; i < dim; ++i)
+              if (eq[a * dim + i] >= 0) f[eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
+    };
     for (const std::vector<int>& colour : colours) {
       const int n_colour = int(colour.size());
 #pragma omp for schedule(dynamic, 16)
       for (int idx = 0; idx < n_colour; ++idx) {
-        const int e = colour[idx];
-        quad.evaluate(e, ed, true);
-        min_det = std::min(min_det, ed.min_det_J);
-        const int nl = int(ed.cps.size()), nq = int(ed.JxW.size()), nd = nl * dim;
-        // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
-        // K_(a i)(b j) = lambda M_ij + mu M_ji + mu delta_ij sum_k M_kk.
-        for (int i = 0; i < dim; ++i) {
-          Gd[i].resize(nl, nq);
-          for (int q = 0; q < nq; ++q) Gd[i].col(q) = ed.dN[q].col(i);
-        }
-        for (int i = 0; i < dim; ++i) {
-          Gw.noalias() = Gd[i] * ed.JxW.asDiagonal();
-          for (int j = i; j < dim; ++j) M[i][j].noalias() = Gw * Gd[j].transpose();
-        }
-        Eigen::MatrixXd trace = M[0][0];
-        for (int k = 1; k < dim; ++k) trace += M[k][k];
-        Ke.resize(nd, nd);
-        for (int i = 0; i < dim; ++i)
-          for (int j = 0; j < dim; ++j) {
-            const Eigen::MatrixXd& Mij = i <= j ? M[i][j] : M[j][i];
-            for (int b = 0; b < nl; ++b)
-              for (int a = 0; a < nl; ++a) {
-                const double mij = i <= j ? Mij(a, b) : Mij(b, a);  // M_ij(a, b)
-                const double mji = i <= j ? Mij(b, a) : Mij(a, b);  // M_ji(a, b)
-                Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
-              }
-          }
-        eq.resize(nd);
-        for (int a = 0; a < nl; ++a)
-          for (int i = 0; i < dim; ++i) eq[a * dim + i] = dofs.equation(ed.cps[a] * dim + i);
-        for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
-          if (eq[c] >= 0) continue;
-          const double g = dofs.prescribed_value(ed.cps[c / dim] * dim + c % dim);
-          if (g != 0.0)
-            for (int r = 0; r < nd; ++r)
-              if (eq[r] >= 0) f[eq[r]] -= Ke(r, c) * g;
-        }
-        scatter_element_matrix(s.K, val, eq, Ke);
-        if (has_body_force)
-          for (int q = 0; q < nq; ++q)
-            for (int a = 0; a < nl; ++a)
-              for (int i = 0; i < dim; ++i)
-                if (eq[a * dim + i] >= 0) f[eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
+        if (dim == 2)
+          assemble_element(colour[idx], v2);
+        else
+          assemble_element(colour[idx], v3);
       }
     }
   }
@@ -197,20 +203,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
 
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f) {
-  const int dim = body.space_dim();
-  for (const PatchSide& face : faces) {
-    const PatchQuadrature quad = face_quadrature(body, face, gauss_points_for(body.degree()));
-    ElementData ed;
-    for (int e = 0; e < quad.num_elements(); ++e) {
-      quad.evaluate(e, ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q)
-        for (size_t a = 0; a < ed.cps.size(); ++a)
-          for (int i = 0; i < dim; ++i) {
-            const int eq = dofs.equation(ed.cps[a] * dim + i);
-            if (eq >= 0) f[eq] -= pressure * ed.normal(q, i) * ed.N(q, a) * ed.JxW[q];
-          }
-    }
-  }
+  add_dead_pressure(body, dofs, faces, pressure, f);  // the one face loop of the pressure loads
 }
 
 }  // namespace igac

@@ -39,6 +39,14 @@ class DofMap {
   // Free equation number of a dof, or -1 when it is prescribed.
   int equation(int dof) const { return equation_[dof]; }
   double prescribed_value(int dof) const { return value_[dof]; }
+  // The element's dof indices: eq[a * dim + i] = equation(cps[a] * dim + i),
+  // the free equation of component i of its local control point a (or -1).
+  // What scatter_element_vector and scatter_element_matrix (sparsity.hpp) take.
+  void element_equations(const std::vector<int>& cps, std::vector<int>& eq) const {
+    eq.resize(cps.size() * dim_);
+    for (size_t a = 0; a < cps.size(); ++a)
+      for (int i = 0; i < dim_; ++i) eq[a * dim_ + i] = equation_[cps[a] * dim_ + i];
+  }
   // Full coefficient matrix (n_cp x dim) from the free unknowns.
   Eigen::MatrixXd expand(const Eigen::VectorXd& free) const;
 
@@ -71,7 +79,8 @@ struct ElementRange {
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
                                         const Eigen::VectorXd& body_force, ElementRange elements = {});
-// Adds the work of a pressure P on the faces to f (free numbering).
+// Adds the work of a pressure P on the faces to f (free numbering): the dead
+// pressure of follower_pressure.hpp (one face loop for both).
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
                        double pressure, Eigen::VectorXd& f);
 // The number of Gauss points per direction used everywhere for degree p.

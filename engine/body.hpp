@@ -94,6 +94,11 @@ class BodyQuadrature {
   const PatchQuadrature& patch_quadrature(int k) const { return patches_[k]; }
   int first_element(int k) const { return first_[k]; }
   void evaluate(int e, ElementData& out, bool gradients) const;
+  template <int pd, int sd>
+  void evaluate(int e, ElementValues<pd, sd>& out, bool gradients) const {
+    const int k = patches_.size() == 1 ? 0 : patch_of(e);
+    patches_[k].evaluate(e - first_[k], out, gradients);
+  }
   void control_points(int e, std::vector<int>& cps) const;
 
  private:

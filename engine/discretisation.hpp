@@ -1,8 +1,11 @@
-// Element values: per element of a patch (or of a face of it), the rational
-// basis, its physical gradient and the quadrature weights JxW at Gauss points
-// (the FEValues role).  Univariate B-spline values are tabulated once per
-// direction; an element evaluation only forms tensor products, so nothing is
-// allocated inside the quadrature loop once an ElementData has its size.
+// The quadrature of a patch (or of a face of it): univariate B-spline values
+// tabulated once per direction at the Gauss points, so an element evaluation
+// only forms tensor products.  PatchQuadrature::evaluate into an
+// ElementValues (element_values.hpp, sizes fixed at compile time) is the one
+// element kernel of igac; ElementData is the same values in run-time-sized
+// matrices, copied from it, for callers that do not know the dimension.
+// PatchQuadrature::control_points is the one map from an element to its
+// control points.
 //
 // Volume patches (param_dim == space_dim): dN/dX = dN/dxi J^{-1},
 // JxW = det J * w.  Face patches (param_dim == space_dim - 1): the outward
@@ -13,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "engine/element_values.hpp"
 #include "engine/quadrature.hpp"
 #include "engine/spline/nurbs_patch.hpp"
 
@@ -55,9 +59,14 @@ class PatchQuadrature {
   std::array<int, 3> element_index(int e) const;
   const NurbsPatch& patch() const { return patch_; }
   // Fills `out` for element e; gradients only when asked (volume patches).
+  // The fixed-size form needs pd = param_dim and sd = space_dim of the patch
+  // (instantiated for volumes and faces in 2D and 3D).
+  template <int pd, int sd>
+  void evaluate(int e, ElementValues<pd, sd>& out, bool gradients) const;
   void evaluate(int e, ElementData& out, bool gradients) const;
-  // Control points (parent numbering) of element e, without evaluating.
-  void control_points(int e, std::vector<int>& cps) const;
+  // Control points (parent numbering) of element e, local functions first
+  // direction fastest; with `own`, also their numbers in the patch.
+  void control_points(int e, std::vector<int>& cps, std::vector<int>* own = nullptr) const;
 
  private:
   NurbsPatch patch_;

@@ -23,7 +23,10 @@
 // Quadrature: (p+1)^(dim-1) Gauss points per face element, p the largest
 // degree of the patch (the rule of the volume assembly and of
 // add_pressure_load); the weights are the parametric Gauss weights, so a
-// face that degenerates somewhere (zero area) needs no special case.
+// face that degenerates somewhere (zero area) needs no special case.  The
+// faces are walked by FaceQuadrature (face_quadrature.hpp), the element
+// values are ElementValues<dim - 1, dim>, and each face element's vector and
+// matrix go into f and K by the one scatter (sparsity.hpp).
 //
 // Owner: engine/ (loads).  The load-step driver calls these with the full
 // displacement u (n_cp x dim, prescribed values included) and the tangent K

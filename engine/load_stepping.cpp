@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "engine/load_stepping.hpp"
 
 #include <cmath>
@@ -110,10 +111,10 @@ int jacobian_fn(N_Vector u, N_Vector fu, SUNMatrix, void* data, N_Vector, N_Vect
 int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
   const Eigen::VectorXd x = view(u);
   a.record.residual_norms.push_back(view(fu).cwiseAbs().maxCoeff() / a.scale);
-  a.record.active_set_sizes.push_back(a.problem.active_set_size(x));
+  const auto set = a.problem.active_set(a.t, x);
+  a.record.active_set_sizes.push_back(int(std::count(set.begin(), set.end(), 1)));
   // Active-set cycling: the same set seen again after a different one, with
   // no progress in between, is a loop Newton will not leave.
-  const auto set = a.problem.active_set(x);
   if (!set.empty()) {
     const auto& h = a.active_history;
     if (h.size() >= 3 && set == h[h.size() - 2] && h.back() != set && h[h.size() - 3] == h.back()) {
@@ -220,7 +221,7 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
                                                  : fmt::format("KINSOL stopped (flag {}, |R| = {:.3g})", flag, fnorm);
   if (ok) {
     a.record.residual_norms.push_back(fnorm);
-    a.record.active_set_sizes.push_back(a.problem.active_set_size(x_new));
+    a.record.active_set_sizes.push_back(a.problem.active_set_size(a.t, x_new));
     x = x_new;
   }
   return ok;
@@ -239,7 +240,7 @@ std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, cons
     Eigen::VectorXd r0, r1;
     const double eps = 1e-6 * std::max(dt, 1e-3);
     if (!problem.residual(t, x, r0) || !problem.residual(t + eps, x, r1)) return std::nullopt;
-    if (!problem.residual(t, x, r0) || !problem.block_jacobian(t, x, J)) return std::nullopt;  // active set of (x, t)
+    if (!problem.block_jacobian(t, x, J)) return std::nullopt;
     if (!solver.setup(J)) return std::nullopt;
     Eigen::VectorXd dx;
     if (!solver.solve(Eigen::VectorXd((r1 - r0) * (-dt / eps)), dx, 1e-8)) return std::nullopt;

@@ -3,8 +3,8 @@
 // The driver knows a nonlinear problem only through NonlinearProblem: the
 // residual R(x; t) at load factor t and its Jacobian (same sparsity pattern on
 // every call).  Contact enters through that interface (its multipliers are
-// part of x and its active set is decided inside the residual: a semismooth
-// Newton method), so engine/ never includes contact/.
+// part of x and its active set is decided from x inside the residual and the
+// Jacobian: a semismooth Newton method), so engine/ never includes contact/.
 //
 // KINSOL runs Newton (with or without its line search) through a custom
 // direct linear solver, SaddleSolver (engine/saddle_solver.hpp): the
@@ -55,10 +55,11 @@ class NonlinearProblem {
     J.d.resize(0);
     return jacobian(t, x, J.K);
   }
-  // Size of the contact active set at x (0 without contact), for reports.
-  virtual int active_set_size(const Eigen::VectorXd& x) const { return 0; }
-  // A fingerprint of the active set at x, to detect cycling.
-  virtual std::vector<char> active_set(const Eigen::VectorXd& x) const { return {}; }
+  // Size of the contact active set at (x; t) (0 without contact), for reports.
+  virtual int active_set_size(double t, const Eigen::VectorXd& x) const { return 0; }
+  // A fingerprint of the active set at (x; t), to detect cycling: a function
+  // of (x; t) alone, whatever was called before.
+  virtual std::vector<char> active_set(double t, const Eigen::VectorXd& x) const { return {}; }
   // Force scale at (x; t) for the relative residual (e.g. |f_ext| + |f_int|).
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
 };

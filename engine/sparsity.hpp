@@ -1,7 +1,10 @@
 // The sparsity pattern of the matrices of a body and the scatter of element
-// matrices into it: the one pattern and the one scatter of the linear
-// (assembly.cpp) and the total-Lagrangian (total_lagrangian.cpp) assembly,
-// and the element colouring both thread over.
+// vectors and matrices into the global ones by the element's dof indices
+// (DofMap::element_equations): the one pattern and the one scatter of the
+// linear (assembly.cpp) and the total-Lagrangian (total_lagrangian.cpp)
+// assembly, the follower pressure (follower_pressure.cpp) and the obstacle
+// curvature of the large-deformation contact (contact/); and the element
+// colouring both assemblies thread over.
 //
 // Pattern: free equations r and c are coupled when their control points
 // share an element; the matrix is compressed, column major, with sorted row
@@ -12,6 +15,8 @@
 
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <fmt/format.h>
+#include <stdexcept>
 #include <vector>
 
 #include "engine/assembly.hpp"
@@ -35,11 +40,20 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
 std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
                                               int e_end = -1);
 
+// f[eq[r]] += fe[r] for every local row r with a free equation (prescribed
+// ones, -1, are skipped).
+template <class ElementVector>
+void scatter_element_vector(const std::vector<int>& eq, const ElementVector& fe, double* f) {
+  for (int r = 0; r < int(eq.size()); ++r)
+    if (eq[r] >= 0) f[eq[r]] += fe[r];
+}
+
 // values[k] += Ke(r, c) for every local row r and column c whose free
 // equations eq[r], eq[c] are >= 0 (prescribed ones, -1, are skipped), at the
-// entry (eq[r], eq[c]) of `pattern`, which must contain it.  The components
-// of a control point are consecutive equations, hence usually consecutive
-// entries of a column: a step forward is tried before a binary search.
+// entry (eq[r], eq[c]) of `pattern` (compressed, column major, sorted).  The
+// components of a control point are consecutive equations, hence usually
+// consecutive entries of a column: a step forward is tried before a binary
+// search.  Throws std::logic_error when the pattern lacks an entry.
 template <class ElementMatrix>
 void scatter_element_matrix(const Eigen::SparseMatrix<double>& pattern, double* values, const std::vector<int>& eq,
                             const ElementMatrix& Ke) {
@@ -58,6 +72,8 @@ void scatter_element_matrix(const Eigen::SparseMatrix<double>& pattern, double* 
         ++pos;
       else
         pos = std::lower_bound(first, past, row);
+      if (pos == past || *pos != row) [[unlikely]]
+        throw std::logic_error(fmt::format("scatter: the matrix has no entry ({}, {})", row, eq[c]));
       values[pos - inner] += Ke(r, c);
     }
   }

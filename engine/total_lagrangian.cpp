@@ -2,7 +2,6 @@
 
 #include "engine/quadrature.hpp"
 #include "engine/sparsity.hpp"
-#include "engine/spline/rational_basis.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,96 +23,11 @@ bool has_structure(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatr
          std::equal(pattern.innerIndexPtr(), pattern.innerIndexPtr() + pattern.nonZeros(), K.innerIndexPtr());
 }
 
-// Element values of a volume patch with fixed-size Jacobians (the kernel of
-// PatchQuadrature::evaluate, same element and control-point order): per
-// Gauss point the physical gradients dN_a/dX = J^{-T} dR_a/dxi and
-// JxW = det J * w.  It runs in every Newton iteration, so nothing here
-// allocates once the buffers have their size, and 2D works with 2x2 matrices.
-template <int dim>
-struct ElementGeometry {
-  std::vector<int> cps;         // control points
-  std::vector<double> dN;       // [(q * n_loc + a) * dim + J] = dN_a / dX_J at point q
-  std::vector<double> JxW;      // per point
-  double min_det_J = 0;
-  // scratch
-  std::vector<double> w, B, dB;  // weights; R_a, dR_a/dxi_d ([a * dim + d]) per point
-  std::vector<Eigen::Matrix<double, dim, 1>> X;  // control points
-};
-
-// Element e of the patch; control points in body numbering through
-// `to_body` (empty: the patch's own numbering).
-template <int dim>
-void evaluate_element(const NurbsPatch& patch, const std::vector<int>& to_body,
-                      const std::array<UnivariateTable, 3>& t, int e, ElementGeometry<dim>& g) {
-  std::array<int, dim> np, nq, ne, ei;
-  int nl = 1, n_pts = 1;
-  for (int d = 0; d < dim; ++d) {
-    np[d] = t[d].degree + 1;
-    nq[d] = t[d].n_points;
-    ne[d] = int(t[d].span.size());
-    nl *= np[d];
-    n_pts *= nq[d];
-  }
-  for (int d = 0, r = e; d < dim; ++d) {  // e = e0 + n0 (e1 + n1 e2), as PatchQuadrature
-    ei[d] = r % ne[d];
-    r /= ne[d];
-  }
-  g.cps.resize(nl);
-  g.dN.resize(size_t(n_pts) * nl * dim);
-  g.JxW.resize(n_pts);
-  g.w.resize(nl);
-  g.B.resize(nl);
-  g.dB.resize(nl * dim);
-  g.X.resize(nl);
-  for (int a = 0; a < nl; ++a) {
-    std::array<int, 3> gi{0, 0, 0};
-    for (int d = 0, r = a; d < dim; ++d) {
-      gi[d] = t[d].span[ei[d]] - t[d].degree + r % np[d];
-      r /= np[d];
-    }
-    const int cp = patch.index(gi);
-    g.cps[a] = to_body.empty() ? cp : to_body[cp];
-    g.w[a] = patch.weights()[cp];
-    g.X[a] = patch.points().row(cp).transpose();
-  }
-  g.min_det_J = std::numeric_limits<double>::infinity();
-  for (int q = 0; q < n_pts; ++q) {
-    std::array<int, dim> row;
-    double wq = 1;
-    for (int d = 0, r = q; d < dim; ++d) {
-      row[d] = ei[d] * nq[d] + r % nq[d];
-      r /= nq[d];
-      wq *= t[d].weight[row[d]];
-    }
-    // rational basis and dR_a/dxi (in g.B, g.dB), then J = dX/dxi
-    std::array<const double*, dim> Nd, dNd;
-    for (int d = 0; d < dim; ++d) {
-      Nd[d] = t[d].value.data() + size_t(row[d]) * np[d];
-      dNd[d] = t[d].deriv.data() + size_t(row[d]) * np[d];
-    }
-    rational_basis_values<dim>(np.data(), Nd.data(), dNd.data(), g.w.data(), g.B.data(), g.dB.data());
-    Eigen::Matrix<double, dim, dim> J = Eigen::Matrix<double, dim, dim>::Zero();
-    for (int a = 0; a < nl; ++a)
-      for (int d = 0; d < dim; ++d) J.col(d) += g.dB[a * dim + d] * g.X[a];
-    const double det = J.determinant();
-    g.min_det_J = std::min(g.min_det_J, det);
-    g.JxW[q] = det * wq;
-    const Eigen::Matrix<double, dim, dim> Jinv = J.inverse();  // closed form for 2x2, 3x3
-    double* dN = g.dN.data() + size_t(q) * nl * dim;
-    for (int a = 0; a < nl; ++a)
-      for (int c = 0; c < dim; ++c) {  // dN_a/dX_c = sum_d dR_a/dxi_d (J^{-1})_dc
-        double s = 0;
-        for (int d = 0; d < dim; ++d) s += g.dB[a * dim + d] * Jinv(d, c);
-        dN[a * dim + c] = s;
-      }
-  }
-}
-
 // Per-thread scratch of the element kernel: sized on the first element,
 // reused afterwards (every element of a patch has the same size).
 template <int dim>
 struct Workspace {
-  ElementGeometry<dim> geo;
+  ElementValues<dim, dim> geo;
   Eigen::Matrix<double, Eigen::Dynamic, dim> ue;      // local displacements, n_loc x dim
   Eigen::VectorXd fe;                                 // element internal force
   Eigen::MatrixXd Ke;                                 // element tangent
@@ -125,8 +39,8 @@ struct Workspace {
 // points of ws.geo; false when F is inadmissible at a point.
 template <int dim>
 bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
-  const ElementGeometry<dim>& geo = ws.geo;
-  const int nl = int(geo.cps.size()), nq = int(geo.JxW.size()), nd = nl * dim;
+  const ElementValues<dim, dim>& geo = ws.geo;
+  const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
   ws.ue.resize(nl, dim);
   for (int a = 0; a < nl; ++a) ws.ue.row(a) = u.row(geo.cps[a]);
   ws.fe.setZero(nd);
@@ -137,7 +51,7 @@ bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool t
   DimMatrix<dim> F, P;
   TangentMatrix<dim> A;
   for (int q = 0; q < nq; ++q) {
-    const double* dN = geo.dN.data() + size_t(q) * nl * dim;  // dN[a*dim+J] = dN_a/dX_J
+    const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
     F.setIdentity();
     for (int a = 0; a < nl; ++a)
       for (int J = 0; J < dim; ++J)
@@ -188,18 +102,8 @@ bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool t
 
 constexpr int kElementsPerColourForThreads = 64;
 
-// Element e of the body: its patch's geometry and tables.
 template <int dim>
-void evaluate_body_element(const Body& body, const BodyQuadrature& quad,
-                           const std::vector<std::array<UnivariateTable, 3>>& tables, int e, ElementGeometry<dim>& g) {
-  const int k = body.num_patches() == 1 ? 0 : quad.patch_of(e);
-  static const std::vector<int> identity;
-  evaluate_element<dim>(body.patch(k), body.num_patches() == 1 ? identity : body.body_cps(k), tables[k],
-                        e - quad.first_element(k), g);
-}
-
-template <int dim>
-bool assemble_dim(const Body& body, const BodyQuadrature& quad, const std::vector<std::array<UnivariateTable, 3>>& tables, const DofMap& dofs, const HyperelasticLaw& law,
+bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const HyperelasticLaw& law,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
                   const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
   const bool tangent = K != nullptr;
@@ -230,17 +134,13 @@ bool assemble_dim(const Body& body, const BodyQuadrature& quad, const std::vecto
 #pragma omp for schedule(dynamic, 16)
       for (int j = 0; j < n; ++j) {
         if (failed.load(std::memory_order_relaxed)) continue;
-        evaluate_body_element<dim>(body, quad, tables, colour[j], ws.geo);
+        quad.evaluate(colour[j], ws.geo, true);
         if (!element_kernel<dim>(law, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
         }
-        const int nl = int(ws.geo.cps.size()), nd = nl * dim;
-        ws.eq.resize(nd);
-        for (int a = 0; a < nl; ++a)
-          for (int i = 0; i < dim; ++i) ws.eq[a * dim + i] = dofs.equation(ws.geo.cps[a] * dim + i);
-        for (int r = 0; r < nd; ++r)
-          if (ws.eq[r] >= 0) f[ws.eq[r]] += ws.fe[r];
+        dofs.element_equations(ws.geo.cps, ws.eq);
+        scatter_element_vector(ws.eq, ws.fe, f);
         if (!tangent) continue;
         scatter_element_matrix(pattern, val, ws.eq, ws.Ke);
       }
@@ -264,22 +164,18 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
                                             dofs.num_dofs(), dofs.dim(), body_.num_control_points(), dim));
   pattern_ = coupling_pattern(quad_, dofs_);
   colours_ = colour_elements(quad_, dofs_);
-  const GaussRule rule = gauss_legendre(gauss_points_for(body_.degree()));
-  tables_.resize(body_.num_patches());
-  for (int k = 0; k < body_.num_patches(); ++k)
-    for (int d = 0; d < dim; ++d) tables_[k][d] = tabulate(body_.patch(k).knots(d), rule);
   double min_det = std::numeric_limits<double>::infinity();
 #pragma omp parallel
   {
-    ElementGeometry<2> g2;
-    ElementGeometry<3> g3;
+    ElementValues<2, 2> g2;
+    ElementValues<3, 3> g3;
 #pragma omp for schedule(dynamic, 64) reduction(min : min_det)
     for (int e = 0; e < quad_.num_elements(); ++e) {
       if (dim == 2) {
-        evaluate_body_element<2>(body_, quad_, tables_, e, g2);
+        quad_.evaluate(e, g2, false);
         min_det = std::min(min_det, g2.min_det_J);
       } else {
-        evaluate_body_element<3>(body_, quad_, tables_, e, g3);
+        quad_.evaluate(e, g3, false);
         min_det = std::min(min_det, g3.min_det_J);
       }
     }
@@ -295,8 +191,8 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
   if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
     throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
                                             dofs_.num_dofs() / dim, dim));
-  return dim == 2 ? assemble_dim<2>(body_, quad_, tables_, dofs_, *law_, colours_, pattern_, u, f_int, K)
-                  : assemble_dim<3>(body_, quad_, tables_, dofs_, *law_, colours_, pattern_, u, f_int, K);
+  return dim == 2 ? assemble_dim<2>(quad_, dofs_, *law_, colours_, pattern_, u, f_int, K)
+                  : assemble_dim<3>(quad_, dofs_, *law_, colours_, pattern_, u, f_int, K);
 }
 
 }  // namespace igac

@@ -15,8 +15,9 @@
 //
 // Discretisation: (p+1)^dim Gauss points per element (as the linear
 // assembler).  The dimension is a compile-time parameter of the kernel and of
-// its element values (2D pays nothing for 3D; nothing is allocated per
-// element).  Elements are threaded with OpenMP colour by colour: elements of
+// its element values (ElementValues<dim, dim>, filled by the one element
+// kernel PatchQuadrature::evaluate: 2D pays nothing for 3D; nothing is
+// allocated per element).  Elements are threaded with OpenMP colour by colour: elements of
 // one colour share no equation, so threads add straight into K and f_int
 // (memory independent of the thread count, no reduction pass).  The sparsity
 // pattern (free x free: two equations couple when their control points share
@@ -74,8 +75,7 @@ class TotalLagrangianAssembler {
 
  private:
   Body body_;
-  BodyQuadrature quad_;                                  // element numbering, control points
-  std::vector<std::array<UnivariateTable, 3>> tables_;  // per patch: Gauss-point B-spline values per direction
+  BodyQuadrature quad_;  // the elements, their tabulated basis and control points
   DofMap dofs_;
   const HyperelasticLaw* law_;
   Eigen::SparseMatrix<double> pattern_;

@@ -40,13 +40,11 @@ double mean_face_displacement(const Body& body, const std::vector<PatchSide>& fa
 void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const Eigen::VectorXd& x, RunResult& r) {
   const Model::Contact& first = m.contacts.front();  // reported in detail; every contact's force in reactions
   const ContactFace& cf = *first.face;
-  Eigen::VectorXd res;
-  problem.residual(t, x, res);  // refreshes the active set at x
   auto c = std::make_unique<ContactResult>();
   const int n = problem.num_displacements(), mm = problem.num_multipliers();
   c->solution.u = x.head(n);
   c->solution.lambda = x.tail(mm);
-  c->solution.active = problem.active_set(x);
+  c->solution.active = problem.active_set(t, x);
   c->solution.weighted_gap = problem.weighted_gaps(t, x);
   c->solution.converged = true;
   c->op.weights = problem.multiplier_weights();

@@ -72,7 +72,7 @@ TEST(FiniteStrainTangent, MatchesCentralDifferencesWithActiveCurvedContact) {
   ASSERT_TRUE(problem.jacobian(t, x, J));
   Eigen::VectorXd r0;
   ASSERT_TRUE(problem.residual(t, x, r0));
-  const auto active = problem.active_set(x);
+  const auto active = problem.active_set(t, x);
   ASSERT_GE(std::count(active.begin(), active.end(), 1), 3) << "the contact zone must be active";
   const Eigen::MatrixXd Jd = Eigen::MatrixXd(J);
   // every multiplier column and displacement columns near the contact face
@@ -85,9 +85,9 @@ TEST(FiniteStrainTangent, MatchesCentralDifferencesWithActiveCurvedContact) {
     xp[j] += h;
     xm[j] -= h;
     ASSERT_TRUE(problem.residual(t, xp, rp));
-    const auto ap = problem.active_set(xp);
+    const auto ap = problem.active_set(t, xp);
     ASSERT_TRUE(problem.residual(t, xm, rm));
-    const auto am = problem.active_set(xm);
+    const auto am = problem.active_set(t, xm);
     if (ap != active || am != active) continue;  // across the semismooth kink: no derivative to compare
     const Eigen::VectorXd fd = (rp - rm) / (2 * h);
     const double scale = std::max(Jd.col(j).cwiseAbs().maxCoeff(), 1e-12);

@@ -335,8 +335,27 @@ TEST(FollowerPressure, ResidualTangentCheckCatchesMissingLoadStiffness) {
   EXPECT_GE(without, 1e3 * kFiniteDifference);
 }
 
-// Dead load = add_pressure_load on every face of each shape (all
-// orientations), and the follower load at u = 0 equals the dead load.
+// -P int N_A n dGamma from the face's unit normals and dGamma = |n dA| w
+// (ElementData of its PatchQuadrature), independently of the area vector
+// that the pressure loads integrate.
+Eigen::VectorXd normal_times_area_load(const NurbsPatch& patch, const DofMap& dofs, const PatchSide& side, double P) {
+  const int dim = patch.space_dim();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs.num_free());
+  const PatchQuadrature quad = face_quadrature(patch, side, gauss_points_for(Body(patch).degree()));
+  ElementData ed;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q)
+      for (size_t a = 0; a < ed.cps.size(); ++a)
+        for (int i = 0; i < dim; ++i)
+          if (const int eq = dofs.equation(ed.cps[a] * dim + i); eq >= 0)
+            f[eq] -= P * ed.normal(q, i) * ed.N(q, a) * ed.JxW[q];
+  }
+  return f;
+}
+
+// Dead load (= add_pressure_load) = -P int N n dGamma on every face of each
+// shape (all orientations), and the follower load at u = 0 equals it.
 TEST(FollowerPressure, DeadLoadIsTheReferenceLoad) {
   for (const Geometry& g : {quarter_disc(1.0), box(1.0, 0.8, 0.6), sphere_octant(1.0)}) {
     const NurbsPatch patch = refined(g.patch, 2, 2);
@@ -346,7 +365,7 @@ TEST(FollowerPressure, DeadLoadIsTheReferenceLoad) {
       for (bool e : {false, true}) {
         const std::vector<PatchSide> faces{Face{d, e}};
         Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(dofs.num_free()), f_dead = f_ref, f_fol = f_ref;
-        add_pressure_load(patch, dofs, faces, 0.7, f_ref);
+        f_ref = normal_times_area_load(patch, dofs, faces.front(), 0.7);
         add_dead_pressure(patch, dofs, faces, 0.7, f_dead);
         add_follower_pressure(patch, dofs, faces, 0.7, Eigen::MatrixXd::Zero(patch.num_control_points(), dim), f_fol,
                               nullptr);
