@@ -185,7 +185,7 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
     mesh.append(part);
   }
   auto grid = bezier_grid(mesh);
-  const int nl = mesh.num_local(), ne = mesh.num_elements();
+  const int ne = mesh.num_elements();
   auto p_point = make_array("pressure", 1, mesh.num_points());
   auto p_cell = make_array("pressure", 1, ne);
   auto g_cell = make_array("weighted_gap", 1, ne);

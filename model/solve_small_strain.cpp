@@ -7,16 +7,13 @@
 #include <fmt/format.h>
 
 #include "contact/coarse_start.hpp"
+#include "engine/stopwatch.hpp"
 #include "engine/prolongation.hpp"
 #include "model/petsc_run.hpp"
 #include "model/references.hpp"
 #include "model/solve.hpp"
 
 namespace igac {
-namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
 
 double pressure_resultant(const Model& m) {
   const int dim = m.body.space_dim();
@@ -117,10 +114,10 @@ void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedG
 RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun coarser) {
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
-  const auto t_start = Clock::now();
+  Stopwatch t_start;
   const Body& body = m.body;
   const int dim = body.space_dim();
-  auto t0 = Clock::now();
+  Stopwatch t0;
   Eigen::VectorXd bf = m.spec.body_force.empty()
                            ? Eigen::VectorXd::Zero(dim)
                            : Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim).eval();
@@ -130,7 +127,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.material, bf, process_elements(m));
   sum_over_processes(sys.f);
   for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
-  r.timing.assembly = since(t0);
+  r.timing.assembly = t0.seconds();
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
@@ -144,20 +141,20 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.status = s.status;
     r.u = m.dofs->expand(s.u);
   } else if (m.contacts.empty()) {
-    t0 = Clock::now();
+    t0.restart();
     chol.factorize(sys.K);
-    r.timing.factorization = since(t0);
-    t0 = Clock::now();
+    r.timing.factorization = t0.seconds();
+    t0.restart();
     r.u = m.dofs->expand(chol.solve(sys.f));
-    r.timing.linear_solve = since(t0);
+    r.timing.linear_solve = t0.seconds();
   } else {
-    t0 = Clock::now();
+    t0.restart();
     auto c = std::make_unique<ContactResult>();
     c->op = assemble_contact_operator(m);
-    r.timing.assembly += since(t0);
+    r.timing.assembly += t0.seconds();
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
-    t0 = Clock::now();
+    t0.restart();
     // Nested iteration from the solution one refinement below: the PETSc
     // path solves it first (a Krylov or MUMPS solve per active-set
     // iteration: 17 -> 2 of them on hertz3d's 225k reference); the direct
@@ -170,12 +167,12 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
                         : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;
-    r.timing.contact = since(t0) - c->solution.factorize_s;
+    r.timing.contact = t0.seconds() - c->solution.factorize_s;
     r.status = c->solution.status;
     if (c->solution.u.size() != m.dofs->num_free())
       throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
     r.u = m.dofs->expand(c->solution.u);
-    t0 = Clock::now();
+    t0.restart();
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
     report_first_contact(m, *c);
     // A rigid obstacle can only push: a net pull on the body (tensile
@@ -184,13 +181,13 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
       if (r.status == "converged" && rr.normal_force < -1e-9 * std::max(r.applied_force, 1e-300))
         r.status = fmt::format("failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)",
                                rr.face, rr.normal_force);
-    r.timing.postprocess += since(t0);
+    r.timing.postprocess += t0.seconds();
     r.contact = std::move(c);
   }
-  t0 = Clock::now();
+  t0.restart();
   compare_with_reference(m, r);
-  r.timing.postprocess += since(t0);
-  r.timing.total = since(t_start);
+  r.timing.postprocess += t0.seconds();
+  r.timing.total = t_start.seconds();
   return r;
 }
 

@@ -1,5 +1,6 @@
 #include "solvers/petsc_contact.hpp"
 
+#include "engine/stopwatch.hpp"
 #include "solvers/petsc_multigrid.hpp"
 #include "solvers/petsc_support.hpp"
 
@@ -17,9 +18,6 @@
 namespace igac {
 using namespace petsc;
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 bool g_active = false;
 std::string g_message;              // PETSc's own words for the first error of a chain
@@ -345,7 +343,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   const bool multigrid = o.spline_multigrid;
   ContactSolution sol;
   sol.ranks = PetscSession::size();
-  auto t0 = Clock::now();
+  Stopwatch t0;
 
   // Augmentation weights W_K = E / h_K^d, h_K from the multiplier's support
   // measure int B_K ~ h^(d-1): G^T W G has the magnitude of K on the face.
@@ -449,7 +447,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
       check(VecAssemblyEnd(bf), "vector");
     }
   }
-  const double assembly_s = since(t0);
+  const double assembly_s = t0.seconds();
 
   // The solution to every process: u and lambda gathered separately (the
   // shell's vectors interleave them process by process).
@@ -477,7 +475,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   for (int it = 0; it < o.contact.max_iterations; ++it) {
     sol.active_set_sizes.push_back(int(std::count(active.begin(), active.end(), 1)));
     // Contact rows and columns for this active set (owned rows only).
-    auto ts = Clock::now();
+    Stopwatch ts;
     Eigen::VectorXd wa(m), g0a(m);
     for (PetscInt K = 0; K < m; ++K) {
       wa[K] = active[K] ? W[K] : 0.0;
@@ -519,9 +517,9 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
     }
     check(VecRestoreArray(x, &px), "vector");
     check(VecRestoreArray(b, &pb), "vector");
-    sol.schur_s += since(ts);  // (here: the contact rows' assembly)
+    sol.schur_s += ts.seconds();  // (here: the contact rows' assembly)
 
-    ts = Clock::now();
+    ts.restart();
     check(KSPSetOperators(ksp, op_mat, op_mat), "solver");
     check(KSPSetUp(ksp), "solver setup", it == 0);
     if (multigrid) {
@@ -535,10 +533,10 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
       mg->setup(rebuild);
       if (rebuild) built_for = now;
     }
-    setup_s += since(ts);
-    ts = Clock::now();
+    setup_s += ts.seconds();
+    ts.restart();
     check(KSPSolve(ksp, b, x), "solve", it == 0);
-    solve_s += since(ts);
+    solve_s += ts.seconds();
     if (it == 0) refuse_unused_options();
     KSPConvergedReason reason;
     PetscInt iterations = 0;
