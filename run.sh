@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # ./run.sh CASE [options]   — set up (packages, build) when needed, run one case.
 # Options are those of `build/igac run` (--out DIR, --refine N, --degree P, --quiet, --no-output).
 set -euo pipefail

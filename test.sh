@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # ./test.sh   — set up (packages, build) when needed, then run the whole suite through CTest.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How this process was started: its rank among the processes of mpirun
 // (read from the launcher's environment, before or without MPI), and the
 // hand-over from the plain igac program to igac-petsc.

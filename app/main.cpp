@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // igac — command line.
 //   igac run CASE.toml [--out DIR] [--refine N] [--degree P] [--quiet] [--no-output]
 //            [--solver direct|petsc] [--petsc-options "-ksp_type cg ..."]

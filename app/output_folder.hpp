@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An output folder that is never seen half-written.  A run writes into a
 // fresh hidden sibling (".NAME.igac-tmp-PID") and, when it ends, swaps it
 // with the target in one atomic rename (renameat2 RENAME_EXCHANGE), then

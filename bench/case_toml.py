@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """case_toml.py: write igac case files (TOML) from dicts, for the bench scripts.
 
 Python's tomllib reads TOML but does not write it; this is the small writer

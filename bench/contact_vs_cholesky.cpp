@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // bench/contact_vs_cholesky: the cost of the whole small-deformation contact
 // solve against the floor of any direct method, one sparse Cholesky
 // factorisation (analysis + numeric, CHOLMOD's own ordering) of the same

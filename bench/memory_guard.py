@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """memory_guard.py [--max-gib G] — calibrate igac's memory guard.
 
 Runs small-deformation cases at growing refinement and reads from each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // bench/newton_vs_linear: the cost of one Newton iteration of the
 // large-deformation path against one small-deformation solve of the same
 // mesh (linear-elastic assembly + one CHOLMOD analysis and factorisation of

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Direct (CHOLMOD) against PETSc (MUMPS LDL^T, the algebraic-multigrid field
 split and the spline multigrid) on 1 and 2 MPI processes, for the 3D Hertz
 study's meshes.

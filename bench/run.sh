@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # bench/run.sh [--quick] — benchmarks of igac, written to bench/results/.
 #   contact_vs_cholesky.csv: the whole small-deformation contact solve against
 #   one sparse Cholesky factorisation of the same matrix (rigid mode pinned),

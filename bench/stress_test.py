@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Stress tests of igac's numerical stability.
 
 bench/stress_test.py [--quick] [--igac PATH] [--timeout S] [--keep DIR]

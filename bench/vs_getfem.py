@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """vs_getfem.py [--problems 2d 3d follower disp] [--quick] — igac against GetFEM, same machine, same run.
 
 Runs the GetFEM peer scripts (../shared/peers/getfem and getfem-largedef,

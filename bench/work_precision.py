@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Work-precision of igac's small-deformation Hertz solves.
 
 bench/work_precision.py [--quick] [--igac PATH] [--keep DIR] [--results DIR]

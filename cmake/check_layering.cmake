@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Fails the build when a source file includes a header of a folder above its
 # own: materials/ < engine/ < contact/ < solvers/ < model/ < io/ < app/
 # (docs/design.md, "Layout").
@@ -43,6 +44,17 @@ foreach(folder app io)
         endif()
       endforeach()
     endforeach()
+  endforeach()
+endforeach()
+# Every source file names its licence (LICENSE) on its first line.
+foreach(folder IN LISTS levels ITEMS tests bench)
+  file(GLOB_RECURSE sources "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.hpp")
+  foreach(src IN LISTS sources)
+    file(STRINGS "${src}" first LIMIT_COUNT 1)
+    if(NOT first STREQUAL "// SPDX-License-Identifier: BSD-3-Clause")
+      file(RELATIVE_PATH rel "${SOURCE_DIR}" "${src}")
+      string(APPEND bad "\n  ${rel}: the first line is not // SPDX-License-Identifier: BSD-3-Clause")
+    endif()
   endforeach()
 endforeach()
 if(bad)

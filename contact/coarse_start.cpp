@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contact/coarse_start.hpp"
 
 #include <stdexcept>

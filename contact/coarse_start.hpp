@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The start of the active-set iteration on a refined mesh from the converged
 // solution one mesh coarser (nested iteration).  Started from the closed
 // initial gaps, the iteration overshoots (hertz3d: 1 -> 576 -> 494 -> ... ->

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contact/finite_strain_problem.hpp"
 
 #include <algorithm>

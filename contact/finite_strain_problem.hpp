@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Large-deformation frictionless contact as a NonlinearProblem for the
 // load-stepping driver (engine/load_stepping.hpp): total-Lagrangian
 // elasticity with a hyperelastic law, follower (or dead) pressure, ramped

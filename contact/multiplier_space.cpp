@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contact/multiplier_space.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The multiplier space Lambda_h = S^{p-2} on the contact face (paper, eq. (7)):
 // B-splines of degree p-2 on the face's breakpoints, ends repeated p-1 times
 // (open), interior breakpoints with the displacement's multiplicities (which

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The registry of obstacle types: one line per type (each type is one file
 // under contact/obstacles/), and the translated obstacle of a moving one.
 #include "contact/obstacle.hpp"

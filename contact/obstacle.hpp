@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rigid obstacles behind one small interface: at a point x of space an
 // obstacle gives the signed normal gap g_n (positive when x is outside it)
 // and its own outward unit normal n (docs/design.md, "Gap and sign convention": g_n = (x - x_obstacle) . n).

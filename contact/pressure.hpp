@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Contact pressure p = -lambda (>= 0) after a solve, and its comparison with
 // Hertz (Johnson, Contact Mechanics, ch. 4; docs/design.md, "Reference solutions"):
 //   2D (force per unit length F' = 2 R P): a = sqrt(8 R^2 P (1-nu^2) / (pi E)),

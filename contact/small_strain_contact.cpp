@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contact/small_strain_contact.hpp"
 
 #include <algorithm>

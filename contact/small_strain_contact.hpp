@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small-deformation frictionless contact: the primal-dual active set method
 // of the paper (Appendix 1) on the saddle-point system
 //     K u + G^T lambda = f,   (G u)_K = -g0_K for K active,  lambda_K = 0 inactive.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contact/weighted_gap.hpp"
 
 #include <stdexcept>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Weighted gaps and their linearisation (paper, eq. (8) and Appendix 1):
 //   (Pi g)_K = int_{Gamma_C} g_n B_K dGamma / K_K,   K_K = int_{Gamma_C} B_K dGamma,
 // integrated on the reference contact face.  In small deformation the gap is

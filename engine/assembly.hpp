@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Degrees of freedom and the linear-elastic system of a body (one or more
 // patches, engine/body.hpp).
 //

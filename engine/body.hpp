@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A solid body made of NURBS patches joined C0 across conforming interfaces
 // (the multi-patch discretisation of G+Smo and of Cottrell, Hughes and
 // Bazilevs, Isogeometric Analysis, sec. 2.4): each patch keeps its own knots

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The small dense system both contact solvers end with: the Schur complement
 // S of the active multipliers bordered by the rigid motions they must hold,
 //     [ S     -B ] [x]   [ r ]        S: n x n, SPD on the null space of B^T

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sparse Cholesky factorisation P A P^T = L L^T of an SPD matrix with CHOLMOD
 // (SuiteSparse, supernodal; the dense kernels run on the BLAS that
 // libblas.so.3 points to, OpenBLAS when installed).  One object: analyze()

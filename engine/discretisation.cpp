@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "engine/discretisation.hpp"
 
 #include "engine/spline/rational_basis.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The quadrature of a patch (or of a face of it): univariate B-spline values
 // tabulated once per direction at the Gauss points, so an element evaluation
 // only forms tensor products.  PatchQuadrature::evaluate into an

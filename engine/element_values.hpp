@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Element values with the dimensions known at compile time: per element of a
 // patch (pd = sd, a volume) or of a face of it (pd = sd - 1), at its Gauss
 // points, the rational basis R_a, its parametric derivatives dR_a/dxi, its

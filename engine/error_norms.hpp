@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Error norms of a displacement field on a body (one or more patches): L2 and the H1 seminorm,
 //   ||u - u_h||_0 = (int |u - u_h|^2 dX)^1/2,  |u - u_h|_1 = (int |grad(u - u_h)|^2 dX)^1/2,
 // against a closed-form solution or against a reference solution on a finer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one face loop of engine/ and contact/: Gauss quadrature over a list of
 // sides of a body (a face of a multi-patch body may span several), tabulated
 // once, that hands each face element's values (ElementValues<dim - 1, dim>: basis,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pressure loads on faces of a body in large deformation: a follower load
 // that acts on the deformed face (default) and a dead load on the reference
 // face (option).  Wriggers, Nonlinear FEM, sec. 4.2.5; Holzapfel sec. 8.4.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What a small-deformation solve needs besides the matrix: the rigid motions
 // that the Dirichlet conditions leave free (a body held only by contact has
 // them), and a choice of dofs to pin them while K is factorised.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Load stepping with Newton's method driven by SUNDIALS KINSOL.
 //
 // The driver knows a nonlinear problem only through NonlinearProblem: the

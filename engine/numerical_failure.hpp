@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one exception the Newton driver (engine/load_stepping.hpp) treats as
 // an expected outcome: a trial state the problem cannot evaluate (a contact
 // point at the centre of a rigid sphere, where the obstacle has no normal),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The prolongation between two nested discretisations of the same body:
 // the fine mesh's knot vectors contain the coarse ones (patch by patch,
 // direction by direction: `igac run --refine r` contains `--refine r-1`), so

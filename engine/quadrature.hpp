@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Gauss-Legendre quadrature on [0, 1] (points by Newton iteration on the
 // Legendre polynomial, Golub & Welsch give the same to round-off).  n points
 // integrate polynomials of degree 2n-1 exactly; igac uses p+1 per direction.

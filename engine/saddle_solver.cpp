@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "engine/saddle_solver.hpp"
 
 #include <Eigen/UmfPackSupport>

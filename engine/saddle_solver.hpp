@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The Newton matrix of a problem with constraints, in blocks, and its direct
 // solver (used by the load-stepping driver, engine/load_stepping.hpp).
 //

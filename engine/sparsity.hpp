@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The sparsity pattern of the matrices of a body and the scatter of element
 // vectors and matrices into the global ones by the element's dof indices
 // (DofMap::element_equations): the one pattern and the one scatter of the

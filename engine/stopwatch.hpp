@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The one stopwatch of the timings igac reports (summary.json's timing_s,
 // the solver statistics): wall-clock seconds on the steady clock.
 //

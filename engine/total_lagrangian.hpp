@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Total-Lagrangian kinematics of a hyperelastic body of NURBS patches: the
 // internal force and its consistent tangent, integrated over the reference
 // configuration (Holzapfel, Nonlinear Solid Mechanics, ch. 8; Wriggers,

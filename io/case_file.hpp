@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Case files: one TOML file per simulation (every key: docs/case_file.md).
 // read_case() parses and validates everything it can without building the
 // mesh; any problem is an InputError whose one-line message
@@ -21,7 +22,7 @@ CaseSpec read_case(const std::string& path);
 // "mesh.degree", "mesh.grading.direction", "contact.obstacle.radius";
 // "faces.*" for the names of one's own in [faces].  Shapes, laws and
 // obstacles contribute their registered keys.  docs/case_file.md documents
-// each one (tests/test_docs.cpp checks both ways).
+// each one (tests/unit/io/test_docs.cpp checks both ways).
 std::vector<std::string> declared_case_keys();
 // Why a [solver] preconditioner cannot be used ("" when it can).
 std::string check_preconditioner(const SolverSpec& solver);

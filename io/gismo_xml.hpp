@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NURBS geometry files in the XML format of G+Smo (gismo/gismo,
 // src/gsIO/gsXml*.{h,hpp,cpp}; example files in its filedata/ folder), the
 // format isogeometric codes use to exchange multi-patch NURBS models.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Output files of a run: summary.json (keys in docs/design.md, "Outputs"), pressure.csv.
 // Files are written to a temporary name and renamed, so a file that exists
 // is complete; a value that is not finite is written as null and turns the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The plots of an output folder, drawn as SVG (io/svg_plot.hpp) from what a
 // run holds in memory; the CSV files beside them hold the same numbers.
 //   pressure.svg    the contact pressure of the first contact: the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Plots written as SVG text by igac itself: a figure of panels side by side,
 // each with a title, axis labels, linear or logarithmic axes with "nice"
 // ticks, a light grid, a legend, and series drawn as lines, markers, dashed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // ParaView output: VTK XML unstructured grids of exact rational Bezier cells
 // (written with VTK's vtkXMLUnstructuredGridWriter), one set per load step,
 // and a .pvd collection that plays the loading.

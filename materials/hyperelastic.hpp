@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hyperelastic material laws: the interface the total-Lagrangian assembler
 // calls at every quadrature point, the adapter that turns a law written once
 // as a template on the dimension into that interface, the registry of laws by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Isotropic linear elasticity (small strain): sigma = lambda tr(eps) I + 2 mu eps,
 // with lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).  In 2D the
 // model is plane strain (eps_zz = 0), which keeps these same lambda and mu.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "materials/linear_elastic_law.hpp"
 
 namespace igac {

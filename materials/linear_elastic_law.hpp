@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Linear elasticity written as a law of F, for the nonlinear driver: a
 // small-strain material inside the total-Lagrangian machinery (the linear
 // assembler keeps using materials/linear_elastic.hpp and never calls this).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "materials/mooney_rivlin.hpp"
 
 #include <cmath>

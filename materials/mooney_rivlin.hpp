@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Compressible Mooney-Rivlin rubber (Holzapfel, Nonlinear Solid Mechanics,
 // eq. 6.148 with the isochoric split of 6.4; the usual law of O-ring and seal
 // analyses):

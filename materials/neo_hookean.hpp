@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Compressible Neo-Hookean material (Holzapfel, Nonlinear Solid Mechanics,
 // eq. 6.148; Wriggers, Nonlinear FEM, eq. 3.118; the law of the paper's
 // large-deformation benchmarks, section 4.3):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "materials/saint_venant_kirchhoff.hpp"
 
 namespace igac {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Saint Venant-Kirchhoff material: linear elasticity in the Green-Lagrange
 // strain (Holzapfel, Nonlinear Solid Mechanics, eq. 6.151; Wriggers,
 // Nonlinear FEM, eq. 3.114).  The worked example of materials/README.md.

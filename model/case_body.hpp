@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The body a case describes, as it is described: the coarse multi-patch
 // geometry before degree elevation and knot refinement (what `igac geometry`
 // writes, engine/geometry/multipatch.hpp): the patches a geometry file held when the case was read,

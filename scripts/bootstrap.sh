@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the Debian 12 packages igac builds against (when they are missing
 # and we are root), then configures and builds Release into build/ when the
 # sources are newer than the binary. Shared by run.sh and test.sh.

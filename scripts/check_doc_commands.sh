@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # scripts/check_doc_commands.sh [--list]
 #
 # Runs every command that README.md and docs/*.md show in ```sh blocks (also

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Runs every shipped case and compares the results of two builds.
 
     scripts/compare_cases.py run BINARY DIR      # cases/*.toml -> DIR/<case>/summary.json

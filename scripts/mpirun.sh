@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # scripts/mpirun.sh N ARGS...   — runs `build/igac ARGS` on N MPI processes.
 #   scripts/mpirun.sh 2 run cases/hertz3d.toml --solver petsc
 # Open MPI refuses to start as root without --allow-run-as-root and more

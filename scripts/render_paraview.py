@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Render an igac run with ParaView: the deformed body coloured by stress.
 
     /usr/bin/python3 scripts/render_paraview.py OUT/solution.pvd OUT/body.png \

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "solvers/petsc_contact.hpp"
 
 #include "engine/stopwatch.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The small-deformation contact solve in PETSc, on one or more MPI processes:
 // the same primal-dual active set as contact/small_strain_contact (same
 // initial set, same rule, same stopping test), but each active-set iteration

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Geometric multigrid from the spline hierarchy for the PETSc contact solve
 // (solvers/petsc_contact; `[solver] preconditioner = "spline_multigrid"`).
 //

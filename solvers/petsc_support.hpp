@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the PETSc solvers of contact/ share (petsc_contact.cpp and
 // petsc_multigrid.cpp; not part of igac's interface): error checking with
 // PETSc's own words, PETSc objects owned by scope, and igac's default

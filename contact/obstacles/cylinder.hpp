@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rigid infinite cylinder in 3D (a roller, a pin) pressed on from outside:
 // axis through `point` along the unit `axis` a, radius r.  With
 // d = (x - p) - ((x - p) . a) a:  g_n = |d| - r,  n = d / |d|,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rigid plane through `point` with outward unit normal `normal`:
 // g_n = (x - point) . n, dn/dx = 0.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Rigid sphere (a circle in 2D) pressed on from outside: g_n = |x - c| - r,
 // n = (x - c) / |x - c|, dn/dx = (I - n n^T) / |x - c|.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Multi-patch geometry as it is described (before any refinement): the
 // patches, the sides they share, and the sides on the boundary.  This is the
 // contract between the geometry file reader/writer (io/gismo_xml) and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Face lookup shared by every shape, and the registry of built-in shapes:
 // one file per shape in shapes/, one line here.
 #include "engine/geometry/shapes.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact coarse NURBS geometries (one patch each), with their boundary faces
 // named for people.  Circles are rational quadratics (Piegl & Tiller 7.5), so
 // refinement keeps them exact.  Every shape also answers to the parametric

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The parametric names of the sides of a body of `patches` patches with
 // `param_dim` parametric directions: "PATCH:SIDE" with SIDE one of G+Smo's
 // west east south north front back or u0 u1 v0 v1 w0 w1, and on a one-patch

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bezier extraction: every element of a NURBS patch written as a rational
 // Bezier element (Borden, Scott, Evans & Hughes 2011, "Isogeometric finite
 // element data structures based on Bezier extraction of NURBS"; Piegl &

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Knot vectors and univariate B-spline bases (Piegl & Tiller, The NURBS Book,
 // ch. 2: A2.1 FindSpan, A2.3 DersBasisFuns).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A NURBS patch: a tensor product of univariate B-spline bases with positive
 // weights and control points in R^space_dim (Piegl & Tiller ch. 4; paper,
 // section 1.2).  The parametric dimension may be lower than the space

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The rational tensor-product basis at one point, from the univariate
 // B-spline (or Bernstein) values of each direction there (Piegl & Tiller,
 // eq. 4.2 and 4.8; Cottrell, Hughes & Bazilevs, sec. 2.3):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact refinement of a NURBS patch and of fields carried on it.
 //
 // Both operations act on homogeneous coefficients (w P, w, w u): the

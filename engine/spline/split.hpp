@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Splitting a NURBS patch in two along a parametric direction, and affine
 // reparametrisation of a patch to the unit cube.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Test geometry helpers shared by several test files.
 #pragma once
 

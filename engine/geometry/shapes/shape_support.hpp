@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the built-in shapes (one file each in this folder) share: Bezier
 // knot vectors, the circle weight, and the positive-length check.
 #pragma once

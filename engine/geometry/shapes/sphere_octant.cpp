@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "engine/geometry/shapes/shape_support.hpp"
 
 namespace igac {

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Records the golden values of the shipped cases (tests/test_golden_cases.cpp).
+"""Records the golden values of the shipped cases (tests/cli/test_golden_cases.cpp).
 
     python3 tests/data/golden/record.py BUILD/igac RUN_FOLDER CASE [CASE ...]
 

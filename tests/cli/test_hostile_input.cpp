@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Regression tests for what a hostile or clumsy user found (issue 12): each
+// of these failed before its fix.  Shell injection through the case name or
+// --out, names that climb out of out/, a converged run called failed because
+// its name contains "null", zero and tiny loads, obstacles the body can never
+// touch, and exceptions thrown inside KINSOL's callbacks.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engine/load_stepping.hpp"
+#include "engine/numerical_failure.hpp"
+#include "tests/support/igac_process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using igac_test::Outcome;
+using igac_test::quote;
+using igac_test::run_igac;
+using igac_test::TempDir;
+
+// cases/NAME.toml with `from` replaced by `to` (which must occur), written to dir/file.
+fs::path edited_case(const std::string& name, const std::string& from, const std::string& to, const fs::path& dir,
+                     const std::string& file = "case.toml") {
+  std::string text = igac_test::read_file(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  const fs::path path = dir / file;
+  std::ofstream(path) << text;
+  return path;
+}
+
+nlohmann::json summary(const fs::path& out) {
+  std::ifstream in(out / "summary.json");
+  return nlohmann::json::parse(in);
+}
+
+TEST(HostileInput, ShellMetacharactersInNameAndOutRunNothing) {
+  TempDir tmp("inject");
+  const fs::path c = edited_case("hertz2d", "name = \"hertz2d\"", "name = \"x'; touch PWNED; echo '\"", tmp.path());
+  const fs::path out = tmp.path() / "o'; touch PWNED2; echo '";
+  const Outcome o = run_igac("run " + quote(c.string()) + " --quiet --out " + quote(out.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "PWNED")) << "the case name was run by a shell";
+  EXPECT_FALSE(fs::exists(tmp.path() / "PWNED2")) << "--out was run by a shell";
+  EXPECT_TRUE(fs::is_regular_file(out / "summary.json"));
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "left over: " << e.path();
+}
+
+TEST(HostileInput, NameThatIsNotAPlainFileNameIsRefused) {
+  for (const std::string bad : {"../../escaped", "", "..", ".", "a/b"}) {
+    TempDir tmp("name");
+    const fs::path c = edited_case("hertz2d", "name = \"hertz2d\"", "name = \"" + bad + "\"", tmp.path());
+    const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+    EXPECT_EQ(o.exit_code, 2) << bad << ": " << o.output;
+    EXPECT_NE(o.output.find("[top level] name"), std::string::npos) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+    EXPECT_FALSE(fs::exists(tmp.path() / "out")) << bad;
+    EXPECT_FALSE(fs::exists(tmp.path().parent_path().parent_path() / "escaped"));
+  }
+}
+
+TEST(HostileInput, CaseNamedNullConverges) {
+  TempDir tmp("null");
+  const fs::path c = edited_case("hertz2d", "name = \"hertz2d\"", "name = \"nullcase\"", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --quiet --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = summary(tmp.path() / "out");
+  EXPECT_EQ(j.value("status", ""), "converged");
+  // the name is carried through, and the run is hertz2d's (measured: 30
+  // active multipliers, contact force = P R to 4e-16)
+  EXPECT_EQ(j.value("case", ""), "nullcase");
+  EXPECT_EQ(j["contact"].value("active", 0), 30);
+  EXPECT_NEAR(j["contact"].value("total_force", 0.0), 0.003, 1e-12 * 0.003);
+}
+
+TEST(HostileInput, ZeroLoadGivesZeroDisplacementAndNoNaN) {
+  TempDir tmp("zero");
+  const fs::path c = edited_case("hertz2d", "value = 0.003", "value = 0.0", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output.find("nan"), std::string::npos) << o.output;
+  const nlohmann::json j = summary(tmp.path() / "out");
+  EXPECT_EQ(j.value("status", ""), "converged");
+  EXPECT_EQ(j["contact"].value("total_force", 1.0), 0.0);
+  EXPECT_FALSE(j["errors"].contains("pressure_l2_rel")) << "a relative error against zero is absent";
+  const std::string csv = igac_test::read_file(tmp.path() / "out" / "pressure.csv");
+  EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
+  EXPECT_EQ(csv.find("inf"), std::string::npos) << csv;
+}
+
+TEST(HostileInput, TinyLoadConverges) {
+  TempDir tmp("tiny");
+  const fs::path c = edited_case("hertz2d", "value = 0.003", "value = 1e-20", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --quiet --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json j = summary(tmp.path() / "out");
+  EXPECT_NEAR(j["contact"].value("total_force", 0.0), 1e-20, 1e-30);
+}
+
+TEST(HostileInput, ObstacleNormalPointingAwayIsAnInputError) {
+  TempDir tmp("away");
+  const fs::path c = edited_case("hertz2d", "normal = [0.0, 1.0]", "normal = [0.0, -1.0]", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("faces away from the obstacle"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+TEST(HostileInput, ContactFaceThatCannotTouchTheObstacleIsAnInputError) {
+  TempDir tmp("top");
+  const fs::path c = edited_case("hertz3d", "face = \"curved\"", "face = \"top\"", tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("[contact] face 'top'"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+struct MessageCase {
+  std::string name, source, from, to;
+  std::vector<std::string> fragments;
+};
+void PrintTo(const MessageCase& c, std::ostream* os) { *os << c.name; }
+
+class InputMessage : public ::testing::TestWithParam<MessageCase> {};
+
+// Inputs that used to end in a solver's words (a folded map, a knot
+// multiplicity, "KINSOL stopped") now name the key or say what is wrong.
+TEST_P(InputMessage, NamesTheKeyInOneLine) {
+  const MessageCase& m = GetParam();
+  TempDir tmp("message");
+  const fs::path c = edited_case(m.source, m.from, m.to, tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  for (const auto& f : m.fragments) EXPECT_NE(o.output.find(f), std::string::npos) << f << " in: " << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    HostileInput, InputMessage,
+    ::testing::Values(
+        MessageCase{"tiny_E", "hertz2d", "E = 1.0", "E = 1e-300", {"[material] E:", "1e-300"}},
+        MessageCase{"tiny_radius", "hertz2d", "radius = 1.0", "radius = 1e-300", {"[geometry] radius:", "1e-300"}},
+        MessageCase{"tiny_range_fraction", "hertz2d", "range_fraction = 0.1", "range_fraction = 1e-12",
+                    {"[mesh.grading] range_fraction", "1e-12"}},
+        MessageCase{"unknown_coarse_spans", "hertz2d", "range_fraction = 0.1", "range_fraction = 0.1\ncoarse = \"log\"",
+                    {"[mesh.grading] coarse", "\"uniform\" or \"geometric\""}},
+        MessageCase{"degree_1_on_arcs", "lame_cylinder", "degree = 2", "degree = 1", {"[mesh] degree:", "at least 2"}},
+        MessageCase{"load_pulls_away", "hertz2d_neohookean_pressure", "value = 0.1", "value = -0.1",
+                    {"the load pulls the body away from the obstacle"}},
+        MessageCase{"not_held_large_deformation", "hertz2d_neohookean_pressure", "faces = [\"left\"]\ncomponent = \"x\"",
+                    "faces = [\"left\"]\ncomponent = \"y\"\nvalue = 0.0", {"the body is not held"}},
+        MessageCase{"load_pulls_away_small_deformation", "hertz2d", "value = 0.003", "value = -0.003",
+                    {"the load pulls the body away from the obstacle"}}),
+    [](const ::testing::TestParamInfo<MessageCase>& info) { return info.param.name; });
+
+TEST(HostileInput, SelfContradictingCaseIsWarnedAbout) {
+  TempDir tmp("contra");
+  const fs::path c = edited_case("hertz2d", "[[pressure]]",
+                                 "[[dirichlet]]\nfaces = [\"left\"]\ncomponent = \"x\"\nvalue = 0.01\n\n"
+                                 "[[dirichlet]]\nfaces = [\"curved\"]\ncomponent = \"y\"\n\n[[pressure]]",
+                                 tmp.path());
+  const Outcome o = run_igac("run " + quote(c.string()) + " --no-output", tmp.path());
+  EXPECT_NE(o.output.find("igac: warning: " + c.string() + ": [[dirichlet]] face 'left' component x is given two values"),
+            std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("holds component y of the contact face 'curved'"), std::string::npos) << o.output;
+  const Outcome q = run_igac("run " + quote(c.string()) + " --no-output --quiet", tmp.path());
+  EXPECT_EQ(q.output.find("warning"), std::string::npos) << "--quiet prints nothing but errors";
+}
+
+// A problem whose residual throws a NumericalFailure (an expected one: the
+// state cannot be evaluated) on its second call: the exception must not
+// cross KINSOL's C frames; the step fails with the reason, the driver cuts
+// back and finally ends with a status naming it.  (Other exceptions
+// propagate: tests/unit/engine/test_load_stepping.cpp.)
+class ThrowingProblem final : public igac::NonlinearProblem {
+ public:
+  int size() const override { return 1; }
+  bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
+    if (++calls_ >= 2) throw igac::NumericalFailure("material law blew up");
+    r.resize(1);
+    r[0] = x[0] - t;
+    return true;
+  }
+  bool jacobian(double, const Eigen::VectorXd&, Eigen::SparseMatrix<double>& J) override {
+    J.resize(1, 1);
+    J.coeffRef(0, 0) = 1;
+    J.makeCompressed();
+    return true;
+  }
+  double force_scale(double, const Eigen::VectorXd&) override { return 1; }
+
+ private:
+  int calls_ = 0;
+};
+
+TEST(HostileInput, ExceptionInsideKinsolCallbackEndsTheRunCleanly) {
+  ThrowingProblem problem;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  igac::LoadSteppingOptions opt;
+  opt.quiet = true;
+  opt.min_increment = 0.2;
+  igac::LoadSteppingSummary s;
+  ASSERT_NO_THROW(s = igac::run_load_steps(problem, x, opt, {}));
+  EXPECT_NE(s.status, "converged");
+  EXPECT_NE(s.status.find("material law blew up"), std::string::npos) << s.status;
+  EXPECT_TRUE(x.allFinite());
+}
+
+}  // namespace

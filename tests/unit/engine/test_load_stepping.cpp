@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The load-stepping driver (engine/load_stepping.hpp) and exceptions thrown
+// inside KINSOL's callbacks: a NumericalFailure fails the step, which is cut
+// back; anything else — a bug (std::logic_error, std::out_of_range) — comes
+// out of run_load_steps as itself, never as a "failed" status.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <stdexcept>
+
+#include "engine/load_stepping.hpp"
+#include "engine/numerical_failure.hpp"
+
+using namespace igac;
+
+namespace {
+
+// R(x; t) = x - t, one unknown; on_residual / on_jacobian run before every
+// evaluation with its number (from 1) and the load factor, and may throw.
+class ScriptedProblem final : public NonlinearProblem {
+ public:
+  std::function<void(int call, double t)> on_residual = [](int, double) {};
+  std::function<void(int call, double t)> on_jacobian = [](int, double) {};
+  int size() const override { return 1; }
+  bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
+    on_residual(++residual_calls, t);
+    r.resize(1);
+    r[0] = x[0] - t;
+    return true;
+  }
+  bool jacobian(double t, const Eigen::VectorXd&, Eigen::SparseMatrix<double>& J) override {
+    on_jacobian(++jacobian_calls, t);
+    J.resize(1, 1);
+    J.coeffRef(0, 0) = 1;
+    J.makeCompressed();
+    return true;
+  }
+  double force_scale(double, const Eigen::VectorXd&) override { return 1; }
+  int residual_calls = 0, jacobian_calls = 0;
+};
+
+LoadSteppingOptions quiet_options() {
+  LoadSteppingOptions opt;
+  opt.quiet = true;
+  opt.steps = 4;
+  opt.min_increment = 1e-3;
+  return opt;
+}
+
+}  // namespace
+
+TEST(LoadStepping, ConvergesOnTheScriptedProblem) {
+  ScriptedProblem problem;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  const LoadSteppingSummary s = run_load_steps(problem, x, quiet_options(), {});
+  EXPECT_EQ(s.status, "converged");
+  EXPECT_NEAR(x[0], 1.0, 1e-12);
+}
+
+// A bug in the residual, once the first step has converged: before, the
+// barrier around the callbacks made it a failed step, the driver cut back
+// until the minimum increment and returned "stopped at load factor 0.25:
+// <message>" (exit 1, as if the problem were hard).
+TEST(LoadStepping, LogicErrorInResidualPropagates) {
+  ScriptedProblem problem;
+  bool first_step_done = false;
+  problem.on_residual = [&](int, double t) {
+    if (t > 0.3) throw std::logic_error("residual: a bug");
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  LoadSteppingSummary s;
+  EXPECT_THROW(s = run_load_steps(problem, x, quiet_options(),
+                                  [&](const LoadStepRecord&, const Eigen::VectorXd&) { first_step_done = true; }),
+               std::logic_error);
+  EXPECT_TRUE(first_step_done);
+  EXPECT_NEAR(x[0], 0.25, 1e-12) << "x keeps the last converged state";
+}
+
+// The type survives the trip through KINSOL's C frames (an exception_ptr,
+// not a message), from the Jacobian too (without the tangent predictor, the
+// first Jacobian is KINSOL's first Newton iteration).
+TEST(LoadStepping, OutOfRangeInJacobianPropagatesAsItself) {
+  ScriptedProblem problem;
+  problem.on_jacobian = [](int, double) { throw std::out_of_range("jacobian: index 7 of 1"); };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  LoadSteppingOptions opt = quiet_options();
+  opt.tangent_predictor = false;
+  try {
+    run_load_steps(problem, x, opt, {});
+    FAIL() << "run_load_steps returned";
+  } catch (const std::out_of_range& e) {
+    EXPECT_STREQ(e.what(), "jacobian: index 7 of 1");
+  }
+}
+
+// The tangent predictor of the first step evaluates the residual outside
+// KINSOL: a bug there propagates too (it used to be read as "no predictor").
+TEST(LoadStepping, LogicErrorInTangentPredictorPropagates) {
+  ScriptedProblem problem;
+  problem.on_residual = [](int call, double) {
+    if (call == 1) throw std::logic_error("predictor: a bug");
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  EXPECT_THROW(run_load_steps(problem, x, quiet_options(), {}), std::logic_error);
+}
+
+// An expected failure: the state cannot be evaluated at the second step's
+// load; the step is cut back and the run converges.  (A failure that
+// persists ends the run with a status: HostileInput.ExceptionInsideKinsol...)
+TEST(LoadStepping, NumericalFailureCutsTheStepBack) {
+  ScriptedProblem problem;
+  int thrown = 0;
+  problem.on_residual = [&](int, double t) {
+    if (t > 0.3 && thrown < 2) {  // both attempts of the second step
+      ++thrown;
+      throw NumericalFailure("no normal there");
+    }
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  LoadSteppingSummary s;
+  ASSERT_NO_THROW(s = run_load_steps(problem, x, quiet_options(), {}));
+  EXPECT_EQ(s.status, "converged");
+  EXPECT_GT(thrown, 0);
+  int cut_backs = 0;
+  for (const auto& step : s.steps) cut_backs += step.cut_backs;
+  EXPECT_GT(cut_backs, 0);
+  EXPECT_NEAR(x[0], 1.0, 1e-12);
+}
