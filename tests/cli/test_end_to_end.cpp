@@ -26,21 +26,6 @@ const std::string kCases = std::string(IGAC_SOURCE_DIR) + "/cases/";
 
 nlohmann::json json_of(const fs::path& p) { return nlohmann::json::parse(igac_test::read_file(p)); }
 
-// Rows of a CSV file: header first.
-std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(igac_test::read_file(p));
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream ls(line);
-    while (std::getline(ls, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 // A plot igac wrote (io/plots.hpp): an SVG document with one frame per
 // panel and something drawn in it.
@@ -99,7 +84,7 @@ TEST(EndToEnd, NeoHookean3DContactSmoke) {
   EXPECT_EQ(j["status"], "converged");
   EXPECT_GT(j["contact"]["active"].get<int>(), 0);
   EXPECT_NEAR(double(j["contact"]["total_force"]) / double(j["contact"]["applied_force"]), 1.0, 1e-6);
-  const auto rows = csv_rows(tmp.path() / "out" / "load_curve.csv");
+  const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
   ASSERT_GE(rows.size(), 2u);
   EXPECT_EQ(rows[0], (std::vector<std::string>{"load_factor", "contact_force", "face_displacement", "obstacle_displacement"}));
   EXPECT_DOUBLE_EQ(std::stod(rows.back()[0]), 1.0);
@@ -113,7 +98,7 @@ TEST(EndToEnd, StudyJsonAndCsvAgree) {
   const auto o = run_igac("study " + quote(kCases + "lame_cylinder.toml") + " --levels 3 --quiet --out st", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto j = json_of(tmp.path() / "st" / "study.json");
-  const auto rows = csv_rows(tmp.path() / "st" / "study.csv");
+  const auto rows = igac_test::csv_rows(tmp.path() / "st" / "study.csv");
   ASSERT_TRUE(j.contains("levels"));
   ASSERT_EQ(j["levels"].size(), 3u);
   ASSERT_EQ(rows.size(), 4u) << "header and one row per level";
@@ -138,7 +123,7 @@ TEST(EndToEnd, PressureCsvMatchesTheSummary) {
   const auto o = run_igac("run " + quote(kCases + "hertz2d.toml") + " --quiet --out out", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto j = json_of(tmp.path() / "out" / "summary.json");
-  const auto rows = csv_rows(tmp.path() / "out" / "pressure.csv");
+  const auto rows = igac_test::csv_rows(tmp.path() / "out" / "pressure.csv");
   ASSERT_EQ(rows[0], (std::vector<std::string>{"kind", "r", "pressure", "r_over_a", "p_over_p0", "hertz_p_over_p0"}));
   int multipliers = 0;
   double max_p = 0;

@@ -218,21 +218,6 @@ void compare(const json& g, const json& a, const std::string& where, double floo
   }
 }
 
-// The rows of a CSV file, header first.
-std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(igac_test::read_file(p));
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream ls(line);
-    while (std::getline(ls, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 // A CSV file igac wrote (pressure.csv, load_curve.csv) against its record:
 // the header and the kind column exactly, empty cells empty, numbers to the
@@ -240,7 +225,7 @@ std::vector<std::vector<std::string>> csv_rows(const fs::path& p) {
 void compare_csv(const json& g, const fs::path& file, Tally& t) {
   const std::string name = file.filename().string();
   ASSERT_TRUE(fs::exists(file)) << file;
-  const auto rows = csv_rows(file);
+  const auto rows = igac_test::csv_rows(file);
   ASSERT_FALSE(rows.empty()) << file;
   EXPECT_EQ(json(rows[0]), g["header"]) << file;
   const json& g_rows = g["rows"];
