@@ -5,7 +5,8 @@
 //
 // igac is built twice from the same sources: `igac`, without PETSc and MPI,
 // which starts in a few milliseconds (PETSc brings about 100 shared
-// libraries, and loading them cost ~40 ms of a 0.1 s 2D run), and
+// libraries, and loading them costs a sizeable share of a small 2D run;
+// measured: docs/petsc.md, "The PETSc path"), and
 // `igac-petsc`, the same program with the PETSc solver path.  A run that
 // asks for PETSc (--solver petsc, or [solver] type = "petsc") is handed
 // from the first to the second with the same arguments, in the same process

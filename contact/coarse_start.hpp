@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The start of the active-set iteration on a refined mesh from the converged
 // solution one mesh coarser (nested iteration).  Started from the closed
-// initial gaps, the iteration overshoots (hertz3d: 1 -> 576 -> 494 -> ... ->
-// 79 multipliers, 13 solves); from the coarse solution it only settles the
-// rim of the contact zone.
+// initial gaps, the iteration overshoots and then shrinks the set a little
+// per solve; from the coarse solution it only settles the rim of the
+// contact zone (measured: docs/petsc.md, "Nested iteration").
 //
 // The coarse displacement is exactly a fine one (engine/prolongation: u_f =
 // P u_c); the coarse multipliers are a field on the same contact sides,

@@ -157,11 +157,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     t0.restart();
     // Nested iteration from the solution one refinement below: the PETSc
     // path solves it first (a Krylov or MUMPS solve per active-set
-    // iteration: 17 -> 2 of them on hertz3d's 225k reference); the direct
+    // iteration, and it saves most of those iterations); the direct
     // path takes it when it is at hand (a study's previous level) but does
     // not solve it for itself, which costs more than the Schur columns it
-    // saves (hertz2d --refine 2: 0.39 -> 0.47 s, hertz3d_study --refine 2:
-    // 3.9 -> 4.2 s; only at 225k unknowns did it gain, 116 -> 98 s).
+    // saves except on the largest meshes (measured: docs/petsc.md,
+    // "Nested iteration").
     if (m.spec.refine > 0 && (petsc || coarser.result))
       start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)

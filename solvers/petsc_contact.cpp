@@ -191,7 +191,8 @@ Mat assemble_matrix(Eigen::SparseMatrix<double>& Kp, const RowMat& G, const RowM
   if (procs == 1 && !saddle && contains_pattern(Kp, GtG)) {
     // The displacement block on one process: PETSc's matrix on K's own
     // arrays (symmetric K: its compressed columns are its rows), no copy
-    // (225k unknowns: 0.85 GiB less at the peak).  Kp must outlive it.
+    // (the peak it saves is measured in docs/petsc.md, "Measured").  Kp
+    // must outlive it.
     Mat A = nullptr;
     check(MatCreateSeqAIJWithArrays(comm, n, n, Kp.outerIndexPtr(), Kp.innerIndexPtr(), Kp.valuePtr(), &A),
           "matrix");

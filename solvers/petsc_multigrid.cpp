@@ -95,15 +95,16 @@ SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorX
   // octant, whose elements next to its collapsed axis grow thinner with
   // every refinement (docs/petsc.md, "Why these choices").
   // Reverse Cuthill-McKee inside ICC and 4 Chebyshev steps: on hertz3d
-  // level 3 (K alone) 24 iterations against 64 with natural order and 2.
+  // (K alone) far fewer iterations than natural order and 2 steps, the
+  // more so the finer the mesh (measured: docs/petsc.md, "Why these
+  // choices").
   default_option("-u_mg_levels_ksp_type", "chebyshev");
   default_option("-u_mg_levels_ksp_max_it", "4");
   // Several processes: additive Schwarz with two layers of overlap rather
   // than block Jacobi, whose blocks cut the strong couplings at every
-  // process boundary (hertz3d level 3, 2 processes, Krylov iterations of
-  // the three solves: block Jacobi 27 / 4 / 58 in 91 s and 2.9 GiB,
-  // overlap 1 17 / 4 / 33 in 63-72 s and 3.8 GiB, overlap 2 8 / 4 / 17 in
-  // 59 s and 4.2 GiB, as on one process).  One process: the same smoother,
+  // process boundary (with two layers of overlap the Krylov iterations on
+  // 2 processes are those of one process, for more memory; measured:
+  // docs/petsc.md, "Why these choices").  One process: the same smoother,
   // without ASM's copy of the matrix.
   int processes = 1;
   MPI_Comm_size(comm, &processes);
