@@ -70,11 +70,11 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
   for (size_t i = 0; i < reported.size(); ++i) {
     const int l = reported[i];
     std::string line = fmt::format("{:>5} {:>10.4g} {:>8}", l, models[l].mesh_size, models[l].dofs->num_free());
-    std::string row = fmt::format("{},{:.8g},{}", l, models[l].mesh_size, models[l].dofs->num_free());
+    std::string row = fmt::format("{},{},{}", l, csv_number(models[l].mesh_size, 8), models[l].dofs->num_free());
     for (const auto& n : names) {
       const double rate = i == 0 ? NAN : std::isfinite(study.rates.at(n)[i - 1]) ? study.rates.at(n)[i - 1] : NAN;
       line += fmt::format(" {:>24.4e} {:>5}", errors[l].at(n), i == 0 ? "" : fmt::format("{:.2f}", rate));
-      row += fmt::format(",{:.8g},{}", errors[l].at(n), i == 0 ? "" : fmt::format("{:.4f}", rate));
+      row += fmt::format(",{},{}", csv_number(errors[l].at(n), 8), std::isfinite(rate) ? fmt::format("{:.4f}", rate) : "");
     }
     fmt::print("{}\n", line);
     csv += row + "\n";

@@ -72,6 +72,27 @@ class Section {
     return v;
   }
 
+  // A load (a pressure, a prescribed displacement, a body force, an
+  // obstacle's motion): finite and at most 1e100 in size, as the moduli and
+  // lengths are, so that what it produces neither overflows nor turns into
+  // inf or NaN in the results.
+  double load(const std::string& key, std::optional<double> def = {}) const {
+    const double v = number(key, def);
+    if (std::abs(v) > kLargestLoad)
+      fail(key, fmt::format("{} = {:g} is larger than 1e100 in size, where the computation overflows; choose units "
+                            "that bring it near 1", key, v));
+    return v;
+  }
+  std::vector<double> loads(const std::string& key, size_t len) const {
+    std::vector<double> v = numbers(key, len);
+    for (double x : v)
+      if (std::abs(x) > kLargestLoad)
+        fail(key, fmt::format("{:g} is larger than 1e100 in size, where the computation overflows; choose units that "
+                              "bring it near 1", x));
+    return v;
+  }
+  static constexpr double kLargestLoad = 1e100;
+
   double number(const std::string& key, std::optional<double> def = {}) const {
     const auto* n = t_.get(key);
     if (!n) {
@@ -353,15 +374,15 @@ CaseSpec read_case(const std::string& path) {
 
   for (const auto* t : tables(path, root, "dirichlet")) {
     const Section s(path, "dirichlet", *t, kDirichletKeys);
-    c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.number("value", 0.0)});
+    c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.load("value", 0.0)});
   }
   for (const auto* t : tables(path, root, "pressure")) {
     const Section s(path, "pressure", *t, kPressureKeys);
-    c.pressure.push_back({s.strings("faces"), s.number("value")});
+    c.pressure.push_back({s.strings("faces"), s.load("value")});
   }
   if (root.contains("body_force")) {
     const Section s(path, "body_force", top.sub("body_force"), kBodyForceKeys);
-    c.body_force = s.numbers("value", dim);
+    c.body_force = s.loads("value", dim);
   }
   for (const auto* contact_table : tables(path, root, "contact")) {  // [contact] or [[contact]]
     const Section s(path, "contact", *contact_table, kContactKeys);
@@ -397,7 +418,7 @@ CaseSpec read_case(const std::string& path) {
           cs.obstacle.values[key] = {v};
         }
       }
-      if (o.has("motion")) cs.obstacle.motion = o.numbers("motion", dim);
+      if (o.has("motion")) cs.obstacle.motion = o.loads("motion", dim);
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     c.contacts.push_back(cs);

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -364,6 +365,13 @@ void read_topology(const Source& src, pugi::xml_node mp, const std::map<long, in
 
 
 MultiPatch read_gismo_xml(const std::string& path) {
+  // Regular files only: a FIFO would be read forever, /dev/zero until the
+  // memory runs out.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a geometry file must be a "
+                                 "regular file", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot open the geometry file", path));
   std::ostringstream ss;

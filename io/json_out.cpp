@@ -142,11 +142,15 @@ Json run_summary(const Model& m, const RunResult& r) {
   return j;
 }
 
+std::string csv_number(double v, int digits) {
+  return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : std::string();
+}
+
 std::string load_curve_csv(const RunResult& r) {
   std::string s = "load_factor,contact_force,face_displacement,obstacle_displacement\n";
   for (const auto& p : r.load_curve)
-    s += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g}\n", p.load_factor, p.contact_force, p.face_displacement,
-                     p.obstacle_displacement);
+    s += fmt::format("{},{},{},{}\n", csv_number(p.load_factor), csv_number(p.contact_force),
+                     csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
   return s;
 }
 
@@ -156,10 +160,10 @@ std::string pressure_csv(const RunResult& r) {
   auto row = [&](const char* kind, PressureSample p) {
     p.pressure += 0.0;  // an inactive multiplier's -0 prints as 0
     if (has_hertz_scale(r))
-      s += fmt::format("{},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n", kind, p.r, p.pressure, p.r / r.hertz->a,
-                       p.pressure / r.hertz->p0, r.hertz->pressure(p.r) / r.hertz->p0);
+      s += fmt::format("{},{},{},{},{},{}\n", kind, csv_number(p.r), csv_number(p.pressure), csv_number(p.r / r.hertz->a),
+                       csv_number(p.pressure / r.hertz->p0), csv_number(r.hertz->pressure(p.r) / r.hertz->p0));
     else
-      s += fmt::format("{},{:.10g},{:.10g},,,\n", kind, p.r, p.pressure);
+      s += fmt::format("{},{},{},,,\n", kind, csv_number(p.r), csv_number(p.pressure));
   };
   for (const auto& p : rep.multipliers) row("multiplier", p);
   for (const auto& p : rep.p1) row("p1", p);

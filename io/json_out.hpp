@@ -19,6 +19,9 @@ using Json = nlohmann::ordered_json;
 void write_file_atomically(const std::string& path, const std::string& text);
 // A number, or null when it is not finite.
 Json finite_or_null(double v);
+// A number for a CSV cell: 10 significant digits, or an empty cell where it
+// is not finite (a failed run writes no "nan" or "inf").
+std::string csv_number(double v, int digits = 10);
 // True when some value in the tree is null (a non-finite number was stored).
 bool has_null_value(const Json& j);
 
