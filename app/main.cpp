@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -57,6 +58,29 @@ void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::
   if (process_count() > 1 && spec.solver.type != "petsc")
     throw InputError(fmt::format("{}: {} processes (mpirun): the direct solver runs on one; use --solver petsc",
                                  spec.path, process_count()));
+}
+
+// `igac geometry --out PATH` writes a new file or replaces an earlier
+// export (its second line says igac wrote it); anything else at PATH (a
+// user's file, the case file itself, a folder, a symlink, a FIFO, a device)
+// is refused rather than renamed over.
+void check_geometry_destination(const std::string& out, const std::string& case_path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(out, ec);
+  if (!fs::exists(st)) return;
+  if (fs::is_symlink(st) || !fs::is_regular_file(st))
+    throw InputError(fmt::format("--out {}: exists and is not a regular file (a folder, symlink, FIFO or device); "
+                                 "give the name of a new file", out));
+  if (fs::equivalent(out, case_path, ec))
+    throw InputError(fmt::format("--out {}: is the case file itself; give the name of a new file", out));
+  std::ifstream in(out, std::ios::binary);
+  std::string head(256, '\0');
+  in.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(in.gcount()));
+  if (head.find("<!-- written by igac") == std::string::npos)
+    throw InputError(fmt::format("--out {}: exists and was not written by igac geometry; igac replaces only its own "
+                                 "exports: give the name of a new file", out));
 }
 
 std::string percent(double v, double ref) {
@@ -251,6 +275,7 @@ int main(int argc, char** argv) {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options,
                                           preconditioner, argv);
     if (geometry->parsed()) {
+      check_geometry_destination(out, case_path);
       write_gismo_xml(case_body(read_case(case_path)), out);
       return 0;
     }

@@ -81,3 +81,43 @@ TEST(UserInputs, CsvCellsAreNeverNanOrInf) {
 }
 
 }  // namespace
+
+namespace {
+
+// `igac geometry --out PATH` writes a new file or replaces its own earlier
+// export; it renamed over whatever PATH was (a device node, a FIFO, a
+// symlink, the case file itself, a user's file).
+TEST(UserInputs, GeometryExportReplacesOnlyItsOwnFiles) {
+  TempDir tmp("inputs");
+  const std::string c = std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml";
+  // A new file, then the same file again (an earlier export): written.
+  for (int i = 0; i < 2; ++i) {
+    const Outcome o = run_igac("geometry " + quote(c) + " --out body.xml", tmp.path());
+    EXPECT_EQ(o.exit_code, 0) << o.output;
+  }
+  EXPECT_TRUE(std::filesystem::is_regular_file(tmp.path() / "body.xml"));
+  // A user's file, a symlink, a FIFO, a folder, the case file: refused, untouched.
+  std::ofstream(tmp.path() / "notes.txt") << "my notes\n";
+  std::filesystem::create_symlink(tmp.path() / "notes.txt", tmp.path() / "link.xml");
+  ASSERT_EQ(mkfifo((tmp.path() / "fifo.xml").c_str(), 0600), 0);
+  std::filesystem::create_directory(tmp.path() / "folder.xml");
+  std::filesystem::copy_file(c, tmp.path() / "case.toml");
+  for (const auto& [target, says] : std::vector<std::pair<std::string, std::string>>{
+           {"notes.txt", "not written by igac"},
+           {"link.xml", "not a regular file"},
+           {"fifo.xml", "not a regular file"},
+           {"folder.xml", "not a regular file"}}) {
+    const Outcome o = run_igac("geometry " + quote(c) + " --out " + target, tmp.path());
+    expect_one_line_rejection(o, says);
+  }
+  const Outcome self = run_igac("geometry case.toml --out case.toml", tmp.path());
+  expect_one_line_rejection(self, "the case file itself");
+  std::ifstream notes(tmp.path() / "notes.txt");
+  std::string line;
+  std::getline(notes, line);
+  EXPECT_EQ(line, "my notes");
+  EXPECT_TRUE(std::filesystem::is_symlink(tmp.path() / "link.xml"));
+  EXPECT_EQ(igac_test::read_file(tmp.path() / "case.toml"), igac_test::read_file(c));
+}
+
+}  // namespace
