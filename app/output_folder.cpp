@@ -8,16 +8,53 @@
 
 #include <cerrno>
 #include <cstring>
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <fstream>
+#include <set>
+#include <vector>
 
 #include "io/case_file.hpp"
+#include "io/json_out.hpp"
 
 namespace igac {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kStagingTag = ".igac-tmp-";
+// The list of what igac wrote into an output folder, one name a line: the
+// only files a later run may replace.
+constexpr const char* kManifest = ".igac-manifest";
+
+// The files an igac output of a version before the manifest could hold.
+bool is_igac_output_name(const std::string& f) {
+  for (const char* exact : {"summary.json", "study.json", "study.csv", "study.svg", "pressure.csv", "pressure.svg",
+                            "load_curve.csv", "load_curve.svg", "solution.pvd"})
+    if (f == exact) return true;
+  for (const char* prefix : {"solution_", "contact_", "multipliers_"})
+    if (f.rfind(prefix, 0) == 0 && f.size() > 4 && f.compare(f.size() - 4, 4, ".vtu") == 0) return true;
+  return false;
+}
+
+// What in the existing folder `dir` igac did not write (at most a few names).
+std::vector<std::string> foreign_entries(const fs::path& dir) {
+  std::set<std::string> ours{kManifest};
+  std::ifstream manifest(dir / kManifest);
+  const bool has_manifest = bool(manifest);
+  for (std::string line; std::getline(manifest, line);)
+    if (!line.empty()) ours.insert(line);
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string f = e.path().filename().string();
+    const bool listed = has_manifest ? ours.count(f) > 0 : is_igac_output_name(f);
+    if (!listed || !e.is_regular_file(ec)) out.push_back(f);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
 
 // Staging folders of runs that are no longer alive, beside `target`.
 void remove_abandoned_staging(const fs::path& parent, const std::string& name) {
@@ -57,10 +94,12 @@ OutputFolder::OutputFolder(std::string target) : target_(std::move(target)) {
     if (p == abs) throw bad("is the current folder or one above it; results go to a folder of their own");
     if (p == p.parent_path()) break;
   }
-  if (fs::is_directory(abs, ec) && !fs::is_empty(abs, ec) && !fs::exists(abs / "summary.json", ec) &&
-      !fs::exists(abs / "study.json", ec))
-    throw bad("exists and holds files that are not an igac output (no summary.json or study.json); it would be "
-              "replaced: choose a new or empty folder");
+  // Only what igac wrote there (its manifest) may be replaced.
+  if (fs::is_directory(abs, ec) && !fs::is_empty(abs, ec))
+    if (const std::vector<std::string> foreign = foreign_entries(abs); !foreign.empty())
+      throw bad(fmt::format("exists and holds what igac did not write ({}{}); it would be replaced: choose a new or "
+                            "empty folder", fmt::join(foreign.begin(), foreign.begin() + std::min<size_t>(3, foreign.size()), ", "),
+                            foreign.size() > 3 ? fmt::format(" and {} more", foreign.size() - 3) : ""));
   const fs::path parent = abs.parent_path();
   if (abs.filename().empty() || abs.filename() == "." || abs.filename() == "..") throw bad("names no folder");
   // Nothing is created yet: the nearest existing ancestor must let us create.
@@ -94,6 +133,14 @@ void OutputFolder::create_staging() {
 
 void OutputFolder::commit() {
   std::error_code ec;
+  {  // the manifest: what this run wrote, the only files a later run may replace
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(staging_, ec)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    std::string text;
+    for (const auto& n : names) text += n + "\n";
+    write_file_atomically((fs::path(staging_) / kManifest).string(), text);
+  }
   if (!fs::exists(target_, ec)) {
     fs::rename(staging_, target_, ec);
     if (ec) throw std::runtime_error(fmt::format("cannot move the results into {}: {}", target_, ec.message()));

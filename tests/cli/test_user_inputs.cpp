@@ -121,3 +121,32 @@ TEST(UserInputs, GeometryExportReplacesOnlyItsOwnFiles) {
 }
 
 }  // namespace
+
+namespace {
+
+// --out DIR replaced DIR whole when it held any summary.json, deleting a
+// user's notes and folders beside it.  Now only what igac wrote there (its
+// .igac-manifest) may be replaced.
+TEST(UserInputs, OutputFolderReplacesOnlyWhatIgacWrote) {
+  TempDir tmp("inputs");
+  const std::string c = std::string(IGAC_SOURCE_DIR) + "/cases/lame_cylinder.toml";
+  const std::string run = "run " + quote(c) + " --quiet --out out";
+  ASSERT_EQ(run_igac(run, tmp.path()).exit_code, 0);
+  ASSERT_TRUE(std::filesystem::exists(tmp.path() / "out" / ".igac-manifest"));
+  EXPECT_EQ(run_igac(run, tmp.path()).exit_code, 0) << "its own earlier output is replaced";
+  std::ofstream(tmp.path() / "out" / "notes.txt") << "my notes\n";
+  std::filesystem::create_directory(tmp.path() / "out" / "photos");
+  const Outcome o = run_igac(run, tmp.path());
+  expect_one_line_rejection(o, "notes.txt, photos");
+  EXPECT_EQ(igac_test::read_file(tmp.path() / "out" / "notes.txt"), "my notes\n");
+  EXPECT_TRUE(std::filesystem::is_directory(tmp.path() / "out" / "photos"));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "out" / "summary.json"));
+  // A folder holding a summary.json of someone else's and other files.
+  std::filesystem::create_directory(tmp.path() / "theirs");
+  std::ofstream(tmp.path() / "theirs" / "summary.json") << "{}\n";
+  std::ofstream(tmp.path() / "theirs" / "data.csv") << "1,2\n";
+  expect_one_line_rejection(run_igac("run " + quote(c) + " --quiet --out theirs", tmp.path()), "data.csv");
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "theirs" / "data.csv"));
+}
+
+}  // namespace
