@@ -417,9 +417,16 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   if (!preonly) check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "solver");
   const Mat op_mat = multigrid ? mg->shell() : Mat(A);
 
-  OwnedVec x, b, bf;
+  OwnedVec x, b, bf, residual;
   check(MatCreateVecs(op_mat, &x, &b), "vector");
   check(VecDuplicate(b, &bf), "vector");
+  check(VecDuplicate(b, &residual), "vector");
+  // Whatever the options made the Krylov solver stop at, a result is only a
+  // solution when the saddle-point system's true residual |b - A x| / |b|
+  // is at most this (an -ksp_rtol of 0.9 stopped at 0.9 and was reported
+  // converged).
+  constexpr double kAcceptedResidual = 1e-6;
+  double relative_residual = 0;
   check(VecSet(x, 0.0), "vector");
   {  // f in u's rows (numbered as in the saddle-point system: u first)
     std::vector<PetscInt> idx;
@@ -545,6 +552,14 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
     check(KSPGetConvergedReason(ksp, &reason), "solver");
     check(KSPGetIterationNumber(ksp, &iterations), "solver");
     sol.linear_iterations.push_back(int(iterations));
+    {  // the true residual of this solve
+      PetscReal r_norm = 0, b_norm = 0;
+      check(MatMult(op_mat, x, residual), "solve");
+      check(VecAYPX(residual, -1.0, b), "vector");
+      check(VecNorm(residual, NORM_2, &r_norm), "vector");
+      check(VecNorm(b, NORM_2, &b_norm), "vector");
+      relative_residual = b_norm > 0 ? double(r_norm / b_norm) : double(r_norm);
+    }
 
     const PetscScalar* pa = nullptr;
     check(VecGetArrayRead(x, &pa), "vector");
@@ -589,6 +604,12 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   }
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", o.contact.max_iterations);
+  if (sol.converged && !(relative_residual <= kAcceptedResidual)) {
+    sol.converged = false;
+    sol.status = fmt::format("failed: the last PETSc solve stopped at a relative residual of {:.2g} (more than {:g}): "
+                             "not a solution; tighten the Krylov tolerance (-ksp_rtol) or change the solver options",
+                             relative_residual, kAcceptedResidual);
+  }
   sol.u = u;
   sol.lambda = lambda;
   sol.active = active;
