@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <set>
+#include <sstream>
 #include <toml++/toml.h>
 #include <algorithm>
 
@@ -199,6 +200,58 @@ std::vector<const toml::table*> tables(const std::string& file, const toml::tabl
 }
 
 }  // namespace
+
+// A case file is data: of PETSc's options it may give only these, each
+// with a value checked here (no option that names a file, so that a case
+// file can neither read nor write one).  Any other option is given on the
+// command line (--petsc-options), where the user types it.
+std::string check_case_petsc_options(const std::string& options) {
+  enum class Value { word, positive_number, positive_integer };
+  struct Allowed {
+    const char* option;
+    Value value;
+    std::vector<const char*> words;
+  };
+  static const std::vector<Allowed> allowed{
+      {"-ksp_type", Value::word, {"cg", "gmres", "fgmres", "minres", "bcgs", "gcr", "preonly"}},
+      {"-pc_type", Value::word, {"lu", "cholesky", "fieldsplit", "gamg", "hypre", "ml", "jacobi", "bjacobi", "asm", "ilu", "icc", "none"}},
+      {"-pc_factor_mat_solver_type", Value::word, {"mumps", "superlu_dist", "petsc"}},
+      {"-pc_fieldsplit_type", Value::word, {"additive", "multiplicative", "symmetric_multiplicative", "schur"}},
+      {"-pc_fieldsplit_schur_fact_type", Value::word, {"diag", "lower", "upper", "full"}},
+      {"-ksp_rtol", Value::positive_number, {}},
+      {"-ksp_atol", Value::positive_number, {}},
+      {"-ksp_divtol", Value::positive_number, {}},
+      {"-ksp_max_it", Value::positive_integer, {}},
+      {"-ksp_gmres_restart", Value::positive_integer, {}},
+  };
+  std::istringstream in(options);
+  std::vector<std::string> tokens;
+  for (std::string t; in >> t;) tokens.push_back(t);
+  std::vector<std::string> names;
+  for (const Allowed& a : allowed) names.emplace_back(a.option);
+  for (size_t i = 0; i < tokens.size(); ++i) {
+    const auto a = std::find_if(allowed.begin(), allowed.end(), [&](const Allowed& x) { return tokens[i] == x.option; });
+    if (a == allowed.end())
+      return fmt::format("'{}' is not among the PETSc options a case file may give ({}); give it on the command "
+                         "line with --petsc-options", tokens[i], fmt::join(names, " "));
+    if (i + 1 >= tokens.size()) return fmt::format("{} needs a value", a->option);
+    const std::string& v = tokens[++i];
+    bool ok = false;
+    if (a->value == Value::word) {
+      ok = std::any_of(a->words.begin(), a->words.end(), [&](const char* w) { return v == w; });
+      if (!ok) return fmt::format("{} {}: the value must be one of {}", a->option, v, fmt::join(a->words, " "));
+    } else {
+      char* end = nullptr;
+      const double x = std::strtod(v.c_str(), &end);
+      ok = end && *end == '\0' && std::isfinite(x) && x > 0 &&
+           (a->value == Value::positive_number || (x == std::floor(x) && x <= 1e9));
+      if (!ok)
+        return fmt::format("{} {}: the value must be a positive {}", a->option, v,
+                           a->value == Value::positive_number ? "number" : "whole number");
+    }
+  }
+  return {};
+}
 
 CaseSpec read_case(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("{}: no such case file", path));
@@ -471,6 +524,7 @@ CaseSpec read_case(const std::string& path) {
     c.solver.options = s.string("options", "");
     if (!c.solver.options.empty() && c.solver.type != "petsc")
       s.fail("options", "PETSc options need type = \"petsc\"");
+    if (const std::string why = check_case_petsc_options(c.solver.options); !why.empty()) s.fail("options", why);
     c.solver.preconditioner = s.string("preconditioner", "options");
     if (const std::string why = check_preconditioner(c.solver); !why.empty()) s.fail("preconditioner", why);
     if (c.solver.type == "petsc" && c.finite_strain())

@@ -24,6 +24,9 @@ CaseSpec read_case(const std::string& path);
 // obstacles contribute their registered keys.  docs/case_file.md documents
 // each one (tests/unit/io/test_docs.cpp checks both ways).
 std::vector<std::string> declared_case_keys();
+// Why a case file's [solver] options cannot be given to PETSc ("" when they
+// can): a case file may give only a few known options with checked values.
+std::string check_case_petsc_options(const std::string& options);
 // Why a [solver] preconditioner cannot be used ("" when it can).
 std::string check_preconditioner(const SolverSpec& solver);
 

@@ -172,3 +172,32 @@ TEST(UserInputs, PetscSolveStoppedEarlyIsNotASolution) {
 
 }  // namespace
 #endif
+
+namespace {
+
+// A case file is data: through [solver] options it could write any file
+// (-ksp_view ascii:FILE), truncate one (-log_view ascii:FILE) or print the
+// first line of one (-options_file /etc/passwd).  It may give only a few
+// known options with checked values now.
+TEST(UserInputs, CaseFilePetscOptionsAreAKnownList) {
+  const std::string hertz2d = std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml";
+  std::ifstream in(hertz2d);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [options, says] : std::vector<std::pair<std::string, std::string>>{
+           {"-ksp_view ascii:victim.txt", "'-ksp_view' is not among"},
+           {"-log_view ascii:victim.txt", "'-log_view' is not among"},
+           {"-options_file /etc/passwd", "'-options_file' is not among"},
+           {"-ksp_type cg -ksp_rtol abc", "-ksp_rtol abc"},
+           {"-pc_type mystery", "-pc_type mystery"}}) {
+    TempDir tmp("inputs");
+    std::ofstream(tmp.path() / "victim.txt") << "keep me\n";
+    std::ofstream(tmp.path() / "case.toml") << text << "\n[solver]\ntype = \"petsc\"\noptions = \"" << options << "\"\n";
+    const Outcome o = run_igac("run case.toml --out out", tmp.path());
+    expect_one_line_rejection(o, says);
+    EXPECT_EQ(o.output.find("root:"), std::string::npos) << o.output;
+    EXPECT_EQ(igac_test::read_file(tmp.path() / "victim.txt"), "keep me\n");
+    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out"));
+  }
+}
+
+}  // namespace
