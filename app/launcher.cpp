@@ -8,6 +8,10 @@
 #include <fmt/format.h>
 #include <initializer_list>
 #include <stdexcept>
+#include <pthread.h>
+#include <signal.h>
+#include <string>
+#include <thread>
 #include <unistd.h>
 
 namespace igac {
@@ -21,6 +25,41 @@ int env_int(std::initializer_list<const char*> names, int fallback) {
 
 int launcher_rank() { return env_int({"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"}, 0); }
 int launcher_size() { return env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1); }
+
+namespace {
+sigset_t termination_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&set, sig);
+  return set;
+}
+}  // namespace
+
+void block_termination_signals_in_every_thread(char** argv) {
+  const sigset_t set = termination_signals();
+  sigset_t now;
+  pthread_sigmask(SIG_BLOCK, nullptr, &now);
+  bool blocked = true;
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) blocked = blocked && sigismember(&now, sig);
+  if (blocked) return;
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  execv("/proc/self/exe", argv);  // the mask survives exec; on failure go on as we are
+}
+
+void end_on_termination_signals() {
+  const sigset_t set = termination_signals();
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+  std::thread([set] {
+    int sig = 0;
+    if (sigwait(&set, &sig) != 0) return;
+    // End here, with the status a shell gives a process the signal killed:
+    // re-raising it would run whatever handler a library holds at that
+    // moment (METIS's longjmps into the thread it interrupted).
+    const std::string line = fmt::format("igac: stopped by {}\n", sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP");
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, line.data(), line.size());
+    _exit(128 + sig);
+  }).detach();
+}
 
 void hand_over_to_petsc_build(char** argv) {
   std::error_code ec;

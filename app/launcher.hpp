@@ -19,6 +19,24 @@ namespace igac {
 int launcher_rank();
 int launcher_size();
 
+// SIGTERM, SIGINT and SIGHUP end the program, whatever library runs when
+// they come: they are blocked in every thread and one thread of their own
+// waits for them, prints "igac: stopped by SIGTERM" and ends the process
+// with status 128 + signal (143 for SIGTERM), as a shell reports it.
+// (METIS, inside CHOLMOD's ordering, installs a SIGTERM handler of its own
+// for its error returns: a SIGTERM that came then was swallowed, and the
+// run went on.)  Threads inherit the blocked mask from the thread that
+// starts them.
+void end_on_termination_signals();
+// Libraries start threads before main (OpenBLAS's pool, in its loader
+// constructor), with the signals unblocked: such a thread would take a
+// SIGTERM and run the library handler of the moment there (METIS's longjmp
+// into another thread: a crash).  So the program re-executes itself once
+// with the signals blocked (a blocked mask survives exec, and every thread
+// of the new image inherits it); returns when they already were blocked or
+// exec failed.  The first call of main.
+void block_termination_signals_in_every_thread(char** argv);
+
 // Replaces this process by igac-petsc (next to this executable) with the
 // same arguments; returns only when there is no igac-petsc (built without
 // PETSc).  Throws std::runtime_error when exec fails.

@@ -214,6 +214,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
 }  // namespace
 
 int main(int argc, char** argv) {
+  block_termination_signals_in_every_thread(argv);  // app/launcher.hpp
+  end_on_termination_signals();
   // Threads adapt to the cores that are free: CHOLMOD asks OpenMP for 4
   // threads whatever the machine has, and busy-waiting teams larger than
   // the idle cores cost several times the work (measured 3x on 2 shared cores).

@@ -201,3 +201,28 @@ TEST(UserInputs, CaseFilePetscOptionsAreAKnownList) {
 }
 
 }  // namespace
+
+namespace {
+
+// SIGTERM ends a run at any moment, also inside a library call (METIS's
+// ordering used to swallow it: a run under `timeout` went on to the end).
+TEST(UserInputs, SigtermStopsARunAtAnyMoment) {
+  TempDir tmp("inputs");
+  const std::string c = std::string(IGAC_SOURCE_DIR) + "/cases/hertz3d.toml";
+  for (const char* after : {"0.5", "1.5", "2.5"}) {
+    const std::string cmd = "cd " + quote(tmp.path().string()) + " && (" + quote(IGAC_BINARY) + " run " + quote(c) +
+                            " --refine 1 --quiet --out out & p=$!; sleep " + after +
+                            "; kill -TERM $p; wait $p; echo \"status $?\") 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string out;
+    char buf[256];
+    while (fgets(buf, sizeof buf, pipe)) out += buf;
+    pclose(pipe);
+    EXPECT_NE(out.find("igac: stopped by SIGTERM"), std::string::npos) << after << " s: " << out;
+    EXPECT_NE(out.find("status 143"), std::string::npos) << after << " s: " << out;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << "a stopped run leaves no result";
+  }
+}
+
+}  // namespace
