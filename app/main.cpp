@@ -105,6 +105,9 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
     for (int s : r.contact->solution.active_set_sizes) sizes += (sizes.empty() ? "" : " -> ") + std::to_string(s);
     status += fmt::format(" (active set sizes per iteration: {})", sizes);
   }
+  if (!m.reoriented_patches.empty())
+    fmt::print("  geometry      patch(es) {} reoriented: left-handed in the file, run with u backwards (face names as "
+               "the file gives them)\n", fmt::join(m.reoriented_patches, ", "));
   fmt::print("  status        {}\n", status);
   if (r.contact) {
     const auto& rep = r.contact->report;

@@ -53,6 +53,7 @@ Json run_summary(const Model& m, const RunResult& r) {
   j["dofs"] = m.dofs->num_free();
   j["multipliers"] = m.num_multipliers();
   j["mesh_size"] = m.mesh_size;
+  if (!m.reoriented_patches.empty()) j["reoriented_patches"] = m.reoriented_patches;
   j["status"] = r.status;
   if (r.load_steps) {
     Json steps = Json::array();

@@ -118,11 +118,35 @@ void check_patch_map(const CaseSpec& spec, const NurbsPatch& patch, int k) {
   }
 }
 
+// +1 when det J > 0 at every Gauss point of the patch, -1 when det J < 0 at
+// every one (a left-handed patch, as about half of G+Smo's multi-patch files
+// hold), 0 when it changes sign or vanishes (a fold: check_patch_map says where).
+int orientation(const NurbsPatch& patch, int points) {
+  const PatchQuadrature quad(patch, points);
+  ElementData ed;
+  bool positive = false, negative = false;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) {
+      if (ed.JxW[q] > 0) positive = true;
+      else if (ed.JxW[q] < 0) negative = true;
+      else positive = negative = true;
+    }
+  }
+  return positive == negative ? 0 : positive ? 1 : -1;
+}
+
 }  // namespace
 
 std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name) {
   if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
-  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim())) return std::vector<PatchSide>{*side};
+  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim())) {
+    // A reoriented patch runs its first direction backwards: the file's
+    // west (u = 0) is now its east.
+    if (side->face.direction == 0 && std::count(m.reoriented_patches.begin(), m.reoriented_patches.end(), side->patch))
+      side->face.at_end = !side->face.at_end;
+    return std::vector<PatchSide>{*side};
+  }
   return std::nullopt;
 }
 
@@ -146,6 +170,16 @@ Model build_model(const CaseSpec& spec) {
   } else {
     coarse = case_body(spec);
     for (auto& p : coarse.patches) p = normalised(p);  // knots on [0, 1], geometry unchanged
+    // A left-handed patch is not folded: run its first direction backwards
+    // (faces keep the names the file gives them: find_faces).
+    for (size_t k = 0; k < coarse.patches.size(); ++k) {
+      if (orientation(coarse.patches[k], gauss_points_for(spec.degree)) >= 0) continue;
+      coarse.patches[k] = reversed(coarse.patches[k], 0);
+      m.reoriented_patches.push_back(int(k));
+      for (PatchInterface& itf : coarse.interfaces)
+        for (PatchSide* side : {&itf.first, &itf.second})
+          if (side->patch == int(k) && side->face.direction == 0) side->face.at_end = !side->face.at_end;
+    }
   }
   const bool several = coarse.patches.size() > 1;
   std::vector<NurbsPatch> patches;

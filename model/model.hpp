@@ -41,6 +41,10 @@ struct Model {
   };
   std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter
+  // Patches of a geometry file that were left-handed (det J < 0 throughout)
+  // and run with their first direction backwards; their faces keep the
+  // file's names.
+  std::vector<int> reoriented_patches;
   bool quiet = false;    // no progress lines
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
   int num_multipliers() const {

@@ -74,4 +74,27 @@ NurbsPatch normalised(const NurbsPatch& patch) {
   return NurbsPatch(std::move(knots), patch.points(), patch.weights());
 }
 
+NurbsPatch reversed(const NurbsPatch& patch, int direction) {
+  std::vector<KnotVector> knots = patch.all_knots();
+  {
+    const KnotVector& kv = knots[direction];
+    std::vector<double> u(kv.knots().rbegin(), kv.knots().rend());
+    for (double& x : u) x = kv.first() + kv.last() - x;
+    u.front() = kv.first();  // exact ends
+    u.back() = kv.last();
+    knots[direction] = KnotVector(kv.degree(), std::move(u));
+  }
+  Eigen::MatrixXd points(patch.points().rows(), patch.points().cols());
+  Eigen::VectorXd weights(patch.weights().size());
+  const int n = patch.num_basis(direction);
+  for (int i = 0; i < patch.num_control_points(); ++i) {
+    std::array<int, 3> mi = patch.multi_index(i);
+    mi[direction] = n - 1 - mi[direction];
+    const int j = patch.index(mi);
+    points.row(j) = patch.points().row(i);
+    weights[j] = patch.weights()[i];
+  }
+  return NurbsPatch(std::move(knots), std::move(points), std::move(weights));
+}
+
 }  // namespace igac

@@ -31,5 +31,8 @@ std::pair<NurbsPatch, NurbsPatch> split_patch(const NurbsPatch& patch, int direc
 // The same patch with every direction's parameter range mapped affinely to
 // [0, 1] (the range the engine's refinement targets use).
 NurbsPatch normalised(const NurbsPatch& patch);
+// The same patch with parametric direction `direction` run backwards
+// (u -> first + last - u): the same geometry, the opposite orientation.
+NurbsPatch reversed(const NurbsPatch& patch, int direction);
 
 }  // namespace igac
