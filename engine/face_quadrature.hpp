@@ -7,9 +7,9 @@
 // (follower_pressure.cpp), the weighted gaps and the large-deformation
 // contact (contact/weighted_gap.hpp, ContactQuadrature, which adds the
 // multiplier basis at each point), the pressure report's L2 error and face
-// samples (contact/pressure.cpp) go through it.  Not yet: the face integrals
-// of app/ (reports, the deformed half-width), which still walk a
-// PatchQuadrature with ElementData.
+// samples (contact/pressure.cpp), and model/'s face integrals (the applied
+// load's resultant, the mean face displacement, the deformed half width)
+// go through it.
 //
 // The visitor is called as visit(int side, const ElementValues<dim - 1, dim>&
 // values) per face element, sides in the given order and elements of a side

@@ -8,6 +8,7 @@
 
 #include "contact/finite_strain_problem.hpp"
 #include "engine/stopwatch.hpp"
+#include "engine/face_quadrature.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/linear_static.hpp"
 #include "model/references.hpp"
@@ -20,19 +21,14 @@ namespace {
 double mean_face_displacement(const Body& body, const std::vector<PatchSide>& faces, const Eigen::MatrixXd& u) {
   const int dim = body.space_dim();
   double s = 0, area = 0;
-  for (const PatchSide& f : faces) {
-    const PatchQuadrature q = face_quadrature(body, f, gauss_points_for(body.degree()));
-    ElementData ed;
-    for (int e = 0; e < q.num_elements(); ++e) {
-      q.evaluate(e, ed, false);
-      for (int k = 0; k < ed.JxW.size(); ++k) {
-        double v = 0;
-        for (size_t a = 0; a < ed.cps.size(); ++a) v += ed.N(k, a) * u(ed.cps[a], dim - 1);
-        s += v * ed.JxW[k];
-        area += ed.JxW[k];
-      }
+  FaceQuadrature(body, faces, gauss_points_for(body.degree())).for_each_element([&](int, const auto& v) {
+    for (int k = 0; k < v.n_q; ++k) {
+      double value = 0;
+      for (int a = 0; a < v.n_loc; ++a) value += v.N(k, a) * u(v.cps[a], dim - 1);
+      s += value * v.JxW[k];
+      area += v.JxW[k];
     }
-  }
+  });
   return area > 0 ? s / area : 0.0;
 }
 
@@ -52,27 +48,28 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   report_first_contact(m, *c);
   const int m0 = problem.multiplier_offset(1);
   // Deformed extent: the face point at the reference half width, displaced.
-  ElementData ed;
   double best = std::numeric_limits<double>::infinity();
   int K_max = 0;
   for (int K = 0; K < m0; ++K)
     if (-c->solution.lambda[K] > -c->solution.lambda[K_max]) K_max = K;
+  std::vector<PatchSide> sides;
+  std::vector<PatchQuadrature> quads;
   for (const ContactSide& side : cf.sides) {
-    const PatchQuadrature q = side.quadrature(10);
-    for (int e = 0; e < q.num_elements(); ++e) {
-      q.evaluate(e, ed, false);
-      for (int k = 0; k < ed.JxW.size(); ++k) {
-        const Eigen::VectorXd X = ed.X.row(k).transpose();
-        const double d = std::abs(c->pressure->r_of(X) - c->report.half_width);
-        if (d < best) {
-          best = d;
-          Eigen::VectorXd xk = X;
-          for (size_t a = 0; a < ed.cps.size(); ++a) xk += ed.N(k, a) * r.u.row(ed.cps[a]).transpose();
-          r.half_width_deformed = c->pressure->r_of(xk);
-        }
+    sides.push_back(side.side);
+    quads.push_back(side.quadrature(10));
+  }
+  FaceQuadrature(std::move(sides), std::move(quads)).for_each_element([&](int, const auto& v) {
+    for (int k = 0; k < v.n_q; ++k) {
+      const Eigen::VectorXd X = v.X[k];
+      const double d = std::abs(c->pressure->r_of(X) - c->report.half_width);
+      if (d < best) {
+        best = d;
+        Eigen::VectorXd xk = X;
+        for (int a = 0; a < v.n_loc; ++a) xk += v.N(k, a) * r.u.row(v.cps[a]).transpose();
+        r.half_width_deformed = c->pressure->r_of(xk);
       }
     }
-  }
+  });
   // Cauchy pressure at the most pressed multiplier: nominal / surface stretch.
   {
     const ContactSide* side = &cf.sides.front();

@@ -8,6 +8,7 @@
 
 #include "contact/coarse_start.hpp"
 #include "engine/stopwatch.hpp"
+#include "engine/face_quadrature.hpp"
 #include "engine/prolongation.hpp"
 #include "model/petsc_run.hpp"
 #include "model/references.hpp"
@@ -20,16 +21,11 @@ double pressure_resultant(const Model& m) {
   double total = 0;
   for (const auto& p : m.spec.pressure)  // |int P n dGamma| per pressure load, on the reference faces
     for (const auto& n : p.faces) {
-      const std::vector<PatchSide> faces = *find_faces(m, n);
       Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);  // a face made of several sides sums them
-      for (const PatchSide& f : faces) {
-        const PatchQuadrature q = face_quadrature(m.body, f, gauss_points_for(m.body.degree()));
-        ElementData ed;
-        for (int e = 0; e < q.num_elements(); ++e) {
-          q.evaluate(e, ed, false);
-          for (int k = 0; k < ed.JxW.size(); ++k) res += p.value * ed.normal.row(k).transpose() * ed.JxW[k];
-        }
-      }
+      FaceQuadrature(m.body, *find_faces(m, n), gauss_points_for(m.body.degree()))
+          .for_each_element([&](int, const auto& v) {
+            for (int k = 0; k < v.n_q; ++k) res += p.value * v.normal[k] * v.JxW[k];
+          });
       total += res.norm();
     }
   return total;
