@@ -212,22 +212,34 @@ NurbsPatch read_geometry(const Source& src, pugi::xml_node g, const std::string&
   if (!coefs) src.fail(g, name, "no <coefs>");
   const auto geo_dim = int_attribute(src, coefs, "geoDim", coefs_name);
   if (!geo_dim) src.fail(coefs, coefs_name, "no geoDim attribute");
-  if (*geo_dim != d)
+  // A planar patch may be stored in 3D with z = 0 (as G+Smo's planar files
+  // often are): read in the plane when every z is 0 to round-off.
+  const bool planar_in_3d = d == 2 && *geo_dim == 3;
+  if (*geo_dim != d && !planar_in_3d)
     src.fail(coefs, coefs_name,
              fmt::format("geoDim {} differs from the parametric dimension {} of a {}: igac reads solid bodies "
                          "(a 2D patch in the plane, a 3D patch in space)", *geo_dim, d, type));
+  const int gd = *geo_dim;
   const std::vector<double> c = numbers(src, coefs, coefs_name);
-  if (int(c.size()) != n * d)
+  if (int(c.size()) != n * gd)
     src.fail(coefs, coefs_name,
              fmt::format("{} numbers where {} control points (the basis sizes {}) of geoDim {} need {}", c.size(), n,
-                         sizes, d, n * d));
+                         sizes, gd, n * gd));
   if (auto rows = int_attribute(src, coefs, "rows", coefs_name); rows && *rows != n)
     src.fail(coefs, coefs_name, fmt::format("rows=\"{}\" where the basis has {} functions", *rows, n));
-  if (auto cols = int_attribute(src, coefs, "cols", coefs_name); cols && *cols != d)
-    src.fail(coefs, coefs_name, fmt::format("cols=\"{}\" differs from geoDim {}", *cols, d));
+  if (auto cols = int_attribute(src, coefs, "cols", coefs_name); cols && *cols != gd)
+    src.fail(coefs, coefs_name, fmt::format("cols=\"{}\" differs from geoDim {}", *cols, gd));
   Eigen::MatrixXd P(n, d);
   for (int i = 0; i < n; ++i)
-    for (int k = 0; k < d; ++k) P(i, k) = c[size_t(i) * d + k];
+    for (int k = 0; k < d; ++k) P(i, k) = c[size_t(i) * gd + k];
+  if (planar_in_3d) {
+    const double extent = std::max(1e-300, P.cwiseAbs().maxCoeff());
+    for (int i = 0; i < n; ++i)
+      if (const double z = c[size_t(i) * gd + 2]; !(std::abs(z) <= 1e-12 * extent))
+        src.fail(coefs, coefs_name,
+                 fmt::format("a 2D patch stored in 3D whose control point {} has z = {:g}: igac reads a planar "
+                             "body only in the plane z = 0", i, z));
+  }
 
   Eigen::VectorXd w = Eigen::VectorXd::Ones(n);
   if (rational) {
