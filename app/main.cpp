@@ -9,6 +9,7 @@
 // 2 bad input (one line on stderr naming file, key and reason).
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
@@ -218,6 +219,9 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
 
 int main(int argc, char** argv) {
   block_termination_signals_in_every_thread(argv);  // app/launcher.hpp
+  // A file-size limit (ulimit -f) makes a write fail with EFBIG, which the
+  // writers report in one line, instead of killing the run with SIGXFSZ.
+  signal(SIGXFSZ, SIG_IGN);
   end_on_termination_signals();
   // Threads adapt to the cores that are free: CHOLMOD asks OpenMP for 4
   // threads whatever the machine has, and busy-waiting teams larger than

@@ -218,6 +218,13 @@ Model build_model(const CaseSpec& spec) {
                                            "the last one applies", spec.path, fa, "xyz"[da.component], da.value,
                                            db.value));
     }
+  // Near nu = 0.5 the pure displacement formulation locks (too stiff a
+  // body): say so rather than let a result pass unremarked.
+  if (spec.nu >= 0.499)
+    m.warnings.push_back(fmt::format("{}: [material] nu = {}: nearly incompressible: igac's pure displacement "
+                                     "elements lock as nu nears 0.5 (the body turns too stiff; docs/benchmarks.md "
+                                     "measures by how much)",
+                                     spec.path, spec.nu));
   m.dofs = std::make_unique<DofMap>(m.body, dc);
   // The case's law: the Newton path's material, and the stress of the
   // ParaView output in both paths (small strain: the linear law's P is sigma).

@@ -10,6 +10,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 [ $# -ge 2 ] || { echo "usage: scripts/mpirun.sh N run CASE.toml --solver petsc [options]" >&2; exit 2; }
 n="$1"; shift
+[[ "$n" =~ ^[1-9][0-9]*$ ]] || { echo "scripts/mpirun.sh: the process count must be a whole number >= 1 (got '$n')" >&2; exit 2; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}" OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}"

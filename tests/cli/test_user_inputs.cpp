@@ -226,3 +226,45 @@ TEST(UserInputs, SigtermStopsARunAtAnyMoment) {
 }
 
 }  // namespace
+
+namespace {
+
+// nu = 0.49999999 gave a peak pressure 70 % too high without a word: a run
+// near the incompressible limit says that its elements lock.
+TEST(UserInputs, NearlyIncompressibleMaterialIsWarnedAbout) {
+  TempDir tmp("inputs");
+  std::ifstream in(std::string(IGAC_SOURCE_DIR) + "/cases/lame_cylinder.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find("nu = 0.3");
+  ASSERT_NE(at, std::string::npos);
+  std::ofstream(tmp.path() / "ok.toml") << text;
+  text.replace(at, 8, "nu = 0.49999999");
+  std::ofstream(tmp.path() / "near.toml") << text;
+  const Outcome near = run_igac("run near.toml --no-output", tmp.path());
+  EXPECT_EQ(near.exit_code, 0) << near.output;
+  EXPECT_NE(near.output.find("igac: warning: near.toml: [material] nu = 0.49999999: nearly incompressible"), std::string::npos)
+      << near.output;
+  const Outcome ok = run_igac("run ok.toml --no-output", tmp.path());
+  EXPECT_EQ(ok.output.find("warning"), std::string::npos) << ok.output;
+}
+
+// A file-size limit (ulimit -f) killed the run with SIGXFSZ and no word.
+TEST(UserInputs, FileSizeLimitIsAOneLineFailure) {
+  TempDir tmp("inputs");
+  const std::string c = std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml";
+  FILE* pipe = popen(("cd " + quote(tmp.path().string()) + " && (ulimit -f 10; " + quote(IGAC_BINARY) + " run " +
+                      quote(c) + " --quiet --out out; echo \"status $?\") 2>&1")
+                         .c_str(),
+                     "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  char buf[512];
+  while (fgets(buf, sizeof buf, pipe)) out += buf;
+  pclose(pipe);
+  EXPECT_NE(out.find("igac: error:"), std::string::npos) << out;
+  EXPECT_NE(out.find("cannot write"), std::string::npos) << out;
+  EXPECT_NE(out.find("status 1"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out"));
+}
+
+}  // namespace
