@@ -27,10 +27,17 @@ int launcher_rank() { return env_int({"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_
 int launcher_size() { return env_int({"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}, 1); }
 
 namespace {
+// SIGTERM, SIGINT and SIGHUP, less those the parent set to be ignored
+// (nohup ignores SIGHUP, a shell's background job SIGINT): a blocked signal
+// is queued even when ignored, and sigwait would then end the run.
 sigset_t termination_signals() {
   sigset_t set;
   sigemptyset(&set);
-  for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&set, sig);
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) {
+    struct sigaction now {};
+    if (sigaction(sig, nullptr, &now) == 0 && now.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, sig);
+  }
   return set;
 }
 }  // namespace
@@ -40,7 +47,8 @@ void block_termination_signals_in_every_thread(char** argv) {
   sigset_t now;
   pthread_sigmask(SIG_BLOCK, nullptr, &now);
   bool blocked = true;
-  for (int sig : {SIGTERM, SIGINT, SIGHUP}) blocked = blocked && sigismember(&now, sig);
+  for (int sig : {SIGTERM, SIGINT, SIGHUP})
+    if (sigismember(&set, sig)) blocked = blocked && sigismember(&now, sig);
   if (blocked) return;
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
   execv("/proc/self/exe", argv);  // the mask survives exec; on failure go on as we are

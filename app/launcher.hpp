@@ -20,7 +20,8 @@ int launcher_rank();
 int launcher_size();
 
 // SIGTERM, SIGINT and SIGHUP end the program, whatever library runs when
-// they come: they are blocked in every thread and one thread of their own
+// they come (those not set to be ignored by the parent, as nohup does with
+// SIGHUP): they are blocked in every thread and one thread of their own
 // waits for them, prints "igac: stopped by SIGTERM" and ends the process
 // with status 128 + signal (143 for SIGTERM), as a shell reports it.
 // (METIS, inside CHOLMOD's ordering, installs a SIGTERM handler of its own

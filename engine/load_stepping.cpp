@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <algorithm>
 #include "engine/load_stepping.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <fmt/format.h>

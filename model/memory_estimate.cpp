@@ -8,9 +8,10 @@
 namespace igac {
 
 double estimated_peak_bytes(const CaseSpec& c) {
-  // Stiffness nonzeros, and the Cholesky factor measured at fill ~10 x
-  // nnz(K)/2 in 2D (slowly growing) and ~7 x nnz(K)/2 at 18k dofs in 3D,
-  // growing like dofs^(1/3) there (nested dissection); times kCalibration, fitted so that
+  // Stiffness nonzeros, and the Cholesky factor: its fill was measured at
+  // ~10 x nnz(K)/2 in 2D (slowly growing) and ~7 x nnz(K)/2 at 18k dofs in
+  // 3D, where the model takes 8 and grows it like dofs^(1/3) (nested
+  // dissection); times kCalibration, fitted so that
   // the estimate covers the peak resident memory measured by
   // bench/memory_guard.py (docs/benchmarks.md, "Memory guard").
   constexpr double kCalibration = 1.35;

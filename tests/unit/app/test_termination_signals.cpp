@@ -35,4 +35,20 @@ TEST(TerminationSignals, SigtermEndsTheProcessThroughALibrarysOwnHandler) {
   }
 }
 
+// A signal the parent set to be ignored stays ignored (`nohup igac run ...`
+// ignores SIGHUP): blocking it would queue it, and the run would end.
+TEST(TerminationSignals, SignalIgnoredByTheParentStaysIgnored) {
+  // "fast": the child is a fork of this process, which runs only the statement
+  GTEST_FLAG_SET(death_test_style, "fast");
+  EXPECT_EXIT(
+      {
+        signal(SIGHUP, SIG_IGN);  // as nohup leaves it
+        igac::end_on_termination_signals();
+        kill(getpid(), SIGHUP);
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        std::exit(0);  // the run went on
+      },
+      testing::ExitedWithCode(0), "");
+}
+
 }  // namespace
