@@ -109,6 +109,11 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
   if (!m.reoriented_patches.empty())
     fmt::print("  geometry      patch(es) {} reoriented: left-handed in the file, run with u backwards (face names as "
                "the file gives them)\n", fmt::join(m.reoriented_patches, ", "));
+  if (!m.joined_sides.empty()) {
+    std::vector<std::string> pairs;
+    for (const PatchInterface& itf : m.joined_sides) pairs.push_back(side_label(itf.first) + " = " + side_label(itf.second));
+    fmt::print("  geometry      coincident sides joined: {} (the file does not join them)\n", fmt::join(pairs, ", "));
+  }
   fmt::print("  status        {}\n", status);
   if (r.contact) {
     const auto& rep = r.contact->report;

@@ -54,7 +54,7 @@ std::vector<int> merge_collapsed_lines(const NurbsPatch& patch) {
 
 // The same for a body: each patch's collapsed lines, in body numbering.
 std::vector<int> merge_collapsed_lines(const Body& body) {
-  if (body.num_patches() == 1) return merge_collapsed_lines(body.patch(0));
+  if (body.numbered_as_patch()) return merge_collapsed_lines(body.patch(0));
   std::vector<int> rep(body.num_control_points());
   for (int i = 0; i < int(rep.size()); ++i) rep[i] = i;
   auto find = [&](int i) {

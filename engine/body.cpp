@@ -9,6 +9,8 @@
 #include <map>
 #include <numeric>
 
+#include "engine/geometry/topology.hpp"
+
 namespace igac {
 
 namespace {
@@ -101,13 +103,7 @@ Body::Body(std::vector<NurbsPatch> patches, const std::vector<PatchInterface>& i
                                   largest_degree(p), degree_));
     offset.push_back(offset.back() + p.num_control_points());
   }
-  // Size of the body, for the coincidence tolerance.
-  Eigen::VectorXd lo = patches_[0].points().colwise().minCoeff(), hi = patches_[0].points().colwise().maxCoeff();
-  for (const auto& p : patches_) {
-    lo = lo.cwiseMin(p.points().colwise().minCoeff().transpose());
-    hi = hi.cwiseMax(p.points().colwise().maxCoeff().transpose());
-  }
-  const double tol = 1e-9 * std::max((hi - lo).norm(), 1e-300);
+  const double tol = coincidence_tolerance(patches_);
 
   UnionFind uf(offset.back());
   for (const PatchInterface& itf : interfaces_) {
@@ -205,7 +201,8 @@ std::string Body::describe(const PatchSide& s) const { return side_name(s.patch,
 
 BodyQuadrature::BodyQuadrature(const Body& body, int points) {
   for (int k = 0; k < body.num_patches(); ++k) {
-    patches_.emplace_back(body.patch(k), points, std::nullopt, body.num_patches() == 1 ? std::vector<int>{} : body.body_cps(k));
+    patches_.emplace_back(body.patch(k), points, std::nullopt,
+                          body.numbered_as_patch() ? std::vector<int>{} : body.body_cps(k));
     first_.push_back(first_.back() + patches_.back().num_elements());
     num_local_ = std::max(num_local_, patches_.back().num_local());
   }

@@ -42,7 +42,8 @@ class Body {
   // One patch, control points numbered as in the patch.  Implicit: every
   // function of the engine that takes a Body takes a lone patch as well.
   Body(NurbsPatch patch);  // NOLINT(google-explicit-constructor)
-  // Patches joined across `interfaces`.  Throws BodyError when the patches
+  // Patches joined across `interfaces` (an interface may join two sides of
+  // one patch: the seam of a closed ring or tube).  Throws BodyError when the patches
   // differ in dimension or degree, or an interface is not conforming (naming
   // both patches and sides and where they differ).
   Body(std::vector<NurbsPatch> patches, const std::vector<PatchInterface>& interfaces);
@@ -60,6 +61,8 @@ class Body {
   int param_dim() const { return patches_.empty() ? 0 : patches_[0].param_dim(); }
   int degree() const { return degree_; }  // the largest degree of any direction
   int num_elements() const;
+  // One patch with no side joined to another: body numbers are patch numbers.
+  bool numbered_as_patch() const { return patches_.size() == 1 && interfaces_.empty(); }
 
   // Body numbers of a side's control points, in the side's own numbering
   // (that of NurbsPatch::face_patch).  Throws BodyError for a side that does

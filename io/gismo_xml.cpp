@@ -289,7 +289,7 @@ void check_sides_meet(const Source& src, pugi::xml_node node, const std::string&
     if (!found)
       src.fail(node, element,
                fmt::format("{}: side {} ({}) of patch {} and side {} ({}) of patch {} do not meet: the corner ({:.6g}) "
-                           "of the first is no corner of the second", what, gismo_side_of(pi.first.face),
+                           "of the first is no corner of the second (without <interfaces>, igac joins the sides that coincide)", what, gismo_side_of(pi.first.face),
                            gismo_side_name(gismo_side_of(pi.first.face)), pi.first.patch, gismo_side_of(pi.second.face),
                            gismo_side_name(gismo_side_of(pi.second.face)), pi.second.patch, fmt::join(x, ", ")));
   }
@@ -321,15 +321,61 @@ void read_topology(const Source& src, pugi::xml_node mp, const std::map<long, in
                            gismo_side_of(s.face), gismo_side_name(gismo_side_of(s.face)), id));
   };
 
-  const int group = 4 + 2 * dim;
+  // G+Smo writes an interface as: patch side patch side, a direction map of
+  // `dim` and `dim` orientation flags.  Older files give patch side patch
+  // side and dim - 1 orientation flags (five numbers in 2D).  igac matches
+  // the sides geometrically, so only the first four numbers matter; a list
+  // is read in the form whose every group makes sense.  (A list both forms
+  // read would need 40 integers in 2D, 30 in 3D, each group plausible both
+  // ways; a random search of 2M such lists found none, and the current form
+  // is then taken.)
+  const int group = 4 + 2 * dim, old_group = 4 + dim - 1;
+  auto fits = [&](const std::vector<long>& v, int size) {
+    if (v.empty() || v.size() % size != 0) return false;
+    for (size_t g = 0; g < v.size(); g += size) {
+      for (int k : {0, 2})
+        if (!index_of_id.count(v[g + k]) || v[g + k + 1] < 1 || v[g + k + 1] > n_sides) return false;
+      const int flags = size == group ? dim : dim - 1;
+      for (int k = 0; k < flags; ++k)
+        if (v[g + size - flags + k] != 0 && v[g + size - flags + k] != 1) return false;
+      if (size == group) {
+        std::vector<bool> hit(dim, false);
+        for (int k = 0; k < dim; ++k) {
+          if (v[g + 4 + k] < 0 || v[g + 4 + k] >= dim || hit[v[g + 4 + k]]) return false;
+          hit[v[g + 4 + k]] = true;
+        }
+        if (v[g + 4 + (v[g + 1] - 1) / 2] != (v[g + 3] - 1) / 2) return false;
+      }
+    }
+    return true;
+  };
   int k_interface = 0;
   for (pugi::xml_node node : mp.children("interfaces")) {
     const std::string element = "<MultiPatch> <interfaces>";
     const std::vector<long> v = integers(src, node, element);
+    const bool now = fits(v, group), older = fits(v, old_group);
+    // (A list only the older form divides is read in it, for its errors.)
+    if ((older && !now) || (!now && v.size() % group != 0 && !v.empty() && v.size() % old_group == 0)) {
+      for (size_t g = 0; g < v.size(); g += old_group, ++k_interface) {
+        const std::string what = fmt::format("interface {}", k_interface);
+        for (int k = 4; k < old_group; ++k)
+          if (v[g + k] != 0 && v[g + k] != 1)
+            src.fail(node, element, fmt::format("{}: orientation flag {} is not 0 or 1", what, v[g + k]));
+        PatchInterface pi;
+        pi.first = PatchSide{patch_of(node, element, v[g], what), side_of(node, element, v[g + 1], what)};
+        pi.second = PatchSide{patch_of(node, element, v[g + 2], what), side_of(node, element, v[g + 3], what)};
+        use(node, element, pi.first, v[g], what);
+        use(node, element, pi.second, v[g + 2], what);
+        check_sides_meet(src, node, element, body, pi, what);
+        body.interfaces.push_back(pi);
+      }
+      continue;
+    }
     if (v.size() % group != 0)
       src.fail(node, element,
                fmt::format("{} integers do not make whole interfaces of {} (patch side patch side, a direction map "
-                           "of {} and {} orientation flags)", v.size(), group, dim, dim));
+                           "of {} and {} orientation flags), nor of the older form's {}", v.size(), group, dim, dim,
+                           old_group));
     for (size_t g = 0; g < v.size(); g += group, ++k_interface) {
       const std::string what = fmt::format("interface {}", k_interface);
       PatchInterface pi;
@@ -400,27 +446,35 @@ MultiPatch read_gismo_xml(const std::string& path) {
     src.fail(top, fmt::format("<{}>", top.name()), "the root element of a G+Smo file is <xml>");
   }
 
+  std::vector<pugi::xml_node> multipatches;
+  for (pugi::xml_node m : root.children("MultiPatch")) multipatches.push_back(m);
+  if (multipatches.size() > 1) src.fail(multipatches[1], "<MultiPatch>", "a second <MultiPatch>: igac reads one body per file");
+  // Ids are references from the <MultiPatch>: without one they name nothing
+  // (G+Smo's own volumes/cube.xml gives seven patches the same id).
   std::vector<pugi::xml_node> geometries;
   std::map<long, pugi::xml_node> by_id;
   for (pugi::xml_node g : root.children("Geometry")) {
     const std::string name = geometry_name(g, int(geometries.size()));
-    if (auto id = int_attribute(src, g, "id", name)) {
+    if (auto id = int_attribute(src, g, "id", name); id && !multipatches.empty()) {
       if (by_id.count(*id)) src.fail(g, name, fmt::format("a second <Geometry> with id {}", *id));
       by_id[*id] = g;
     }
     geometries.push_back(g);
   }
-  std::vector<pugi::xml_node> multipatches;
-  for (pugi::xml_node m : root.children("MultiPatch")) multipatches.push_back(m);
-  if (multipatches.size() > 1) src.fail(multipatches[1], "<MultiPatch>", "a second <MultiPatch>: igac reads one body per file");
 
   MultiPatch body;
   if (multipatches.empty()) {
+    // Patches without a topology: the engine joins the sides that coincide
+    // (engine/geometry/topology.hpp), as G+Smo's computeTopology does.
     if (geometries.empty()) src.fail(root, "<xml>", "no <Geometry> and no <MultiPatch>: the file describes no body");
-    if (geometries.size() > 1)
-      src.fail(geometries[1], geometry_name(geometries[1], 1),
-               fmt::format("{} <Geometry> elements and no <MultiPatch> saying how they join", geometries.size()));
-    return single_patch_body(read_geometry(src, geometries[0], geometry_name(geometries[0], 0)));
+    for (size_t k = 0; k < geometries.size(); ++k) {
+      const std::string name = geometry_name(geometries[k], int(k));
+      body.patches.push_back(read_geometry(src, geometries[k], name));
+      if (body.patches.back().param_dim() != body.patches.front().param_dim())
+        src.fail(geometries[k], name, fmt::format("a {}D patch among {}D patches", body.patches.back().param_dim(),
+                                                  body.patches.front().param_dim()));
+    }
+    return body;
   }
 
   pugi::xml_node mp = multipatches[0];

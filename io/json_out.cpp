@@ -54,6 +54,11 @@ Json run_summary(const Model& m, const RunResult& r) {
   j["multipliers"] = m.num_multipliers();
   j["mesh_size"] = m.mesh_size;
   if (!m.reoriented_patches.empty()) j["reoriented_patches"] = m.reoriented_patches;
+  if (!m.joined_sides.empty()) {
+    Json joined = Json::array();
+    for (const PatchInterface& itf : m.joined_sides) joined.push_back({side_label(itf.first), side_label(itf.second)});
+    j["joined_sides"] = joined;
+  }
   j["status"] = r.status;
   if (r.load_steps) {
     Json steps = Json::array();

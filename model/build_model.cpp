@@ -11,12 +11,25 @@
 #include <fmt/ranges.h>
 
 #include "engine/geometry/side_names.hpp"
+#include "engine/geometry/topology.hpp"
 #include "engine/quadrature.hpp"
 #include "engine/spline/refinement.hpp"
 #include "engine/spline/split.hpp"
 #include "model/case_body.hpp"
 
 namespace igac {
+
+namespace {
+
+// A side as the file names it ("1:west"): a reoriented patch runs its first
+// direction backwards, so its u sides swap names.
+PatchSide side_in_file(const Model& m, PatchSide s) {
+  if (s.face.direction == 0 && std::count(m.reoriented_patches.begin(), m.reoriented_patches.end(), s.patch))
+    s.face.at_end = !s.face.at_end;
+  return s;
+}
+
+}  // namespace
 
 std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::string>& names, const char* section) {
   std::vector<PatchSide> out;
@@ -30,8 +43,8 @@ std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::stri
         if (side == itf.first || side == itf.second)
           throw InputError(fmt::format("{}: [{}] faces: '{}' is the interface {} - {} inside the body, not a face on "
                                        "its boundary",
-                                       m.spec.path, section, n, m.body.describe(itf.first),
-                                       m.body.describe(itf.second)));
+                                       m.spec.path, section, n, m.body.describe(side_in_file(m, itf.first)),
+                                       m.body.describe(side_in_file(m, itf.second))));
     out.insert(out.end(), f->begin(), f->end());
   }
   return out;
@@ -136,17 +149,48 @@ int orientation(const NurbsPatch& patch, int points) {
   return positive == negative ? 0 : positive ? 1 : -1;
 }
 
+// Joins the sides of a geometry file that coincide and that its topology
+// leaves apart: the seam of a closed patch, every interface of a file that
+// gives no <interfaces> (engine/geometry/topology.hpp).  A side the file
+// lists in its <boundary> stays a boundary (a slit the file asks for), with
+// a warning; so do sides that share only their corners.
+void join_coincident_sides(MultiPatch& coarse, Model& m) {
+  const CaseSpec& spec = m.spec;
+  auto listed = [](const auto& sides, const PatchSide& s) { return std::find(sides.begin(), sides.end(), s) != sides.end(); };
+  std::vector<PatchSide> in_interface, candidates;
+  for (const PatchInterface& itf : coarse.interfaces) in_interface.insert(in_interface.end(), {itf.first, itf.second});
+  for (int k = 0; k < int(coarse.patches.size()); ++k)
+    for (int s = 1; s <= 2 * coarse.patches[k].param_dim(); ++s)
+      if (const PatchSide side{k, face_of_gismo_side(s)}; !listed(in_interface, side)) candidates.push_back(side);
+  const CoincidentSides found = find_coincident_sides(coarse.patches, candidates);
+  for (const PatchInterface& itf : found.coincide) {
+    PatchInterface named{side_in_file(m, itf.first), side_in_file(m, itf.second)};
+    if (named.first.patch == named.second.patch && gismo_side_of(named.second.face) < gismo_side_of(named.first.face))
+      std::swap(named.first, named.second);
+    if (listed(coarse.boundary, itf.first) || listed(coarse.boundary, itf.second)) {
+      m.warnings.push_back(fmt::format("{}: [geometry] file {}: sides {} and {} coincide, but the file's <boundary> "
+                                       "lists them: they stay apart (a slit in the body)",
+                                       spec.path, spec.geometry_file, side_label(named.first), side_label(named.second)));
+      continue;
+    }
+    coarse.interfaces.push_back(itf);
+    m.joined_sides.push_back(named);
+  }
+  for (const PatchInterface& itf : found.corners_only)
+    m.warnings.push_back(fmt::format("{}: [geometry] file {}: sides {} and {} share their corners but not the points "
+                                     "between them: they stay apart (a slit in the body)",
+                                     spec.path, spec.geometry_file, side_label(side_in_file(m, itf.first)),
+                                     side_label(side_in_file(m, itf.second))));
+}
+
 }  // namespace
 
 std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name) {
   if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
-  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim())) {
-    // A reoriented patch runs its first direction backwards: the file's
-    // west (u = 0) is now its east.
-    if (side->face.direction == 0 && std::count(m.reoriented_patches.begin(), m.reoriented_patches.end(), side->patch))
-      side->face.at_end = !side->face.at_end;
-    return std::vector<PatchSide>{*side};
-  }
+  // (A reoriented patch runs its first direction backwards: the file's west
+  // is its east, and side_in_file swaps them back.)
+  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim()))
+    return std::vector<PatchSide>{side_in_file(m, *side)};
   return std::nullopt;
 }
 
@@ -176,10 +220,13 @@ Model build_model(const CaseSpec& spec) {
       if (orientation(coarse.patches[k], gauss_points_for(spec.degree)) >= 0) continue;
       coarse.patches[k] = reversed(coarse.patches[k], 0);
       m.reoriented_patches.push_back(int(k));
-      for (PatchInterface& itf : coarse.interfaces)
-        for (PatchSide* side : {&itf.first, &itf.second})
-          if (side->patch == int(k) && side->face.direction == 0) side->face.at_end = !side->face.at_end;
+      auto flip = [k](PatchSide& side) {
+        if (side.patch == int(k) && side.face.direction == 0) side.face.at_end = !side.face.at_end;
+      };
+      for (PatchInterface& itf : coarse.interfaces) flip(itf.first), flip(itf.second);
+      for (PatchSide& side : coarse.boundary) flip(side);
     }
+    join_coincident_sides(coarse, m);
   }
   const bool several = coarse.patches.size() > 1;
   std::vector<NurbsPatch> patches;
@@ -188,7 +235,8 @@ Model build_model(const CaseSpec& spec) {
     if (!spec.geometry_file.empty()) check_patch_map(spec, patches.back(), int(k));
   }
   try {
-    m.body = several ? Body(std::move(patches), coarse.interfaces) : Body(std::move(patches.front()));
+    m.body = several || !coarse.interfaces.empty() ? Body(std::move(patches), coarse.interfaces)
+                                                   : Body(std::move(patches.front()));
   } catch (const BodyError& e) {
     throw InputError(fmt::format("{}: [geometry] file {}: {}", spec.path, spec.geometry_file, e.what()));
   }

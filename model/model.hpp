@@ -45,6 +45,10 @@ struct Model {
   // and run with their first direction backwards; their faces keep the
   // file's names.
   std::vector<int> reoriented_patches;
+  // Sides of a geometry file that coincide and that its topology did not
+  // join (a closed seam, a file without <interfaces>), joined by igac; in
+  // the file's side names.
+  std::vector<PatchInterface> joined_sides;
   bool quiet = false;    // no progress lines
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
   int num_multipliers() const {

@@ -49,6 +49,11 @@ inline const char* gismo_side_name(int side) {
   return side >= 1 && side <= 6 ? names[side - 1] : "?";
 }
 
+// "1:west": a side as case files name it.
+inline std::string side_label(const PatchSide& s) {
+  return std::to_string(s.patch) + ":" + gismo_side_name(gismo_side_of(s.face));
+}
+
 // One patch as a body: every side on the boundary.
 inline MultiPatch single_patch_body(const NurbsPatch& patch) {
   MultiPatch body;

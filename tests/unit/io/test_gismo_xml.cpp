@@ -444,6 +444,8 @@ INSTANTIATE_TEST_SUITE_P(
                 {"<MultiPatch> <interfaces>", "side 1 (west) of patch 0 and side 2 (east) of patch 1 do not meet"}},
         BadFile{"interface_integer_count", "0 2 1 1 0 1 1 1</interfaces>", "0 2 1 1 0 1 1</interfaces>", "<interfaces>",
                 {"<MultiPatch> <interfaces>", "7 integers do not make whole interfaces of 8"}},
+        BadFile{"old_form_flag", "0 2 1 1 0 1 1 1</interfaces>", "0 2 1 1 3</interfaces>", "<interfaces>",
+                {"<MultiPatch> <interfaces>", "interface 0: orientation flag 3 is not 0 or 1"}},
         BadFile{"interface_direction_map", "0 2 1 1 0 1 1 1</interfaces>", "0 2 1 1 1 0 1 1</interfaces>", "<interfaces>",
                 {"<MultiPatch> <interfaces>", "sends the normal direction 0"}},
         BadFile{"side_listed_twice", "<boundary>0 1 0 3", "<boundary>0 2 0 3", "<boundary>",
@@ -459,6 +461,24 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"not_a_number", "1.5 0 2 0", "1.5 0 two 0", "two",
                 {"<Geometry id=\"1\"> <coefs>", "\"two\" (entry 4) is not a number"}}),
     [](const ::testing::TestParamInfo<BadFile>& i) { return i.param.name; });
+
+// Older G+Smo files write an interface as patch side patch side and dim - 1
+// orientation flags (five numbers in 2D): the same interface is read.
+TEST(GismoXml, OlderFiveNumberInterfaceForm) {
+  std::ifstream in(source("tests/data/quarter_disc_two_patches.xml"));
+  std::string xml{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string current = "0 2 1 1 0 1 1 1\n</interfaces>";
+  ASSERT_NE(xml.find(current), std::string::npos);
+  xml.replace(xml.find(current), current.size(), "0 2 1 1 1\n</interfaces>");
+  const fs::path dir = temp_dir("old_form");
+  write_text(dir / "old.xml", xml);
+  const MultiPatch older = read_gismo_xml((dir / "old.xml").string());
+  const MultiPatch now = read_gismo_xml(source("tests/data/quarter_disc_two_patches.xml"));
+  ASSERT_EQ(older.interfaces.size(), 1u);
+  EXPECT_EQ(older.interfaces[0].first, now.interfaces[0].first);
+  EXPECT_EQ(older.interfaces[0].second, now.interfaces[0].second);
+  EXPECT_EQ(older.boundary.size(), now.boundary.size());
+}
 
 TEST(GismoXml, MissingFileAndWrongRoot) {
   EXPECT_THROW(read_gismo_xml("/nonexistent/igac/body.xml"), InputError);
