@@ -114,6 +114,12 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
     for (const PatchInterface& itf : m.joined_sides) pairs.push_back(side_label(itf.first) + " = " + side_label(itf.second));
     fmt::print("  geometry      coincident sides joined: {} (the file does not join them)\n", fmt::join(pairs, ", "));
   }
+  if (!m.interface_knots.empty()) {
+    std::vector<std::string> where;
+    for (const InsertedKnots& k : m.interface_knots)
+      where.push_back(fmt::format("patch {} {} +{}", k.patch, "uvw"[k.direction], k.count));
+    fmt::print("  geometry      knots inserted so that interfaces conform: {}\n", fmt::join(where, ", "));
+  }
   fmt::print("  status        {}\n", status);
   if (r.contact) {
     const auto& rep = r.contact->report;

@@ -119,7 +119,9 @@ Body::Body(std::vector<NurbsPatch> patches, const std::vector<PatchInterface>& i
     const std::vector<int> ca = pa.face_control_points(a.face), cb = pb.face_control_points(b.face);
     if (ca.size() != cb.size() || !sides_have_same_knots(fa, fb))
       throw BodyError(fmt::format("{} is not conforming: the sides have different knots ({} and {} control points); "
-                                  "refine both patches alike along the interface",
+                                  "refine both patches alike along the interface (a body built from a case has the missing "
+                                  "knots inserted first, engine/geometry/conforming_interfaces.hpp: there, the sides "
+                                  "run at different speeds along the interface or differ in degree)",
                                   where, ca.size(), cb.size()));
     // Match b's control points to a's through a grid of cells of size `cell`.
     const double cell = 1e3 * tol;

@@ -59,6 +59,12 @@ Json run_summary(const Model& m, const RunResult& r) {
     for (const PatchInterface& itf : m.joined_sides) joined.push_back({side_label(itf.first), side_label(itf.second)});
     j["joined_sides"] = joined;
   }
+  if (!m.interface_knots.empty()) {
+    Json knots = Json::array();
+    for (const InsertedKnots& k : m.interface_knots)
+      knots.push_back({{"patch", k.patch}, {"direction", std::string(1, "uvw"[k.direction])}, {"knots", k.count}});
+    j["interface_knots_inserted"] = knots;
+  }
   j["status"] = r.status;
   if (r.load_steps) {
     Json steps = Json::array();

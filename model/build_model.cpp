@@ -234,6 +234,7 @@ Model build_model(const CaseSpec& spec) {
     patches.push_back(refine_patch(spec, coarse.patches[k], several ? fmt::format(" of patch {}", k) : ""));
     if (!spec.geometry_file.empty()) check_patch_map(spec, patches.back(), int(k));
   }
+  m.interface_knots = make_interfaces_conform(patches, coarse.interfaces);
   try {
     m.body = several || !coarse.interfaces.empty() ? Body(std::move(patches), coarse.interfaces)
                                                    : Body(std::move(patches.front()));

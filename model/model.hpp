@@ -14,6 +14,7 @@
 #include "contact/obstacle.hpp"
 #include "contact/pressure.hpp"
 #include "contact/weighted_gap.hpp"
+#include "engine/geometry/conforming_interfaces.hpp"
 #include "engine/body.hpp"
 #include "engine/discretisation.hpp"
 #include "materials/hyperelastic.hpp"
@@ -49,6 +50,9 @@ struct Model {
   // join (a closed seam, a file without <interfaces>), joined by igac; in
   // the file's side names.
   std::vector<PatchInterface> joined_sides;
+  // Knots inserted so that the two sides of every interface have the same
+  // breakpoints (engine/geometry/conforming_interfaces.hpp).
+  std::vector<InsertedKnots> interface_knots;
   bool quiet = false;    // no progress lines
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
   int num_multipliers() const {

@@ -279,8 +279,13 @@ void expect_bad_file(const igac_test::TempDir& tmp, const std::vector<std::strin
 TEST(MultiPatchFiles, NonConformingInterfaceIsAOneLineErrorNamingBothSides) {
   igac_test::TempDir tmp("mpbad");
   MultiPatch body = read_gismo_xml(kSource + "/tests/data/quarter_disc_two_patches.xml");
-  // a knot on patch 1's side of the interface that patch 0 does not have
-  body.patches[1] = insert_knots(body.patches[1], 1, {0.3}).patch;
+  // Patch 1's side of the interface runs along the same radius as patch 0's
+  // but at another speed (its middle control point moved along the line).
+  // (A knot on one side only is no longer an error: the case inserts it in
+  // the other side, test_conforming_interfaces.cpp.)
+  Eigen::MatrixXd P = body.patches[1].points();
+  P.row(3) *= 0.7;
+  body.patches[1] = NurbsPatch(body.patches[1].all_knots(), P, body.patches[1].weights());
   two_patch_case(tmp.path(), body);
   expect_bad_file(tmp, {"body.xml", "patch 0 (east)", "patch 1 (west)", "not conforming"});
 }
