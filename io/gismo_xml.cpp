@@ -466,7 +466,16 @@ MultiPatch read_gismo_xml(const std::string& path) {
   if (multipatches.empty()) {
     // Patches without a topology: the engine joins the sides that coincide
     // (engine/geometry/topology.hpp), as G+Smo's computeTopology does.
-    if (geometries.empty()) src.fail(root, "<xml>", "no <Geometry> and no <MultiPatch>: the file describes no body");
+    if (geometries.empty()) {
+      std::string held;
+      for (pugi::xml_node c : root.children())
+        if (c.type() == pugi::node_element && held.find(std::string("<") + c.name() + ">") == std::string::npos)
+          held += fmt::format("{}<{}>", held.empty() ? "" : ", ", c.name());
+      src.fail(root, "<xml>", fmt::format("no <Geometry> and no <MultiPatch>: the file describes no body{}",
+                                          held.empty() ? std::string() : " igac reads (it holds " + held +
+                                          "; igac reads tensor-product NURBS patches, not trimmed or curve-bounded "
+                                          "domains)"));
+    }
     for (size_t k = 0; k < geometries.size(); ++k) {
       const std::string name = geometry_name(geometries[k], int(k));
       body.patches.push_back(read_geometry(src, geometries[k], name));
