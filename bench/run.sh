@@ -9,6 +9,8 @@
 #   newton_vs_linear.csv: one large-deformation Newton iteration against one
 #   small-deformation solve of the same mesh (2D pressure and displacement
 #   cases, refine 0-1, --quick refine 0; 3D Neo-Hookean octant).
+#   master_search.csv: the closest-point search of two-body contact on 1k-16k
+#   master elements, the tree against trying every element.
 #   stress_tests.csv / .md: bench/stress_test.py, numerical stability under
 #   stress (loads, degrees, grading, nu, load steps, initial gaps).
 #   work_precision.csv / *.png: bench/work_precision.py, error against time
@@ -45,6 +47,7 @@ for c in hertz2d_neohookean_pressure hertz2d_neohookean_displacement hertz3d_neo
 done
 echo "wrote $out/newton_vs_linear.csv"
 echo "newton_vs_linear: $((SECONDS - t0)) s"
+"$here/build/bench/master_search" 32 64 128 --queries 400 --csv "$out/master_search.csv"
 
 # Python benchmarks: Debian's interpreter has matplotlib.
 rc=0

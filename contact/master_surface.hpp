@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The master side of a contact between two deformable bodies: one or more
+// patch sides of a body, in their current position, and the closest-point
+// projection of a point of space onto them.  Mortar contact (De Lorenzis,
+// Temizer, Wriggers and Zavarise 2011; 4C's dual mortar) integrates the
+// weighted gap on the slave face; at every slave quadrature point it needs
+// the master point nearest to it, its parameters (to couple the master's
+// control points) and the master's outward normal there.
+//
+// The search must not visit every master element per slave point: the
+// master's elements are kept in a bounding-volume hierarchy (an AABB tree
+// over the boxes of the control points that support each element, which
+// contain the element by the convex hull property of NURBS with positive
+// weights).  A query descends the tree nearest box first and prunes every
+// box farther than the best point found: O(log n) elements per point for a
+// point near the surface.  On each candidate element the projection is
+// Newton's method on the element's parameters (Gauss-Newton in 3D), kept
+// inside the element's parameter box, started at its centre.  update()
+// moves the surface (large deformation: every Newton iteration) and
+// rebuilds the boxes and the tree.
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+#include <vector>
+
+#include "engine/body.hpp"
+
+namespace igac {
+
+struct MasterPoint {
+  int side = 0;               // index into the master's sides
+  int element = 0;            // element of that side's face patch
+  Eigen::VectorXd xi;         // parameters on the face patch
+  Eigen::VectorXd x;          // the point (current position)
+  Eigen::VectorXd normal;     // outward unit normal of the master body there
+  double distance = 0;        // |x_query - x|
+  double gap = 0;             // (x_query - x) . normal: positive outside the master
+};
+
+class MasterSurface {
+ public:
+  // The sides of `body` that form the master surface, at the reference
+  // position.  Keeps no reference to `body`.
+  MasterSurface(const Body& body, const std::vector<PatchSide>& sides);
+
+  // Moves the surface: `u` is the displacement per body control point
+  // (n_cp x dim, body numbering); rebuilds the element boxes and the tree.
+  void update(const Eigen::MatrixXd& u);
+
+  // The master point nearest to `x` (nullopt only for an empty surface).
+  std::optional<MasterPoint> project(const Eigen::VectorXd& x) const;
+  // The same by trying every element: the reference the tree is checked against.
+  std::optional<MasterPoint> project_by_every_element(const Eigen::VectorXd& x) const;
+
+  int num_elements() const { return int(elements_.size()); }
+  int num_sides() const { return int(sides_.size()); }
+  // Body numbers of side s's control points, in its face patch's numbering.
+  const std::vector<int>& side_control_points(int s) const { return sides_[s].cps; }
+  const NurbsPatch& side_patch(int s) const { return sides_[s].current; }
+  // Elements the last project() call ran Newton on (the search's cost).
+  int last_candidates() const { return last_candidates_; }
+
+ private:
+  struct Side {
+    PatchSide side;
+    NurbsPatch reference, current;
+    std::vector<int> cps;
+  };
+  struct Element {
+    int side = 0, index = 0;
+    Eigen::VectorXd lo, hi;              // parameter box
+    Eigen::VectorXd box_lo, box_hi;      // bounding box in space
+  };
+  struct Node {
+    Eigen::VectorXd lo, hi;
+    int left = -1, right = -1;           // children, or -1 for a leaf
+    int first = 0, count = 0;            // a leaf's range in order_
+  };
+  void build_elements();
+  int build_tree(int first, int count);
+  MasterPoint project_on_element(const Element& e, const Eigen::VectorXd& x) const;
+
+  std::vector<Side> sides_;
+  std::vector<Element> elements_;
+  std::vector<int> order_;  // element indices, grouped by leaf
+  std::vector<Node> nodes_;
+  mutable int last_candidates_ = 0;
+};
+
+}  // namespace igac
