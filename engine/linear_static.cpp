@@ -1,26 +1,68 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/linear_static.hpp"
 
+#include <algorithm>
+#include <numeric>
+
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
 namespace igac {
 
+namespace {
+
+// The bodies of a Body: its patches grouped by the interfaces that join
+// them (two deformable parts in contact are two groups: each has its own
+// rigid motions).  component[k] for patch k, numbered from 0.
+std::vector<int> patch_components(const Body& body) {
+  std::vector<int> c(body.num_patches());
+  std::iota(c.begin(), c.end(), 0);
+  auto find = [&](int i) {
+    while (c[i] != i) i = c[i] = c[c[i]];
+    return i;
+  };
+  for (const PatchInterface& itf : body.interfaces()) {
+    const int a = find(itf.first.patch), b = find(itf.second.patch);
+    if (a != b) c[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<int> number(c.size(), -1), out(c.size());
+  int n = 0;
+  for (size_t k = 0; k < c.size(); ++k) {
+    const int r = find(int(k));
+    if (number[r] < 0) number[r] = n++;
+    out[k] = number[r];
+  }
+  return out;
+}
+
+}  // namespace
+
 RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
   const int dim = body.space_dim(), n_cp = body.num_control_points();
-  const int n_modes = dim == 2 ? 3 : 6;
-  const Eigen::RowVectorXd centre = body.points().colwise().mean();
+  const int per_body = dim == 2 ? 3 : 6;
+  // Each body (group of joined patches) moves rigidly on its own.
+  const std::vector<int> component_of_patch = patch_components(body);
+  const int n_bodies = component_of_patch.empty() ? 1 : *std::max_element(component_of_patch.begin(), component_of_patch.end()) + 1;
+  std::vector<int> component(n_cp, 0);
+  for (int k = 0; k < body.num_patches(); ++k)
+    for (int a : body.body_cps(k)) component[a] = component_of_patch[k];
+  std::vector<Eigen::RowVectorXd> centre(n_bodies, Eigen::RowVectorXd::Zero(dim));
+  std::vector<int> count(n_bodies, 0);
+  for (int a = 0; a < n_cp; ++a) centre[component[a]] += body.points().row(a), ++count[component[a]];
+  for (int b = 0; b < n_bodies; ++b) centre[b] /= std::max(count[b], 1);
+  const int n_modes = per_body * n_bodies;
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n_cp * dim, n_modes);
   for (int a = 0; a < n_cp; ++a) {
-    const Eigen::RowVectorXd x = body.points().row(a) - centre;
-    for (int i = 0; i < dim; ++i) M(a * dim + i, i) = 1.0;
+    const int c0 = per_body * component[a];
+    const Eigen::RowVectorXd x = body.points().row(a) - centre[component[a]];
+    for (int i = 0; i < dim; ++i) M(a * dim + i, c0 + i) = 1.0;
     if (dim == 2) {
-      M(a * 2 + 0, 2) = -x[1];
-      M(a * 2 + 1, 2) = x[0];
+      M(a * 2 + 0, c0 + 2) = -x[1];
+      M(a * 2 + 1, c0 + 2) = x[0];
     } else {  // rotations about x, y, z
-      M(a * 3 + 1, 3) = -x[2]; M(a * 3 + 2, 3) = x[1];
-      M(a * 3 + 0, 4) = x[2];  M(a * 3 + 2, 4) = -x[0];
-      M(a * 3 + 0, 5) = -x[1]; M(a * 3 + 1, 5) = x[0];
+      M(a * 3 + 1, c0 + 3) = -x[2]; M(a * 3 + 2, c0 + 3) = x[1];
+      M(a * 3 + 0, c0 + 4) = x[2];  M(a * 3 + 2, c0 + 4) = -x[0];
+      M(a * 3 + 0, c0 + 5) = -x[1]; M(a * 3 + 1, c0 + 5) = x[0];
     }
   }
   std::vector<int> fixed;

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "contact/mortar_gap.hpp"
+
+#include <stdexcept>
+
+namespace igac {
+
+WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master) {
+  const int dim = dofs.dim(), m = slave.num_multipliers();
+  WeightedGapOperator op;
+  op.weights = Eigen::VectorXd::Zero(m);
+  op.g0 = Eigen::VectorXd::Zero(m);
+  std::vector<Eigen::Triplet<double>> trip;
+  std::vector<int> master_local;
+  Eigen::VectorXd master_values;
+  Eigen::MatrixXd master_derivs;
+  // One coupling entry: multiplier K, body control point a, weight w n_i.
+  auto couple = [&](int K, int a, double w, const Eigen::VectorXd& n) {
+    for (int i = 0; i < dim; ++i) {
+      const int dof = a * dim + i;
+      const double v = w * n[i];
+      if (dofs.equation(dof) >= 0) trip.emplace_back(K, dofs.equation(dof), v);
+      else op.g0[K] += v * dofs.prescribed_value(dof);
+    }
+  };
+  ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
+                                              const std::vector<double>& B) {
+    const Eigen::VectorXd X = ev.X[q];
+    const std::optional<MasterPoint> mp = master.project(X);
+    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    master.side_patch(mp->side).rational_basis(mp->xi, master_local, master_values, master_derivs);
+    const std::vector<int>& master_cps = master.side_control_points(mp->side);
+    for (size_t k = 0; k < K.size(); ++k) {
+      const double bw = B[k] * ev.JxW[q];
+      if (bw == 0.0) continue;
+      op.weights[K[k]] += bw;
+      op.g0[K[k]] += mp->gap * bw;
+      for (int a = 0; a < ev.n_loc; ++a) couple(K[k], ev.cps[a], bw * ev.N(q, a), mp->normal);
+      for (size_t a = 0; a < master_local.size(); ++a)
+        couple(K[k], master_cps[master_local[a]], -bw * master_values[a], mp->normal);
+    }
+  });
+  op.G.resize(m, dofs.num_free());
+  op.G.setFromTriplets(trip.begin(), trip.end());
+  op.G.prune(0.0);
+  return op;
+}
+
+}  // namespace igac

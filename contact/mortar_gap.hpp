@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Weighted gaps between two deformable bodies in small deformation (mortar
+// contact: De Lorenzis, Wriggers and Zavarise 2012; the paper's gaps with
+// the obstacle replaced by a second body).  The multipliers B_K of degree
+// p-2 live on the slave face, as for an obstacle; at each slave quadrature
+// point X the master point X' nearest to it (contact/master_surface.hpp, in
+// the reference configuration) gives the gap along the master's outward
+// normal n, linearised in both bodies' displacements:
+//   g_n = (X - X') . n + (u_s(X) - u_m(X')) . n,
+//   K_K (Pi g)_K = g0_K + (G u)_K,
+//   G_{K,(A,i)} = int B_K N_A n_i  (slave A),  - int B_K N_A(X') n_i  (master A).
+// The integration is element-based on the slave mesh ((p+2) Gauss points
+// per slave element direction, as for an obstacle): not segmented at the
+// master's element edges, so a contact patch test between non-matching
+// meshes is passed to the quadrature error of the master's kinks, not to
+// round-off (measured in tests/unit/contact/test_mortar_gap.cpp).  The
+// multipliers act on both bodies with opposite signs, and the B_K and N_A
+// are partitions of unity: the force on the slave is minus the force on the
+// master to round-off.
+#pragma once
+
+#include "contact/master_surface.hpp"
+#include "contact/weighted_gap.hpp"
+
+namespace igac {
+
+WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master);
+
+}  // namespace igac
