@@ -87,6 +87,22 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   r.contact = std::move(c);
 }
 
+// No pressure, prescribed displacement, body force or obstacle motion,
+// and no face that starts inside its obstacle.
+bool nothing_loads(const Model& m) {
+  for (const auto& p : m.spec.pressure)
+    if (p.value != 0) return false;
+  for (const auto& d : m.spec.dirichlet)
+    if (d.value != 0) return false;
+  for (double b : m.spec.body_force)
+    if (b != 0) return false;
+  for (const auto& c : m.contacts) {
+    if (c.motion.size() > 0 && c.motion.norm() > 0) return false;
+    if (c.obstacle->probe(initial_contact_point(*c.face, *c.obstacle).first).gap < 0) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
@@ -151,12 +167,25 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
     return p;
   };
-  const LoadSteppingSummary summary =
-      run_load_steps(problem, x, opt, [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
-        RunResult step;
-        r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
-        if (on_step) on_step(step, rec.load_factor);
-      });
+  const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
+    RunResult step;
+    r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
+    if (on_step) on_step(step, rec.load_factor);
+  };
+  // Nothing loads the body: u = 0 is the solution (Newton, measuring its
+  // residual against a zero load, would stop in the line search).
+  LoadSteppingSummary summary;
+  if (nothing_loads(m)) {
+    r.warnings.push_back(fmt::format("{}: nothing loads the body (every pressure, prescribed displacement and obstacle "
+                                     "motion is zero, and the body starts clear of the obstacles): the solution is "
+                                     "u = 0",
+                                     m.spec.path));
+    x.setZero();  // no multiplier either (activate_nearest primed some for Newton)
+    summary.steps.push_back({1.0, 0, {0.0}, {0}, 0});
+    record_step(summary.steps.back(), x);
+  } else {
+    summary = run_load_steps(problem, x, opt, record_step);
+  }
   r.load_steps = summary;
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;
