@@ -92,9 +92,11 @@ TEST(MemoryEstimate, CountsTheFilesOwnSpans) {
     EXPECT_EQ(counted.elements, built.elements) << c.elements[0] << " refine " << c.refine;
     EXPECT_EQ(counted.control_points, built.control_points) << c.elements[0] << " refine " << c.refine;
   }
-  // Two patches (the shipped files): both counted.
-  for (const char* name : {"indented_block", "hertz2d_two_patches", "oring_two_plates"}) {
-    CaseSpec c = read_case(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
+  // Every shipped case (built-in shapes, one- and two-patch files, graded meshes).
+  for (const auto& e : fs::directory_iterator(std::string(IGAC_SOURCE_DIR) + "/cases")) {
+    if (e.path().extension() != ".toml") continue;
+    const std::string name = e.path().stem().string();
+    const CaseSpec c = read_case(e.path().string());
     const MeshCount built = built_mesh(c), counted = estimated_mesh(c);
     EXPECT_EQ(counted.elements, built.elements) << name;
     EXPECT_EQ(counted.control_points, built.control_points) << name;
@@ -116,7 +118,7 @@ TEST(MemoryEstimate, ManySpansInTheFileAreRefusedBeforeTheMeshIsBuilt) {
   EXPECT_LT(seconds, 20) << "refused only after building the mesh?";
 }
 
-TEST(MemoryEstimate, TwoPatchBlockWithinAThirdOfItsMeasuredPeak) {
+TEST(MemoryEstimate, TwoPatchBlockWithinAFactor1p3OfItsMeasuredPeak) {
   // cases/indented_block.toml --refine 1 (two 3D patches, 99450 unknowns):
   // peak resident memory measured with /usr/bin/time -v: 3.95 GiB (the
   // estimate before issue 21 counted one patch: 1.88 GiB).
