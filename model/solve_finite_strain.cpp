@@ -87,20 +87,28 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   r.contact = std::move(c);
 }
 
-// No pressure, prescribed displacement, body force or obstacle motion,
-// and no face that starts inside its obstacle.
-bool nothing_loads(const Model& m) {
+// What loads a large-deformation body: something, nothing (u = 0 solves
+// it), or nothing but an obstacle that moves away from it (along the
+// obstacle's normal where the face is nearest).  A face that starts inside
+// its obstacle is pushed out: a load.
+enum class Loading { some, none, obstacle_leaves };
+Loading loading_of(const Model& m) {
   for (const auto& p : m.spec.pressure)
-    if (p.value != 0) return false;
+    if (p.value != 0) return Loading::some;
   for (const auto& d : m.spec.dirichlet)
-    if (d.value != 0) return false;
+    if (d.value != 0) return Loading::some;
   for (double b : m.spec.body_force)
-    if (b != 0) return false;
+    if (b != 0) return Loading::some;
+  bool leaves = false;
   for (const auto& c : m.contacts) {
-    if (c.motion.size() > 0 && c.motion.norm() > 0) return false;
-    if (c.obstacle->probe(initial_contact_point(*c.face, *c.obstacle).first).gap < 0) return false;
+    const auto [X0, n0] = initial_contact_point(*c.face, *c.obstacle);
+    if (c.obstacle->probe(X0).gap < 0) return Loading::some;
+    if (c.motion.size() == 0 || !(c.motion.norm() > 0)) continue;
+    const double toward = c.motion.dot(n0);  // the normal points from the obstacle into the body
+    if (toward > 1e-12 * c.motion.norm()) return Loading::some;
+    if (toward < -1e-12 * c.motion.norm()) leaves = true;
   }
-  return true;
+  return leaves ? Loading::obstacle_leaves : Loading::none;
 }
 
 }  // namespace
@@ -173,12 +181,19 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     if (on_step) on_step(step, rec.load_factor);
   };
   // Nothing loads the body: u = 0 is the solution (Newton, measuring its
-  // residual against a zero load, would stop in the line search).
+  // residual against a zero load, would stop in the line search); unless
+  // only the contact holds it and its obstacle moves away.
   LoadSteppingSummary summary;
-  if (nothing_loads(m)) {
-    r.warnings.push_back(fmt::format("{}: nothing loads the body (every pressure, prescribed displacement and obstacle "
-                                     "motion is zero, and the body starts clear of the obstacles): the solution is "
-                                     "u = 0",
+  const Loading loading = loading_of(m);
+  if (loading == Loading::obstacle_leaves && modes.modes.cols() > 0)
+    throw InputError(fmt::format("{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and "
+                                 "only the contact holds them, but nothing presses the body on the obstacle and the "
+                                 "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
+                                 "obstacle",
+                                 m.spec.path, modes.modes.cols()));
+  if (loading != Loading::some) {
+    r.warnings.push_back(fmt::format("{}: nothing loads the body (no pressure, prescribed displacement or body force, "
+                                     "and no obstacle moves toward it or starts inside it): the solution is u = 0",
                                      m.spec.path));
     x.setZero();  // no multiplier either (activate_nearest primed some for Newton)
     summary.steps.push_back({1.0, 0, {0.0}, {0}, 0});

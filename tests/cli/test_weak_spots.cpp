@@ -142,6 +142,25 @@ TEST(WeakSpots, LargeDeformationThatNothingLoadsConvergesToZero) {
   EXPECT_EQ(j.value("status", ""), "converged");
   EXPECT_EQ(j["contact"].value("total_force", 1.0), 0.0);
   ASSERT_TRUE(j.contains("warnings"));
+  // The plane sliding along itself loads nothing either; moving away from a
+  // body that only the contact holds, it leaves it not held.
+  const auto normal = text.find("normal = [0.0, 1.0]");
+  ASSERT_NE(normal, std::string::npos);
+  for (const std::string motion : {"[0.1, 0.0]", "[0.0, -0.1]"}) {
+    std::string moved = text;
+    moved.insert(normal, "motion = " + motion + "\n");
+    std::ofstream(tmp.path() / "moved.toml") << moved;
+    const Outcome mo = run_igac("run moved.toml --quiet --out moved", tmp.path());
+    if (motion == "[0.1, 0.0]") {
+      EXPECT_EQ(mo.exit_code, 0) << mo.output;
+      EXPECT_EQ(summary(tmp.path() / "moved").value("status", ""), "converged");
+    } else {
+      EXPECT_EQ(mo.exit_code, 2) << mo.output;
+      EXPECT_NE(mo.output.find("the body is not held: 1 rigid motion(s) are free of Dirichlet conditions and only the "
+                               "contact holds them, but nothing presses the body on the obstacle and the obstacle "
+                               "moves away from it"), std::string::npos) << mo.output;
+    }
+  }
   // A free rigid motion says "not held", as the small-deformation path does.
   text.replace(text.find("[contact]"), std::string::npos, "");
   std::ofstream(tmp.path() / "free.toml") << text;
