@@ -200,6 +200,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       if (step.u.allFinite()) series.write_step(model, step, t);
     };
   RunResult r = solve_model(model, observer);
+  if (!quiet)
+    for (const auto& w : r.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   Json summary = run_summary(model, r);
   // Every number of the summary went through finite_or_null: a null value
   // (not the text "null", which a case name may contain) is a non-finite result.

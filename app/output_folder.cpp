@@ -80,6 +80,12 @@ OutputFolder::OutputFolder(std::string target) : target_(std::move(target)) {
   };
   if (target_.empty()) throw bad("empty folder name");
   std::error_code ec;
+  // A dangling symbolic link (the folder or one above it) would be found
+  // only when the results are moved there, after the solve.
+  for (fs::path p = fs::absolute(target_, ec).lexically_normal(); p.has_relative_path(); p = p.parent_path())
+    if (fs::is_symlink(fs::symlink_status(p, ec)) && !fs::exists(p, ec))
+      throw bad(fmt::format("{} is a symbolic link to {}, which does not exist", p.string(),
+                            fs::read_symlink(p, ec).string()));
   const fs::path abs = fs::weakly_canonical(fs::absolute(target_, ec), ec);
   for (const char* system : {"/proc", "/sys", "/dev"}) {
     const std::string s = abs.string();

@@ -258,10 +258,14 @@ std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Ob
   // there a face that can press on the obstacle has its outward normal
   // against the obstacle's (n_face . n_obstacle < 0).  An initial
   // penetration is allowed: the solve pushes the body out.
+  // A face that nowhere turns toward the obstacle (most_facing <= 0:
+  // perpendicular to it, a side face along a plane) can slide on it, never press.
   double nearest = std::numeric_limits<double>::infinity(), facing = -1;
+  double most_facing = -std::numeric_limits<double>::infinity();
   for_each_face_sample(cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd& n_face) {
     if (n_face.size() == 0) return;  // corners carry no normal
     const ObstacleProbe pr = obstacle.probe(X);
+    most_facing = std::max(most_facing, -n_face.dot(pr.normal));
     if (std::abs(pr.gap) < nearest) {
       nearest = std::abs(pr.gap);
       facing = n_face.dot(pr.normal);
@@ -272,6 +276,11 @@ std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Ob
                        "the obstacle's outward normal where they are nearest, contact needs more than 90): is the "
                        "obstacle's normal reversed, or the face the wrong one?",
                        std::acos(std::clamp(facing, -1.0, 1.0)) * 180 / std::numbers::pi);
+  if (most_facing <= 1e-6 && std::isfinite(most_facing))
+    return fmt::format("the contact face is perpendicular to the obstacle (its outward normal makes {:.1f} degrees or "
+                       "more with the obstacle's outward normal everywhere, contact needs more than 90): it can slide "
+                       "along the obstacle but never press on it; is the face the wrong one?",
+                       std::acos(std::clamp(-most_facing, -1.0, 1.0)) * 180 / std::numbers::pi);
   return std::nullopt;
 }
 

@@ -73,7 +73,8 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const ContactF
 
 // Why the face can never press on the obstacle, judged from the reference
 // geometry: it lies inside it everywhere (an obstacle normal that points away
-// from the body), or it faces away from it.  nullopt when contact can happen.
+// from the body), it faces away from it, or it is perpendicular to it
+// everywhere.  nullopt when contact can happen.
 std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Obstacle& obstacle);
 
 }  // namespace igac

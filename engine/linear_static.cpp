@@ -74,12 +74,25 @@ RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
   } else {
     Eigen::MatrixXd Mf(fixed.size(), n_modes);
     for (size_t r = 0; r < fixed.size(); ++r) Mf.row(r) = M.row(fixed[r]);
+    // The rank is judged with the rotations in units of the body's size (a
+    // rotation's column is in lengths, a translation's is 1): a held body in
+    // small units (a wall 1e-10 thick, 1e-7 long) is held.  When that agrees
+    // with the unscaled rank, the basis is the unscaled one, as before.
+    const auto rank_of = [](const Eigen::VectorXd& s) {
+      const double tol = 1e-10 * std::max(1.0, s.size() ? s[0] : 1.0);
+      int rank = 0;
+      while (rank < s.size() && s[rank] > tol) ++rank;
+      return rank;
+    };
+    Eigen::VectorXd scale = Eigen::VectorXd::Ones(n_modes);
+    const double size = (body.points().colwise().maxCoeff() - body.points().colwise().minCoeff()).maxCoeff();
+    if (size > 0) scale.tail(n_modes - dim).setConstant(1 / size);
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(Mf, Eigen::ComputeFullV);
-    const auto& s = svd.singularValues();
-    const double tol = 1e-10 * std::max(1.0, s.size() ? s[0] : 1.0);
-    int rank = 0;
-    while (rank < s.size() && s[rank] > tol) ++rank;
-    null_basis = svd.matrixV().rightCols(n_modes - rank);
+    Eigen::JacobiSVD<Eigen::MatrixXd> scaled(Mf * scale.asDiagonal(), Eigen::ComputeFullV);
+    const int rank = rank_of(scaled.singularValues());
+    null_basis = rank == rank_of(svd.singularValues())
+                     ? Eigen::MatrixXd(svd.matrixV().rightCols(n_modes - rank))
+                     : Eigen::MatrixXd(scale.asDiagonal() * scaled.matrixV().rightCols(n_modes - rank));
   }
   RigidModes r;
   const int k = int(null_basis.cols());

@@ -402,13 +402,26 @@ CaseSpec read_case(const std::string& path) {
     for (const LawParameter& p : law_parameters(model)) {
       const bool modulus = p.lower == 0 && std::isinf(p.upper);  // a stiffness: within the computable range
       const double v = modulus ? mat.scale(std::string(p.key), std::string(p.meaning).c_str()) : mat.number(std::string(p.key));
+      if (!modulus && std::abs(v) > 1e100)  // a law's own constant (C10): the same range as a modulus
+        mat.fail(std::string(p.key), fmt::format("{} = {:g} is outside [-1e100, 1e100], where the computation "
+                                                 "overflows; choose units that bring it near 1", p.key, v));
       if (p.key == "E") given.E = v;
       else if (p.key == "nu") given.nu = v;
       else given.values[std::string(p.key)] = v;
     }
     try {
       const MaterialParameters linear = small_strain_equivalent(model, given);
-      static_cast<void>(make_law(model, given));  // the law's own cross-checks (e.g. C10 + C01 > 0)
+      const auto law = make_law(model, given);  // the law's own cross-checks (e.g. C10 + C01 > 0)
+      try {  // its stiffness at F = I, as both paths use it: blamed on the keys the user gave
+        static_cast<void>(small_strain_material(*law, dim));
+      } catch (const MaterialParameterError&) {
+        throw;
+      } catch (const MaterialError& e) {
+        std::vector<std::string> keys;
+        for (const LawParameter& p : law_parameters(model)) keys.push_back(fmt::format("{} = {:g}", p.key, given.value(p.key)));
+        mat.fail(std::string(law_parameters(model).front().key),
+                 fmt::format("{} give a small-strain stiffness that is not usable ({})", fmt::join(keys, ", "), e.what()));
+      }
       c.E = linear.E;
       c.nu = linear.nu;
       c.material_parameters = given;

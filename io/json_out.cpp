@@ -66,6 +66,10 @@ Json run_summary(const Model& m, const RunResult& r) {
     j["interface_knots_inserted"] = knots;
   }
   j["status"] = r.status;
+  if (!m.warnings.empty() || !r.warnings.empty()) {  // what build_model and the solve found doubtful
+    j["warnings"] = m.warnings;
+    for (const auto& w : r.warnings) j["warnings"].push_back(w);
+  }
   if (r.load_steps) {
     Json steps = Json::array();
     for (const auto& st : r.load_steps->steps) {

@@ -1,11 +1,81 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "model/memory_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include "model/case_body.hpp"
+
 namespace igac {
+
+namespace {
+
+// One direction of one patch after refine_patch (model/build_model.cpp):
+// the requested breakpoints (uniform or graded, each span split 2^refine
+// times) united with the coarse patch's own, the patch's knots keeping
+// their multiplicity raised by the degree elevation.  Counted, not built:
+// a refinement far beyond the machine costs nothing here.
+void count_direction(const CaseSpec& c, const KnotVector* own, int d, double& spans, double& basis) {
+  const int p = std::max(c.degree, own ? own->degree() : 0);
+  const int e = c.elements[d];
+  std::vector<double> coarse;  // the requested breakpoints before refine, on [0, 1]
+  for (const GradingSpec& g : c.gradings)
+    if (g.direction == d) try {
+        coarse = KnotVector::graded(std::max(c.degree, 1), e, g.span_fraction, g.range_fraction, g.at_start,
+                                    g.geometric_coarse ? KnotVector::CoarseSpans::geometric
+                                                       : KnotVector::CoarseSpans::uniform)
+                     .breakpoints();
+      } catch (const SplineError&) {
+        coarse.clear();  // build_model says what is wrong with it
+      }
+  if (coarse.empty())
+    for (int i = 0; i <= e; ++i) coarse.push_back(double(i) / e);
+  const double parts = std::ldexp(1.0, std::min(c.refine, 60));
+  spans = e * parts;
+  basis = spans + p;  // simple interior knots
+  if (!own) return;
+  const std::vector<double> b = own->breakpoints();
+  const std::vector<int> mult = own->multiplicities();
+  const double first = b.front(), length = b.back() - b.front();
+  for (size_t i = 1; i + 1 < b.size(); ++i) {
+    const double x = (b[i] - first) / length;  // build_model normalises the patch's knots to [0, 1]
+    const size_t j = std::min<size_t>(std::upper_bound(coarse.begin(), coarse.end(), x) - coarse.begin(), coarse.size() - 1) - 1;
+    const double h = coarse[j + 1] - coarse[j];
+    const double nearest = coarse[j] + std::round((x - coarse[j]) / h * parts) / parts * h;
+    const bool shared = std::abs(x - nearest) <= 1e-10;  // KnotVector::united_with's snap
+    const int m = mult[i] + p - own->degree();           // after elevation to degree p
+    if (!shared) spans += 1;
+    basis += shared ? m - 1 : m;
+  }
+}
+
+}  // namespace
+
+MeshCount estimated_mesh(const CaseSpec& c) {
+  MultiPatch coarse;
+  try {
+    coarse = case_body(c);
+  } catch (const std::exception&) {
+    coarse = {};  // build_model says what is wrong; count the requested mesh alone
+  }
+  MeshCount n;
+  const size_t patches = std::max<size_t>(coarse.patches.size(), 1);
+  for (size_t k = 0; k < patches; ++k) {
+    double elements = 1, points = 1;
+    for (int d = 0; d < int(c.elements.size()); ++d) {
+      const bool own = k < coarse.patches.size() && d < coarse.patches[k].param_dim();
+      double spans = 0, basis = 0;
+      count_direction(c, own ? &coarse.patches[k].knots(d) : nullptr, d, spans, basis);
+      elements *= spans;
+      points *= basis;
+    }
+    n.elements += elements;
+    n.control_points += points;  // an interface's points counted on both sides
+  }
+  return n;
+}
 
 double estimated_peak_bytes(const CaseSpec& c) {
   // Stiffness nonzeros, and the Cholesky factor: its fill was measured at
@@ -16,8 +86,7 @@ double estimated_peak_bytes(const CaseSpec& c) {
   // bench/memory_guard.py (docs/benchmarks.md, "Memory guard").
   constexpr double kCalibration = 1.35;
   constexpr double kBase = 80.0 * (1 << 20);  // the program itself: libraries, VTK, tables
-  double cps = 1;
-  for (int e : c.elements) cps *= std::ldexp(double(e), std::min(c.refine, 60)) + c.degree;
+  const double cps = estimated_mesh(c).control_points;
   const int dim = c.dim();
   const double dofs = cps * dim;
   const double nnz = dofs * std::pow(2.0 * c.degree + 1, dim) * dim;
@@ -56,10 +125,8 @@ void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> 
   }
   // Memory check before anything is built.
   const double bytes = estimated_peak_bytes(c);
-  double elements = 1;
-  for (int e : c.elements) elements *= std::ldexp(double(e), std::min(c.refine, 60));
-  double dofs = c.dim();
-  for (int e : c.elements) dofs *= std::ldexp(double(e), std::min(c.refine, 60)) + c.degree;
+  const MeshCount mesh = estimated_mesh(c);
+  const double elements = mesh.elements, dofs = c.dim() * mesh.control_points;
   const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
   if (!(bytes < physical) || elements > 2e9)
     throw InputError(fmt::format(

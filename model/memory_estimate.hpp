@@ -9,6 +9,13 @@
 
 namespace igac {
 
+// The mesh build_model will make, counted from the coarse patches without
+// building it: every patch's own breakpoints united with the requested
+// ones after refine (elements, and control points summed over the patches).
+struct MeshCount {
+  double elements = 0, control_points = 0;
+};
+MeshCount estimated_mesh(const CaseSpec& spec);
 // The peak memory a small-deformation run of this case is expected to need
 // (bytes), on spec.solver.processes processes: what apply_overrides
 // compares with the machine's memory.

@@ -69,6 +69,7 @@ struct RunResult {
   double half_width_deformed = 0, max_pressure_cauchy = 0;  // large deformation contact
   Timing timing;
   LinearSolverRecord linear_solver;
+  std::vector<std::string> warnings;  // what the solve found doubtful (printed unless quiet; summary.json)
 };
 
 // pressure.csv and pressure.svg scale r by Hertz's a and p by its p0 when

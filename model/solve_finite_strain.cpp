@@ -87,6 +87,30 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   r.contact = std::move(c);
 }
 
+// What loads a large-deformation body: something, nothing (u = 0 solves
+// it), or nothing but an obstacle that moves away from it (along the
+// obstacle's normal where the face is nearest).  A face that starts inside
+// its obstacle is pushed out: a load.
+enum class Loading { some, none, obstacle_leaves };
+Loading loading_of(const Model& m) {
+  for (const auto& p : m.spec.pressure)
+    if (p.value != 0) return Loading::some;
+  for (const auto& d : m.spec.dirichlet)
+    if (d.value != 0) return Loading::some;
+  for (double b : m.spec.body_force)
+    if (b != 0) return Loading::some;
+  bool leaves = false;
+  for (const auto& c : m.contacts) {
+    const auto [X0, n0] = initial_contact_point(*c.face, *c.obstacle);
+    if (c.obstacle->probe(X0).gap < 0) return Loading::some;
+    if (c.motion.size() == 0 || !(c.motion.norm() > 0)) continue;
+    const double toward = c.motion.dot(n0);  // the normal points from the obstacle into the body
+    if (toward > 1e-12 * c.motion.norm()) return Loading::some;
+    if (toward < -1e-12 * c.motion.norm()) leaves = true;
+  }
+  return leaves ? Loading::obstacle_leaves : Loading::none;
+}
+
 }  // namespace
 
 RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
@@ -151,12 +175,32 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
     return p;
   };
-  const LoadSteppingSummary summary =
-      run_load_steps(problem, x, opt, [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
-        RunResult step;
-        r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
-        if (on_step) on_step(step, rec.load_factor);
-      });
+  const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
+    RunResult step;
+    r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
+    if (on_step) on_step(step, rec.load_factor);
+  };
+  // Nothing loads the body: u = 0 is the solution (Newton, measuring its
+  // residual against a zero load, would stop in the line search); unless
+  // only the contact holds it and its obstacle moves away.
+  LoadSteppingSummary summary;
+  const Loading loading = loading_of(m);
+  if (loading == Loading::obstacle_leaves && modes.modes.cols() > 0)
+    throw InputError(fmt::format("{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and "
+                                 "only the contact holds them, but nothing presses the body on the obstacle and the "
+                                 "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
+                                 "obstacle",
+                                 m.spec.path, modes.modes.cols()));
+  if (loading != Loading::some) {
+    r.warnings.push_back(fmt::format("{}: nothing loads the body (no pressure, prescribed displacement or body force, "
+                                     "and no obstacle moves toward it or starts inside it): the solution is u = 0",
+                                     m.spec.path));
+    x.setZero();  // no multiplier either (activate_nearest primed some for Newton)
+    summary.steps.push_back({1.0, 0, {0.0}, {0}, 0});
+    record_step(summary.steps.back(), x);
+  } else {
+    summary = run_load_steps(problem, x, opt, record_step);
+  }
   r.load_steps = summary;
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;

@@ -10,6 +10,7 @@
 #include "engine/stopwatch.hpp"
 #include "engine/face_quadrature.hpp"
 #include "engine/prolongation.hpp"
+#include "model/deformation_check.hpp"
 #include "model/petsc_run.hpp"
 #include "model/references.hpp"
 #include "model/solve.hpp"
@@ -181,6 +182,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.contact = std::move(c);
   }
   t0.restart();
+  if (auto w = small_deformation_warning(m, r)) r.warnings.push_back(std::move(*w));
   compare_with_reference(m, r);
   r.timing.postprocess += t0.seconds();
   r.timing.total = t_start.seconds();
