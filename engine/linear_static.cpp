@@ -86,7 +86,8 @@ RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
     };
     Eigen::VectorXd scale = Eigen::VectorXd::Ones(n_modes);
     const double size = (body.points().colwise().maxCoeff() - body.points().colwise().minCoeff()).maxCoeff();
-    if (size > 0) scale.tail(n_modes - dim).setConstant(1 / size);
+    if (size > 0)  // each body's columns: dim translations, then its rotations
+      for (int b = 0; b < n_bodies; ++b) scale.segment(per_body * b + dim, per_body - dim).setConstant(1 / size);
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(Mf, Eigen::ComputeFullV);
     Eigen::JacobiSVD<Eigen::MatrixXd> scaled(Mf * scale.asDiagonal(), Eigen::ComputeFullV);
     const int rank = rank_of(scaled.singularValues());
