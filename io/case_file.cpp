@@ -34,7 +34,7 @@ const std::set<std::string> kGradingKeys{"direction", "toward", "span_fraction",
 const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
 const std::set<std::string> kPressureKeys{"faces", "value"};
 const std::set<std::string> kBodyForceKeys{"value"};
-const std::set<std::string> kContactKeys{"face", "obstacle"};
+const std::set<std::string> kContactKeys{"face", "obstacle", "master"};
 const std::set<std::string> kObstacleKeys{"type", "motion"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -454,7 +454,20 @@ CaseSpec read_case(const std::string& path) {
     const Section s(path, "contact", *contact_table, kContactKeys);
     ContactSpec cs;
     cs.face = s.string("face");
-    {
+    // Against a rigid obstacle, or (two deformable bodies) against a master
+    // face of the body: the patches of one geometry file that no interface
+    // joins are separate bodies.
+    if (s.has("master") && s.has("obstacle"))
+      s.fail("master", "give an obstacle (a rigid body) or a master face (a second deformable body), not both");
+    if (!s.has("master") && !s.has("obstacle"))
+      s.fail("obstacle", "missing: give an obstacle (a rigid body) or a master face (a second deformable body)");
+    if (s.has("master")) {
+      cs.master = s.string("master");
+      if (cs.master == cs.face) s.fail("master", "the master face is the contact face itself");
+      if (c.finite_strain())
+        s.fail("master", fmt::format("contact between two deformable bodies runs in small deformation only (material "
+                                     "model \"linear_elastic\"), not with model \"{}\"", c.model));
+    } else {
       const toml::table& ot = s.sub("obstacle");
       const std::string type = ot["type"].value_or(std::string());
       const ObstacleType* kind = find_obstacle_type(type);

@@ -162,6 +162,19 @@ void join_coincident_sides(MultiPatch& coarse, Model& m) {
   for (int k = 0; k < int(coarse.patches.size()); ++k)
     for (int s = 1; s <= 2 * coarse.patches[k].param_dim(); ++s)
       if (const PatchSide side{k, face_of_gismo_side(s)}; !listed(in_interface, side)) candidates.push_back(side);
+  // The faces of a contact between two bodies touch where the bodies do:
+  // they are never joined.
+  std::vector<PatchSide> contact_sides;
+  for (const ContactSpec& cs : spec.contacts) {
+    if (cs.master.empty()) continue;
+    for (const std::string& name : {cs.face, cs.master}) {
+      auto set = spec.face_sets.find(name);
+      for (const std::string& member : set != spec.face_sets.end() ? set->second : std::vector<std::string>{name})
+        if (auto side = parametric_side(member, int(coarse.patches.size()), coarse.patches[0].param_dim()))
+          contact_sides.push_back(side_in_file(m, *side));
+    }
+  }
+  std::erase_if(candidates, [&](const PatchSide& s) { return listed(contact_sides, s); });
   const CoincidentSides found = find_coincident_sides(coarse.patches, candidates);
   for (const PatchInterface& itf : found.coincide) {
     PatchInterface named{side_in_file(m, itf.first), side_in_file(m, itf.second)};
@@ -295,6 +308,26 @@ Model build_model(const CaseSpec& spec) {
                                    spec.shape, fmt::join(face_names(m), ", ")));
     Model::Contact c;
     c.face_name = cs.face;
+    try {
+      c.face = std::make_unique<ContactFace>(m.body, *faces);
+    } catch (const SplineError& e) {
+      throw InputError(fmt::format("{}: [contact] face '{}': {}", spec.path, cs.face, e.what()));
+    }
+    if (!cs.master.empty()) {  // a second deformable body (contact/mortar_gap.hpp)
+      const auto master = find_faces(m, cs.master);
+      if (!master)
+        throw InputError(fmt::format("{}: [contact] master: unknown face '{}' (known: {})", spec.path, cs.master,
+                                     fmt::join(face_names(m), ", ")));
+      for (const PatchSide& s : *master)
+        if (std::find(faces->begin(), faces->end(), s) != faces->end())
+          throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", spec.path,
+                                       cs.master, cs.face, m.body.describe(s)));
+      resolve_faces(m, {cs.master}, "contact");  // (refuses an interface inside the body)
+      c.master_name = cs.master;
+      c.master = std::make_unique<MasterSurface>(m.body, *master);
+      m.contacts.push_back(std::move(c));
+      continue;
+    }
     const auto& o = cs.obstacle;
     try {
       c.obstacle = find_obstacle_type(o.type)->make(o.values);
@@ -305,11 +338,6 @@ Model build_model(const CaseSpec& spec) {
       c.motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
       // Small deformation: the obstacle stands where its motion puts it.
       if (!spec.finite_strain()) c.obstacle = std::make_unique<TranslatedObstacle>(std::move(c.obstacle), c.motion);
-    }
-    try {
-      c.face = std::make_unique<ContactFace>(m.body, *faces);
-    } catch (const SplineError& e) {
-      throw InputError(fmt::format("{}: [contact] face '{}': {}", spec.path, cs.face, e.what()));
     }
     // A Dirichlet condition on the contact face along the obstacle's normal
     // leaves the contact nothing to do there.

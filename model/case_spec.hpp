@@ -45,8 +45,9 @@ struct ObstacleSpec {
 };
 
 struct ContactSpec {
-  std::string face;
-  ObstacleSpec obstacle;
+  std::string face;      // the slave face: the multipliers live on it
+  ObstacleSpec obstacle;  // a rigid obstacle, or:
+  std::string master;     // the face of a second deformable body (empty: the obstacle)
 };
 
 // Large deformation (hyperelastic models): how the load is applied.

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/master_surface.hpp"
 #include "contact/obstacle.hpp"
 #include "contact/pressure.hpp"
 #include "contact/weighted_gap.hpp"
@@ -37,7 +38,9 @@ struct Model {
   struct Contact {
     std::string face_name;
     std::unique_ptr<ContactFace> face;
-    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion)
+    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion); or
+    std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (obstacle null)
+    std::string master_name;
     Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
   };
   std::vector<Contact> contacts;
