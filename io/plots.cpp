@@ -16,8 +16,8 @@ const std::vector<std::string> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d6272
 
 }  // namespace
 
-svg::Figure pressure_figure(const RunResult& r, const std::string& title) {
-  const PressureReport& rep = r.contact->report;
+svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t contact) {
+  const PressureReport& rep = r.contacts.at(contact).report;
   const bool analytic = has_hertz_scale(r);
   const double sx = analytic ? 1 / r.hertz->a : 1.0, sy = analytic ? 1 / r.hertz->p0 : 1.0;
   std::vector<PressureSample> mult = rep.multipliers;

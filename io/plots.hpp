@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The plots of an output folder, drawn as SVG (io/svg_plot.hpp) from what a
 // run holds in memory; the CSV files beside them hold the same numbers.
-//   pressure.svg    the contact pressure of the first contact: the
+//   pressure.svg    the contact pressure (pressure_<face>.svg, one per
+//                   contact, when the case has several): the
 //                   multipliers (N2/S0: one constant per face element, drawn
 //                   as a segment over its element), the P1 re-interpolation
 //                   and, when the case has Hertz, p/p0 = sqrt(1 - (r/a)^2)
@@ -24,8 +25,8 @@
 
 namespace igac {
 
-// Needs result.contact.
-svg::Figure pressure_figure(const RunResult& result, const std::string& title);
+// Contact `contact` (case order) of result.contacts.
+svg::Figure pressure_figure(const RunResult& result, const std::string& title, size_t contact = 0);
 // Needs result.load_curve (the origin is added as its first point).
 svg::Figure load_curve_figure(const RunResult& result, const std::string& title);
 
