@@ -132,8 +132,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     Json c = several ? Json::object() : contact_numbers(r, r.contacts.front());
     c["applied_force"] = finite_or_null(r.applied_force);
     if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
-    c["model_part"] = body.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
-                                             : "modelled part (symmetry)";
+    if (const auto part = modelled_part(m)) c["model_part"] = *part;
     if (!several) c["obstacle"] = m.contacts.front().obstacle->describe();
     j["contact"] = c;
     if (several) {

@@ -35,6 +35,7 @@ std::vector<ContactResult> report_contacts(const Model& m, const ContactSolve& s
                                                     s.op.weights.segment(offset, n),
                                                     std::vector<char>(active, active + n), cr.X0, cr.normal);
     cr.report = cr.pressure->report();
+    cr.has_half_width = !touches_over_an_extent(*c.face, *c.obstacle);
     for (int K = offset; K < offset + n; ++K)
       if (s.solution.active[K]) cr.contact_area += s.op.weights[K];
     offset += n;

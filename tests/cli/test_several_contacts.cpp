@@ -6,7 +6,9 @@
 // contact part and multiplier part per contact, a summary.json "contacts"
 // entry per contact whose forces are the obstacles' reactions, and a
 // console block per contact.  A case with one contact keeps its files and
-// keys.
+// keys.  And the labels say only what the case has ("Labels"): the part
+// modelled follows its symmetry planes, and a face that starts flat on the
+// obstacle reports its contact area rather than a half width.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -167,6 +169,11 @@ TEST_F(TwoPlates, ConsolePrintsABlockPerContact) {
   }
 }
 
+TEST_F(TwoPlates, ModelPartIsTheHalfItModels) {
+  // one symmetry plane (x = 0): half the cross-section, not a quarter
+  EXPECT_EQ(summary()["contact"]["model_part"], "half (forces per unit thickness of the modelled half)");
+}
+
 // One contact: pressure.csv, contact_0000.vtu and the "contact" report as
 // before, no "contacts".
 TEST(OneContact, KeepsItsFilesAndKeys) {
@@ -184,6 +191,34 @@ TEST(OneContact, KeepsItsFilesAndKeys) {
   EXPECT_NE(pvd.find("name=\"contact_face\" file=\"contact_0000.vtu\""), std::string::npos) << pvd;
   EXPECT_NE(pvd.find("name=\"multipliers\" file=\"multipliers_0000.vtu\""), std::string::npos) << pvd;
   EXPECT_NE(o.output.find("  half width    "), std::string::npos) << o.output;
+}
+
+// A block lying flat on a plane touches over its whole face from the start:
+// no half width (no point the zone grows from); its contact area instead.
+TEST(Labels, FlatContactReportsItsAreaNotAHalfWidth) {
+  TempDir tmp("flat");
+  const auto o = run_igac("run " + quote(kData + "contact_flat_block.toml") + " --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const json c = json::parse(read_file(tmp.path() / "out" / "summary.json"))["contact"];
+  EXPECT_FALSE(c.contains("half_width")) << c.dump();
+  ASSERT_TRUE(c.contains("contact_area")) << c.dump();
+  EXPECT_NEAR(c["contact_area"].get<double>(), 1.0, 1e-12);  // the whole bottom face, width 1, is pressed
+  EXPECT_EQ(o.output.find("half width"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("contact area  1 "), std::string::npos) << o.output;
+  // u_x = 0 on x = 0 is its one plane of symmetry
+  EXPECT_EQ(c["model_part"], "half (forces per unit thickness of the modelled half)");
+}
+
+// The indented block is the whole block, glued to its base: no symmetry to
+// name.  Its ball makes a round contact: a half width.
+TEST(Labels, BodyWithoutSymmetryHasNoModelPart) {
+  TempDir tmp("no_symmetry");
+  const auto o = run_igac("run " + quote(kCases + "indented_block.toml") + " --out out --quiet", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const json c = json::parse(read_file(tmp.path() / "out" / "summary.json"))["contact"];
+  EXPECT_FALSE(c.contains("model_part")) << c.dump();
+  EXPECT_TRUE(c.contains("half_width")) << c.dump();
+  EXPECT_FALSE(c.contains("contact_area")) << c.dump();
 }
 
 }  // namespace
