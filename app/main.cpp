@@ -218,8 +218,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       write_file_atomically(dir + "/" + stems[i] + ".svg", svg::render(pressure_figure(r, title, i)));
     }
     if (!r.load_curve.empty()) {
-      write_file_atomically(dir + "/load_curve.csv", load_curve_csv(r));
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name)));
+      write_file_atomically(dir + "/load_curve.csv", load_curve_csv(model, r));
+      std::vector<std::string> faces;
+      if (r.contacts.size() > 1)
+        for (const ContactResult& c : r.contacts) faces.push_back(c.face);
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces)));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);

@@ -194,11 +194,24 @@ std::string csv_number(double v, int digits) {
   return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : std::string();
 }
 
-std::string load_curve_csv(const RunResult& r) {
-  std::string s = "load_factor,contact_force,face_displacement,obstacle_displacement\n";
-  for (const auto& p : r.load_curve)
-    s += fmt::format("{},{},{},{}\n", csv_number(p.load_factor), csv_number(p.contact_force),
-                     csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+std::string load_curve_csv(const Model& m, const RunResult& r) {
+  // One contact: contact_force.  Several: contact_force_<face> for each.
+  const std::vector<std::string> tags = contact_file_tags(m);
+  std::string s = "load_factor";
+  if (tags.size() > 1)
+    for (const std::string& tag : tags) s += fmt::format(",contact_force_{}", tag);
+  else
+    s += ",contact_force";
+  s += ",face_displacement,obstacle_displacement\n";
+  for (const auto& p : r.load_curve) {
+    s += csv_number(p.load_factor);
+    if (tags.size() > 1)
+      for (size_t i = 0; i < tags.size(); ++i)
+        s += fmt::format(",{}", csv_number(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan("")));
+    else
+      s += fmt::format(",{}", csv_number(p.contact_force));
+    s += fmt::format(",{},{}\n", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+  }
   return s;
 }
 

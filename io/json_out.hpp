@@ -39,7 +39,8 @@ std::vector<std::string> contact_file_tags(const Model& model);
 // The names (without .csv / .svg) of each contact's pressure files, in case
 // order: "pressure" with one contact, "pressure_<tag>" for each of several.
 std::vector<std::string> pressure_file_stems(const Model& model);
-// Large deformation: load factor, contact force, loaded-face displacement.
-std::string load_curve_csv(const RunResult& result);
+// Large deformation: load factor, contact force (contact_force_<face> per
+// contact when there are several), loaded-face displacement, obstacle travel.
+std::string load_curve_csv(const Model& model, const RunResult& result);
 
 }  // namespace igac

@@ -155,6 +155,23 @@ TEST_F(TwoPlates, ParaViewHasAContactPartPerContact) {
   EXPECT_FALSE(fs::exists(out() / "contact_0000.vtu"));
 }
 
+// The load curve has each plate's force: they balance at every step, and
+// the last is the contacts' total_force.
+TEST_F(TwoPlates, LoadCurveHasAForceColumnPerContact) {
+  const auto rows = igac_test::csv_rows(out() / "load_curve.csv");
+  ASSERT_GT(rows.size(), 1u);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"load_factor", "contact_force_lower", "contact_force_upper",
+                                               "face_displacement", "obstacle_displacement"}));
+  for (size_t i = 1; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), 5u);
+    EXPECT_NEAR(std::stod(rows[i][1]) / std::stod(rows[i][2]), 1.0, 1e-8) << "row " << i;
+  }
+  for (size_t k = 0; k < 2; ++k) {
+    const double last = std::stod(rows.back()[1 + k]), force = summary()["contacts"][k]["total_force"];
+    EXPECT_NEAR(last, force, 1e-9 * force);
+  }
+}
+
 TEST_F(TwoPlates, ConsolePrintsABlockPerContact) {
   const std::string& c = console();
   const size_t lower = c.find("contact       face 'lower'"), upper = c.find("contact       face 'upper'");
