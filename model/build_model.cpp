@@ -284,7 +284,9 @@ namespace {
 // Symmetry planes of the case: a face held along one axis only, to zero,
 // whose control points all lie in one plane normal to that axis (a roller
 // condition; a face also held along another axis is clamped, not a plane
-// of symmetry).  Distinct planes: (axis, position).
+// of symmetry).  The number of axes with such a plane, each halving the
+// body; -1 when an axis has two parallel ones (a repeated cell, not a
+// fraction of a body).
 int symmetry_planes(const Model& m) {
   const Body& b = m.body;
   const double size = (b.points().colwise().maxCoeff() - b.points().colwise().minCoeff()).norm();
@@ -311,7 +313,10 @@ int symmetry_planes(const Model& m) {
     if (hi - lo > 1e-10 * size) continue;
     planes.insert({c, std::llround(0.5 * (lo + hi) / (1e-8 * size))});
   }
-  return int(planes.size());
+  std::set<int> axes;
+  for (const auto& [axis, position] : planes)
+    if (!axes.insert(axis).second) return -1;
+  return int(axes.size());
 }
 }  // namespace
 
@@ -327,11 +332,11 @@ std::optional<std::string> modelled_part(const Model& m) {
   const int k = symmetry_planes(m);
   if (plane) {
     if (k == 0) return "whole cross-section (forces per unit thickness)";
-    if (k <= 2) return fmt::format("{0} (forces per unit thickness of the modelled {0})", part[k]);
+    if (k == 1 || k == 2) return fmt::format("{0} (forces per unit thickness of the modelled {0})", part[k]);
     return "modelled part (symmetry; forces per unit thickness)";
   }
   if (k == 0) return std::nullopt;
-  if (k <= 3) return fmt::format("{} (symmetry)", part[k]);
+  if (k >= 1 && k <= 3) return fmt::format("{} (symmetry)", part[k]);
   return "modelled part (symmetry)";
 }
 

@@ -69,7 +69,8 @@ std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::stri
 // case's planes of symmetry (faces held to zero along their normal axis
 // only): in 2D "whole cross-section", "half" or "quarter" (forces per unit
 // thickness), in 3D "half", "quarter" or "eighth (symmetry)"; nothing for a
-// 3D body without symmetry.
+// 3D body without symmetry; "modelled part (symmetry...)" for two parallel
+// planes (a repeated cell).
 std::optional<std::string> modelled_part(const Model& m);
 // Every accepted face name, for error messages.
 std::vector<std::string> face_names(const Model& m);
