@@ -121,28 +121,40 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out) {
     fmt::print("  geometry      knots inserted so that interfaces conform: {}\n", fmt::join(where, ", "));
   }
   fmt::print("  status        {}\n", status);
-  if (r.contact) {
-    const auto& rep = r.contact->report;
+  const bool several = r.contacts.size() > 1;
+  for (size_t i = 0; i < r.contacts.size(); ++i) {
+    const ContactResult& c = r.contacts[i];
+    const auto& rep = c.report;
+    // One contact: its lines.  Several: a heading per contact and its lines indented.
+    const std::string in = several ? "  " : "";
+    if (several)
+      fmt::print("  contact       face '{}' ({}): {} active multipliers\n", c.face, m.contacts[i].obstacle->describe(),
+                 rep.active);
+    if (!c.has_half_width)
+      fmt::print("  {}contact area  {:.6g}{}\n", in, c.contact_area,
+                 b.space_dim() == 2 ? " (length per unit thickness)" : "");
     if (r.load_steps) {
-      fmt::print("  half width    {:.6g} deformed, {:.6g} on the reference face\n", r.half_width_deformed, rep.half_width);
-      fmt::print("  max pressure  {:.6g} nominal, {:.6g} Cauchy\n", rep.max_pressure, r.max_pressure_cauchy);
+      if (c.has_half_width)
+        fmt::print("  {}half width    {:.6g} deformed, {:.6g} on the reference face\n", in, c.half_width_deformed,
+                   rep.half_width);
+      fmt::print("  {}max pressure  {:.6g} nominal, {:.6g} Cauchy\n", in, rep.max_pressure, c.max_pressure_cauchy);
     }
     if (r.hertz) {
       fmt::print("  half width    {:.6g}  (Hertz {:.6g}, {})\n", rep.half_width, r.hertz->a, percent(rep.half_width, r.hertz->a));
       fmt::print("  max pressure  {:.6g}  (Hertz {:.6g}, {})\n", rep.max_pressure, r.hertz->p0, percent(rep.max_pressure, r.hertz->p0));
     } else if (!r.load_steps) {
-      fmt::print("  half width    {:.6g}\n  max pressure  {:.6g}\n", rep.half_width, rep.max_pressure);
+      if (c.has_half_width) fmt::print("  {}half width    {:.6g}\n", in, rep.half_width);
+      fmt::print("  {}max pressure  {:.6g}\n", in, rep.max_pressure);
     }
-    if (r.applied_force > 0)
+    if (several)
+      fmt::print("    total force   {:.10g}\n", rep.total_force);
+    else if (r.applied_force > 0)
       fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force,
                  r.applied_force, std::abs(rep.total_force - r.applied_force) / r.applied_force);
     else
       fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
   }
-  if (r.reactions.size() > 1)
-    for (const auto& rr : r.reactions)
-      fmt::print("  obstacle      face '{}': normal force {:.10g}, {} active ({})\n", rr.face, rr.normal_force, rr.active,
-                 rr.obstacle);
+  if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
   if (r.pressure_error && r.pressure_error->second > 0)
     fmt::print("  pressure L2   {:.4e}  (relative {:.4e}, against Hertz)\n", r.pressure_error->first,
                r.pressure_error->first / r.pressure_error->second);
@@ -211,13 +223,19 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     summary["status"] = r.status;
   }
   if (folder) {
-    if (r.contact) {
-      write_file_atomically(dir + "/pressure.csv", pressure_csv(r));
-      write_file_atomically(dir + "/pressure.svg", svg::render(pressure_figure(r, spec.name)));
+    // One contact: pressure.csv and .svg; several: pressure_<face>.csv and .svg each.
+    const std::vector<std::string> stems = pressure_file_stems(model);
+    for (size_t i = 0; i < r.contacts.size(); ++i) {
+      const std::string title = r.contacts.size() > 1 ? fmt::format("{}: face '{}'", spec.name, r.contacts[i].face) : spec.name;
+      write_file_atomically(dir + "/" + stems[i] + ".csv", pressure_csv(r, i));
+      write_file_atomically(dir + "/" + stems[i] + ".svg", svg::render(pressure_figure(r, title, i)));
     }
     if (!r.load_curve.empty()) {
-      write_file_atomically(dir + "/load_curve.csv", load_curve_csv(r));
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name)));
+      write_file_atomically(dir + "/load_curve.csv", load_curve_csv(model, r));
+      std::vector<std::string> faces;
+      if (r.contacts.size() > 1)
+        for (const ContactResult& c : r.contacts) faces.push_back(c.face);
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces)));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);

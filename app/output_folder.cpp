@@ -28,13 +28,20 @@ constexpr const char* kStagingTag = ".igac-tmp-";
 // only files a later run may replace.
 constexpr const char* kManifest = ".igac-manifest";
 
-// The files an igac output of a version before the manifest could hold.
+// The files an igac output of a version before the manifest could hold
+// (a folder with a manifest lists what was written, whatever its name).
 bool is_igac_output_name(const std::string& f) {
   for (const char* exact : {"summary.json", "study.json", "study.csv", "study.svg", "pressure.csv", "pressure.svg",
                             "load_curve.csv", "load_curve.svg", "solution.pvd"})
     if (f == exact) return true;
-  for (const char* prefix : {"solution_", "contact_", "multipliers_"})
-    if (f.rfind(prefix, 0) == 0 && f.size() > 4 && f.compare(f.size() - 4, 4, ".vtu") == 0) return true;
+  auto ends_with = [&](const char* tail) {
+    const size_t n = std::strlen(tail);
+    return f.size() > n && f.compare(f.size() - n, n, tail) == 0;
+  };
+  for (const char* prefix : {"solution_", "contact_", "multipliers_"})  // contact_<face>_XXXX.vtu too
+    if (f.rfind(prefix, 0) == 0 && ends_with(".vtu")) return true;
+  // a case with several contacts: pressure_<face>.csv and .svg
+  if (f.rfind("pressure_", 0) == 0 && (ends_with(".csv") || ends_with(".svg"))) return true;
   return false;
 }
 

@@ -253,6 +253,36 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const ContactF
   return {X0, n0};
 }
 
+bool touches_over_an_extent(const ContactFace& cf, const Obstacle& obstacle) {
+  struct Sample {
+    Eigen::VectorXd X;
+    double gap;
+    bool tangent;  // the face's outward normal opposite the obstacle's: the gap is stationary there
+  };
+  std::vector<Sample> samples;
+  Eigen::VectorXd lo, hi;
+  for_each_face_sample(cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd& n_face) {
+    const ObstacleProbe pr = obstacle.probe(X);
+    samples.push_back({X, pr.gap, n_face.size() > 0 && n_face.dot(pr.normal) < -1 + 1e-10});
+    lo = lo.size() ? lo.cwiseMin(X).eval() : X;
+    hi = hi.size() ? hi.cwiseMax(X).eval() : X;
+  });
+  if (samples.empty()) return false;
+  const double size = (hi - lo).norm();
+  double best = std::numeric_limits<double>::infinity();
+  for (const Sample& s : samples) best = std::min(best, s.gap);
+  // Two points far apart where the face lies on the obstacle at the smallest
+  // gap (points symmetric about a round contact's centre share the gap but
+  // are not tangent to the obstacle).
+  const Eigen::VectorXd* first = nullptr;
+  for (const Sample& s : samples) {
+    if (!s.tangent || s.gap > best + 1e-12 * size) continue;
+    if (!first) first = &s.X;
+    else if ((s.X - *first).norm() > 1e-4 * size) return true;
+  }
+  return false;
+}
+
 std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Obstacle& obstacle) {
   // Judged where the face is nearest the obstacle's surface (smallest |g_n|):
   // there a face that can press on the obstacle has its outward normal

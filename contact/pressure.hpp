@@ -71,6 +71,14 @@ class ContactPressure {
 // obstacle normal there (sampled at the face's Gauss points and anchors).
 std::pair<Eigen::VectorXd, Eigen::VectorXd> initial_contact_point(const ContactFace& cf, const Obstacle& obstacle);
 
+// True when the face starts touching the obstacle over an extent rather
+// than at a point -- a flat face on a plane: at two of its Gauss points more
+// than 1e-4 of its size apart the initial gap is the smallest (to 1e-12 of
+// the size) and the face is tangent to the obstacle (outward normals
+// opposite to 1e-10).  Such a contact zone has no half width (no point it
+// grows from).
+bool touches_over_an_extent(const ContactFace& cf, const Obstacle& obstacle);
+
 // Why the face can never press on the obstacle, judged from the reference
 // geometry: it lies inside it everywhere (an obstacle normal that points away
 // from the body), it faces away from it, or it is perpendicular to it

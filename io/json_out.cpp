@@ -2,6 +2,8 @@
 #include "io/json_out.hpp"
 #include "model/memory_estimate.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -41,6 +43,50 @@ bool has_null_value(const Json& j) {
       if (has_null_value(v)) return true;
   return false;
 }
+
+std::vector<std::string> contact_file_tags(const Model& m) {
+  if (m.contacts.size() == 1) return {""};
+  std::vector<std::string> out;
+  for (size_t i = 0; i < m.contacts.size(); ++i) {
+    std::string tag = m.contacts[i].face_name;
+    for (char& ch : tag)
+      if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_' && ch != '.') ch = '_';
+    if (std::find(out.begin(), out.end(), tag) != out.end()) tag += fmt::format("_{}", i + 1);  // the same face twice
+    out.push_back(tag);
+  }
+  return out;
+}
+
+std::vector<std::string> pressure_file_stems(const Model& m) {
+  std::vector<std::string> out;
+  for (const std::string& tag : contact_file_tags(m)) out.push_back(tag.empty() ? "pressure" : "pressure_" + tag);
+  return out;
+}
+
+namespace {
+// One contact's numbers in summary.json: its pressed multipliers, extent,
+// peak and force.  The extent is the half width where the zone grows from
+// a point, the pressed area where the face starts flat on the obstacle.
+Json contact_numbers(const RunResult& r, const ContactResult& cr) {
+  const PressureReport& rep = cr.report;
+  Json c;
+  c["active"] = rep.active;
+  if (!cr.has_half_width) c["contact_area"] = finite_or_null(cr.contact_area);
+  if (r.load_steps) {  // large deformation: deformed extent, nominal and Cauchy pressure
+    if (cr.has_half_width) {
+      c["half_width"] = finite_or_null(cr.half_width_deformed);
+      c["half_width_reference"] = finite_or_null(rep.half_width);
+    }
+    c["max_pressure"] = finite_or_null(rep.max_pressure);
+    c["max_pressure_cauchy"] = finite_or_null(cr.max_pressure_cauchy);
+  } else {
+    if (cr.has_half_width) c["half_width"] = finite_or_null(rep.half_width);
+    c["max_pressure"] = finite_or_null(rep.max_pressure);
+  }
+  c["total_force"] = finite_or_null(rep.total_force);
+  return c;
+}
+}  // namespace
 
 Json run_summary(const Model& m, const RunResult& r) {
   const Body& body = m.body;
@@ -93,26 +139,27 @@ Json run_summary(const Model& m, const RunResult& r) {
     step["cut_backs"] = 0;
     j["load_steps"] = Json::array({step});
   }
-  if (r.contact) {
-    const auto& rep = r.contact->report;
-    Json c;
-    c["active"] = rep.active;
-    if (r.load_steps) {  // large deformation: deformed extent, nominal and Cauchy pressure
-      c["half_width"] = finite_or_null(r.half_width_deformed);
-      c["half_width_reference"] = finite_or_null(rep.half_width);
-      c["max_pressure"] = finite_or_null(rep.max_pressure);
-      c["max_pressure_cauchy"] = finite_or_null(r.max_pressure_cauchy);
-    } else {
-      c["half_width"] = finite_or_null(rep.half_width);
-      c["max_pressure"] = finite_or_null(rep.max_pressure);
-    }
-    c["total_force"] = finite_or_null(rep.total_force);
+  if (!r.contacts.empty()) {
+    const std::vector<std::string> files = pressure_file_stems(m);
+    const bool several = r.contacts.size() > 1;
+    // One contact: its numbers in "contact".  Several: "contact" holds what
+    // belongs to the run, "contacts" each one's numbers (and its pressure file).
+    Json c = several ? Json::object() : contact_numbers(r, r.contacts.front());
     c["applied_force"] = finite_or_null(r.applied_force);
     if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
-    c["model_part"] = body.space_dim() == 2 ? "quarter (forces per unit thickness of the modelled quarter)"
-                                             : "modelled part (symmetry)";
-    c["obstacle"] = m.contacts.front().obstacle->describe();
+    if (const auto part = modelled_part(m)) c["model_part"] = *part;
+    if (!several) c["obstacle"] = m.contacts.front().obstacle->describe();
     j["contact"] = c;
+    if (several) {
+      Json each = Json::array();
+      for (size_t i = 0; i < r.contacts.size(); ++i) {
+        Json e = {{"face", r.contacts[i].face}, {"obstacle", m.contacts[i].obstacle->describe()}};
+        e.update(contact_numbers(r, r.contacts[i]));
+        e["pressure_csv"] = files[i] + ".csv";
+        each.push_back(e);
+      }
+      j["contacts"] = each;
+    }
     Json obstacles = Json::array();  // every contact: the force its obstacle exerts
     for (const auto& rr : r.reactions)
       obstacles.push_back({{"face", rr.face}, {"obstacle", rr.obstacle}, {"normal_force", finite_or_null(rr.normal_force)},
@@ -162,17 +209,30 @@ std::string csv_number(double v, int digits) {
   return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : std::string();
 }
 
-std::string load_curve_csv(const RunResult& r) {
-  std::string s = "load_factor,contact_force,face_displacement,obstacle_displacement\n";
-  for (const auto& p : r.load_curve)
-    s += fmt::format("{},{},{},{}\n", csv_number(p.load_factor), csv_number(p.contact_force),
-                     csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+std::string load_curve_csv(const Model& m, const RunResult& r) {
+  // One contact: contact_force.  Several: contact_force_<face> for each.
+  const std::vector<std::string> tags = contact_file_tags(m);
+  std::string s = "load_factor";
+  if (tags.size() > 1)
+    for (const std::string& tag : tags) s += fmt::format(",contact_force_{}", tag);
+  else
+    s += ",contact_force";
+  s += ",face_displacement,obstacle_displacement\n";
+  for (const auto& p : r.load_curve) {
+    s += csv_number(p.load_factor);
+    if (tags.size() > 1)
+      for (size_t i = 0; i < tags.size(); ++i)
+        s += fmt::format(",{}", csv_number(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan("")));
+    else
+      s += fmt::format(",{}", csv_number(p.contact_force));
+    s += fmt::format(",{},{}\n", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+  }
   return s;
 }
 
-std::string pressure_csv(const RunResult& r) {
+std::string pressure_csv(const RunResult& r, size_t contact) {
   std::string s = "kind,r,pressure,r_over_a,p_over_p0,hertz_p_over_p0\n";
-  const auto& rep = r.contact->report;
+  const auto& rep = r.contacts.at(contact).report;
   auto row = [&](const char* kind, PressureSample p) {
     p.pressure += 0.0;  // an inactive multiplier's -0 prints as 0
     if (has_hertz_scale(r))

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Output files of a run: summary.json (keys in docs/design.md, "Outputs"), pressure.csv.
+// Output files of a run: summary.json (keys in docs/design.md, "Outputs"), the pressure files.
 // Files are written to a temporary name and renamed, so a file that exists
 // is complete; a value that is not finite is written as null and turns the
 // status into a failure, never a NaN that looks like a number.
@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "model/model.hpp"
 #include "model/run_result.hpp"
@@ -26,10 +27,20 @@ std::string csv_number(double v, int digits = 10);
 bool has_null_value(const Json& j);
 
 Json run_summary(const Model& model, const RunResult& result);
-// Per multiplier and P1 re-interpolation: kind, r, pressure (and r/a,
-// p/p0, Hertz when the case has Hertz as reference).
-std::string pressure_csv(const RunResult& result);
-// Large deformation: load factor, contact force, loaded-face displacement.
-std::string load_curve_csv(const RunResult& result);
+// Per multiplier and P1 re-interpolation of contact `contact` (case
+// order): kind, r, pressure (and r/a, p/p0, Hertz when the case has Hertz
+// as reference).
+std::string pressure_csv(const RunResult& result, size_t contact = 0);
+// What names each contact's files, in case order: "" for a case with one
+// contact (pressure.csv, contact_0000.vtu); with several, the face name
+// (its characters other than letters, digits, '-', '_' and '.' written as
+// '_'; a name already taken gets _<its place in the case, from 1>).
+std::vector<std::string> contact_file_tags(const Model& model);
+// The names (without .csv / .svg) of each contact's pressure files, in case
+// order: "pressure" with one contact, "pressure_<tag>" for each of several.
+std::vector<std::string> pressure_file_stems(const Model& model);
+// Large deformation: load factor, contact force (contact_force_<face> per
+// contact when there are several), loaded-face displacement, obstacle travel.
+std::string load_curve_csv(const Model& model, const RunResult& result);
 
 }  // namespace igac

@@ -16,8 +16,8 @@ const std::vector<std::string> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d6272
 
 }  // namespace
 
-svg::Figure pressure_figure(const RunResult& r, const std::string& title) {
-  const PressureReport& rep = r.contact->report;
+svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t contact) {
+  const PressureReport& rep = r.contacts.at(contact).report;
   const bool analytic = has_hertz_scale(r);
   const double sx = analytic ? 1 / r.hertz->a : 1.0, sy = analytic ? 1 / r.hertz->p0 : 1.0;
   std::vector<PressureSample> mult = rep.multipliers;
@@ -87,12 +87,15 @@ svg::Figure pressure_figure(const RunResult& r, const std::string& title) {
   return {.panels = {std::move(panel)}, .panel_width = 700, .panel_height = 460};
 }
 
-svg::Figure load_curve_figure(const RunResult& r, const std::string& title) {
+svg::Figure load_curve_figure(const RunResult& r, const std::string& title, const std::vector<std::string>& faces) {
   std::vector<double> t{0}, force{0}, disp{0}, moved{0};
+  std::vector<std::vector<double>> forces(faces.size(), std::vector<double>{0});  // several contacts: each one's
   double travel = 0;
   for (const auto& p : r.load_curve) {
     t.push_back(p.load_factor);
     force.push_back(p.contact_force);
+    for (size_t i = 0; i < faces.size(); ++i)
+      forces[i].push_back(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan(""));
     disp.push_back(p.face_displacement);
     moved.push_back(p.obstacle_displacement);
     travel = std::max(travel, std::abs(p.obstacle_displacement));
@@ -110,6 +113,22 @@ svg::Figure load_curve_figure(const RunResult& r, const std::string& title) {
   by_motion.series.push_back(style);
   by_motion.series.back().x = driven ? moved : disp;
   by_motion.series.back().y = force;
+  if (!faces.empty()) {  // a curve per contact, in the legend by its face
+    by_load.series.clear();
+    by_motion.series.clear();
+    by_load.y.label = by_motion.y.label = "contact force (modelled part)";
+    for (size_t i = 0; i < faces.size(); ++i) {
+      svg::Series s = style;
+      s.label = "face '" + faces[i] + "'";
+      s.color = kPalette[i % kPalette.size()];
+      s.dashed = i % 2 == 1;  // equal forces (two plates) stay visible as two curves
+      s.y = forces[i];
+      s.x = t;
+      by_load.series.push_back(s);
+      s.x = driven ? moved : disp;
+      by_motion.series.push_back(std::move(s));
+    }
+  }
   return {.title = title, .panels = {std::move(by_load), std::move(by_motion)}, .panel_width = 500, .panel_height = 400};
 }
 

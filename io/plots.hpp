@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The plots of an output folder, drawn as SVG (io/svg_plot.hpp) from what a
 // run holds in memory; the CSV files beside them hold the same numbers.
-//   pressure.svg    the contact pressure of the first contact: the
+//   pressure.svg    the contact pressure (pressure_<face>.svg, one per
+//                   contact, when the case has several): the
 //                   multipliers (N2/S0: one constant per face element, drawn
 //                   as a segment over its element), the P1 re-interpolation
 //                   and, when the case has Hertz, p/p0 = sqrt(1 - (r/a)^2)
 //                   against r/a, like Figure 1(b) of Antolin, Buffa & Fabre
 //                   (2018); otherwise p = -lambda against r.
-//   load_curve.svg  large deformation: the contact force against the load
-//                   factor, and against the loaded face's displacement (or
-//                   how far a moving obstacle has moved).
+//   load_curve.svg  large deformation: the contact force (each contact's,
+//                   when there are several) against the load factor, and
+//                   against the loaded face's displacement (or how far a
+//                   moving obstacle has moved).
 //   study.svg       a refinement study: errors against h, log-log, with the
 //                   slope of the finest pair of levels in the legend and as
 //                   a triangle.
@@ -24,10 +26,12 @@
 
 namespace igac {
 
-// Needs result.contact.
-svg::Figure pressure_figure(const RunResult& result, const std::string& title);
-// Needs result.load_curve (the origin is added as its first point).
-svg::Figure load_curve_figure(const RunResult& result, const std::string& title);
+// Contact `contact` (case order) of result.contacts.
+svg::Figure pressure_figure(const RunResult& result, const std::string& title, size_t contact = 0);
+// Needs result.load_curve (the origin is added as its first point).  With
+// `faces` (several contacts), a curve per contact labelled with its face.
+svg::Figure load_curve_figure(const RunResult& result, const std::string& title,
+                              const std::vector<std::string>& faces = {});
 
 // One error of a study, per level (aligned with the levels' h).
 struct StudyError {

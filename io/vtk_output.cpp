@@ -173,9 +173,20 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
 
 // Contact face: Bezier curves / quadrilaterals with the pressure, weighted
 // gap and active flag (see the header for what is exact).
-vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r) {
-  const ContactFace& cf = *model.contacts.front().face;
-  const ContactSolution& sol = r.contact->solution;
+// Contact `i`'s block of the stacked multipliers, numbered from 0 on its face.
+ContactSolution contact_block(const RunResult& r, size_t i) {
+  const ContactResult& c = r.contacts[i];
+  const ContactSolution& all = r.contact->solution;
+  ContactSolution s;
+  s.lambda = all.lambda.segment(c.first_multiplier, c.num_multipliers);
+  s.weighted_gap = all.weighted_gap.segment(c.first_multiplier, c.num_multipliers);
+  s.active.assign(all.active.begin() + c.first_multiplier, all.active.begin() + c.first_multiplier + c.num_multipliers);
+  return s;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r, size_t i) {
+  const ContactFace& cf = *model.contacts[i].face;
+  const ContactSolution sol = contact_block(r, i);
   BezierMesh mesh;                          // every side's elements, one after the other
   std::vector<const ContactSide*> side_of;  // per element
   for (const ContactSide& side : cf.sides) {
@@ -208,9 +219,10 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
 }
 
 // One vertex per multiplier at its anchor on the reference face.
-vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r) {
-  const ContactFace& cf = *model.contacts.front().face;
-  const ContactSolution& sol = r.contact->solution;
+vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r, size_t i) {
+  const ContactFace& cf = *model.contacts[i].face;
+  const ContactSolution sol = contact_block(r, i);
+  const Eigen::VectorXd weights = r.contact->op.weights.segment(r.contacts[i].first_multiplier, cf.num_multipliers());
   const int m = cf.num_multipliers(), sd = model.body.space_dim();
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> pts;
@@ -238,7 +250,7 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
       pressure->SetValue(K, -sol.lambda[K]);
       gap->SetValue(K, sol.weighted_gap[K]);
       active->SetValue(K, sol.active[K] ? 1.0 : 0.0);
-      weight->SetValue(K, r.contact->op.weights[K]);
+      weight->SetValue(K, weights[K]);
       const vtkIdType id = K;
       grid->InsertNextCell(VTK_VERTEX, 1, &id);
     }
@@ -257,27 +269,28 @@ VtkStep write_vtk(const std::string& dir, const Model& model, const RunResult& r
                   double load_factor) {
   if (!std::isfinite(load_factor)) throw std::runtime_error("VTK output: the load factor is not finite");
   std::filesystem::create_directories(dir);
-  VtkStep step{step_index, load_factor, {}};
+  VtkStep step{step_index, load_factor, {}, {}};
   // Build every grid first: a failure (a NaN) leaves no file of this step.
-  auto body = body_grid(model, result);
-  vtkSmartPointer<vtkUnstructuredGrid> contact, multipliers;
-  if (result.contact && !model.contacts.empty()) {
-    contact = contact_grid(model, result);
-    multipliers = multiplier_grid(model, result);
-  }
+  std::vector<vtkSmartPointer<vtkUnstructuredGrid>> grids{body_grid(model, result)};
   step.files.push_back(fmt::format("solution_{:04d}.vtu", step_index));
-  write_grid(body, dir, step.files.back());
-  if (contact) {
-    step.files.push_back(fmt::format("contact_{:04d}.vtu", step_index));
-    write_grid(contact, dir, step.files.back());
-    step.files.push_back(fmt::format("multipliers_{:04d}.vtu", step_index));
-    write_grid(multipliers, dir, step.files.back());
+  step.parts.push_back("body");
+  if (result.contact && result.contacts.size() == model.contacts.size()) {
+    const std::vector<std::string> tags = contact_file_tags(model);
+    for (size_t i = 0; i < model.contacts.size(); ++i) {
+      const std::string tag = tags[i].empty() ? "" : "_" + tags[i];
+      grids.push_back(contact_grid(model, result, i));
+      step.files.push_back(fmt::format("contact{}_{:04d}.vtu", tag, step_index));
+      step.parts.push_back("contact_face" + tag);
+      grids.push_back(multiplier_grid(model, result, i));
+      step.files.push_back(fmt::format("multipliers{}_{:04d}.vtu", tag, step_index));
+      step.parts.push_back("multipliers" + tag);
+    }
   }
+  for (size_t k = 0; k < grids.size(); ++k) write_grid(grids[k], dir, step.files[k]);
   return step;
 }
 
 void write_pvd(const std::string& dir, const std::vector<VtkStep>& steps) {
-  static const char* part_names[] = {"body", "contact_face", "multipliers"};
   std::string s =
       "<?xml version=\"1.0\"?>\n"
       "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
@@ -286,7 +299,7 @@ void write_pvd(const std::string& dir, const std::vector<VtkStep>& steps) {
     if (!std::isfinite(st.load_factor)) throw std::runtime_error("VTK output: a load factor is not finite");
     for (size_t k = 0; k < st.files.size(); ++k)
       s += fmt::format("    <DataSet timestep=\"{:.17g}\" part=\"{}\" name=\"{}\" file=\"{}\"/>\n", st.load_factor, k,
-                       k < 3 ? part_names[k] : "part", st.files[k]);
+                       k < st.parts.size() ? st.parts[k] : std::string("part"), st.files[k]);
   }
   s += "  </Collection>\n</VTKFile>\n";
   std::filesystem::create_directories(dir);

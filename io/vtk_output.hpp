@@ -55,9 +55,15 @@
 //       "lambda", "pressure" = -lambda_K, "weighted_gap" = (Pi g)_K,
 //       "active", "weight" = int B_K dGamma, "displacement": exact values for
 //       any degree.
+//   With several contacts, each has its own two files, named after its face
+//   (io/json_out.hpp, contact_file_tags): contact_<face>_XXXX.vtu and
+//   multipliers_<face>_XXXX.vtu, in case order.
 //   solution.pvd        a Collection with one DataSet per file and step:
-//       timestep = the step's load factor, part 0 body, 1 contact face,
-//       2 multipliers (ParaView opens it as a multiblock per time).
+//       timestep = the step's load factor, part 0 body (name "body"), 1
+//       contact face ("contact_face"), 2 multipliers ("multipliers"); with
+//       several contacts, parts 1, 2 the first contact's ("contact_face_<face>",
+//       "multipliers_<face>"), 3, 4 the second's, and so on (ParaView opens it
+//       as a multiblock per time).
 // A value that is not finite is never written: writing throws
 // std::runtime_error naming the file and the array.  Each file is written to
 // a temporary name and renamed, so a file that exists is complete.
@@ -79,7 +85,8 @@ namespace igac {
 struct VtkStep {
   int step = 0;
   double load_factor = 1.0;
-  std::vector<std::string> files;  // body, then contact face and multipliers when present
+  std::vector<std::string> files;  // body, then each contact's face and multipliers
+  std::vector<std::string> parts;  // the .pvd's name of each file: body, contact_face, multipliers (_<face>)
 };
 
 // Writes the .vtu files of one step into dir (created if missing).

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <set>
+#include <tuple>
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -353,6 +355,66 @@ Model build_model(const CaseSpec& spec) {
     m.contacts.push_back(std::move(c));
   }
   return m;
+}
+
+namespace {
+// Symmetry planes of the case: a face held along one axis only, to zero,
+// whose control points all lie in one plane normal to that axis (a roller
+// condition; a face also held along another axis is clamped, not a plane
+// of symmetry).  The number of axes with such a plane, each halving the
+// body; -1 when an axis has two parallel ones (a repeated cell, not a
+// fraction of a body).
+int symmetry_planes(const Model& m) {
+  const Body& b = m.body;
+  const double size = (b.points().colwise().maxCoeff() - b.points().colwise().minCoeff()).norm();
+  using SideKey = std::tuple<int, int, bool>;  // patch, direction, at_end
+  std::map<SideKey, std::set<int>> held;      // per side: the axes held
+  std::map<SideKey, bool> to_zero;            // per side: every condition's value is 0
+  for (const auto& d : m.spec.dirichlet)
+    for (const auto& name : d.faces)
+      for (const PatchSide& s : find_faces(m, name).value_or(std::vector<PatchSide>{})) {
+        const SideKey k{s.patch, s.face.direction, s.face.at_end};
+        held[k].insert(d.component);
+        auto [it, fresh] = to_zero.emplace(k, d.value == 0);
+        if (!fresh) it->second = it->second && d.value == 0;
+      }
+  std::set<std::pair<int, long long>> planes;
+  for (const auto& [k, axes] : held) {
+    if (axes.size() != 1 || !to_zero[k]) continue;
+    const int c = *axes.begin();
+    const auto [patch, direction, at_end] = k;
+    const std::vector<int> cps = b.side_control_points(PatchSide(patch, Face{direction, at_end}));
+    if (cps.empty()) continue;
+    double lo = b.points()(cps[0], c), hi = lo;
+    for (int i : cps) lo = std::min(lo, b.points()(i, c)), hi = std::max(hi, b.points()(i, c));
+    if (hi - lo > 1e-10 * size) continue;
+    planes.insert({c, std::llround(0.5 * (lo + hi) / (1e-8 * size))});
+  }
+  std::set<int> axes;
+  for (const auto& [axis, position] : planes)
+    if (!axes.insert(axis).second) return -1;
+  return int(axes.size());
+}
+}  // namespace
+
+std::optional<std::string> modelled_part(const Model& m) {
+  const bool plane = m.body.space_dim() == 2;
+  // The Hertz bodies are a quarter disc and a sphere octant whatever holds
+  // them: the pressure on the flat face stands for the other half.
+  const std::string& shape = m.spec.shape;
+  if (shape == "quarter_disc" || (plane && m.spec.reference == "hertz"))
+    return "quarter (forces per unit thickness of the modelled quarter)";
+  if (shape == "sphere_octant" || m.spec.reference == "hertz") return "modelled part (symmetry)";
+  static const char* part[] = {"whole", "half", "quarter", "eighth"};
+  const int k = symmetry_planes(m);
+  if (plane) {
+    if (k == 0) return "whole cross-section (forces per unit thickness)";
+    if (k == 1 || k == 2) return fmt::format("{0} (forces per unit thickness of the modelled {0})", part[k]);
+    return "modelled part (symmetry; forces per unit thickness)";
+  }
+  if (k == 0) return std::nullopt;
+  if (k >= 1 && k <= 3) return fmt::format("{} (symmetry)", part[k]);
+  return "modelled part (symmetry)";
 }
 
 }  // namespace igac

@@ -20,14 +20,27 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::Ve
   return out;
 }
 
-void report_first_contact(const Model& m, ContactResult& c) {
-  const Model::Contact& first = m.contacts.front();
-  const int m0 = first.face->num_multipliers();
-  std::tie(c.X0, c.normal) = initial_contact_point(*first.face, *first.obstacle);
-  c.pressure = std::make_unique<ContactPressure>(
-      *first.face, c.solution.lambda.head(m0), c.op.weights.head(m0),
-      std::vector<char>(c.solution.active.begin(), c.solution.active.begin() + m0), c.X0, c.normal);
-  c.report = c.pressure->report();
+std::vector<ContactResult> report_contacts(const Model& m, const ContactSolve& s) {
+  std::vector<ContactResult> out;
+  int offset = 0;
+  for (const auto& c : m.contacts) {
+    ContactResult& cr = out.emplace_back();
+    const int n = c.face->num_multipliers();
+    cr.face = c.face_name;
+    cr.first_multiplier = offset;
+    cr.num_multipliers = n;
+    std::tie(cr.X0, cr.normal) = initial_contact_point(*c.face, *c.obstacle);
+    const auto active = s.solution.active.begin() + offset;
+    cr.pressure = std::make_unique<ContactPressure>(*c.face, s.solution.lambda.segment(offset, n),
+                                                    s.op.weights.segment(offset, n),
+                                                    std::vector<char>(active, active + n), cr.X0, cr.normal);
+    cr.report = cr.pressure->report();
+    cr.has_half_width = !touches_over_an_extent(*c.face, *c.obstacle);
+    for (int K = offset; K < offset + n; ++K)
+      if (s.solution.active[K]) cr.contact_area += s.op.weights[K];
+    offset += n;
+  }
+  return out;
 }
 
 }  // namespace igac

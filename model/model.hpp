@@ -75,6 +75,14 @@ std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::stri
 // The sides of every face in `names`, checked: an unknown name or an
 // interface inside the body is an InputError naming [section].
 std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::string>& names, const char* section);
+// What part of the physical body the model is, for the reports (summary.json
+// contact.model_part): the Hertz quarter disc / sphere octant, else from the
+// case's planes of symmetry (faces held to zero along their normal axis
+// only): in 2D "whole cross-section", "half" or "quarter" (forces per unit
+// thickness), in 3D "half", "quarter" or "eighth (symmetry)"; nothing for a
+// 3D body without symmetry; "modelled part (symmetry...)" for two parallel
+// planes (a repeated cell).
+std::optional<std::string> modelled_part(const Model& m);
 // Every accepted face name, for error messages.
 std::vector<std::string> face_names(const Model& m);
 

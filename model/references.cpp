@@ -88,10 +88,10 @@ void compare_with_reference(const Model& m, RunResult& r) {
   const ReferenceSolution* ref = find_reference(m.spec.reference);
   if (!ref) return;
   const Body& body = m.body;
-  if (r.contact && r.contact->pressure)
+  if (r.contacts.size() == 1 && r.contacts.front().pressure)  // Hertz: one contact
     if (const auto h = ref->contact_pressure(m.spec)) {
       r.hertz = *h;
-      const ContactPressure& cp = *r.contact->pressure;
+      const ContactPressure& cp = *r.contacts.front().pressure;
       r.pressure_error = cp.l2_error(
           *m.contacts.front().face,
           [&](int, const Eigen::VectorXd&, const Eigen::VectorXd& X) { return h->pressure(cp.r_of(X)); },

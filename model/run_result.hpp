@@ -18,12 +18,30 @@
 
 namespace igac {
 
-struct ContactResult {
+// The contact solve of every contact at once: the multipliers of all the
+// contacts stacked in case order (Model::contacts), and their operator.
+struct ContactSolve {
   ContactSolution solution;
   WeightedGapOperator op;
-  Eigen::VectorXd X0, normal;
+};
+
+// One contact's pressure and report (RunResult::contacts, in case order):
+// its block [first_multiplier, first_multiplier + num_multipliers) of the
+// stacked multipliers.
+struct ContactResult {
+  std::string face;  // the case's face name
+  int first_multiplier = 0, num_multipliers = 0;
+  Eigen::VectorXd X0, normal;  // the initial contact point and the obstacle normal there
   PressureReport report;
   std::unique_ptr<ContactPressure> pressure;
+  // The face starts touching at a point (a round contact: report.half_width
+  // is the extent of the zone), or over an extent (a flat face on a plane:
+  // no half width; contact_area says how much is pressed).
+  bool has_half_width = true;
+  double contact_area = 0;  // sum of K_K over the active multipliers (a length per unit thickness in 2D)
+  // Large deformation: the extent in the deformed configuration and the
+  // Cauchy pressure at the most pressed multiplier.
+  double half_width_deformed = 0, max_pressure_cauchy = 0;
 };
 
 // The force each obstacle exerts on the body: -sum_K lambda_K K_K over its
@@ -41,7 +59,8 @@ struct Timing {
 // One point of the load curve of a large-deformation run.
 struct LoadCurvePoint {
   double load_factor = 0;
-  double contact_force = 0;    // sum_K -lambda_K K_K (modelled part)
+  double contact_force = 0;    // sum_K -lambda_K K_K (modelled part) of the first contact
+  std::vector<double> contact_forces;  // the same of every contact, in case order
   double face_displacement = 0;  // mean displacement of the loaded face along the last axis
   double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|)
 };
@@ -56,9 +75,18 @@ struct LinearSolverRecord {
 };
 
 struct RunResult {
+  // Moved, never copied (the contacts own their pressures); said so that a
+  // std::vector<RunResult> moves its elements.
+  RunResult() = default;
+  RunResult(RunResult&&) = default;
+  RunResult& operator=(RunResult&&) = default;
+  RunResult(const RunResult&) = delete;
+  RunResult& operator=(const RunResult&) = delete;
+
   std::string status = "converged";
   Eigen::MatrixXd u;  // n_cp x dim
-  std::unique_ptr<ContactResult> contact;  // the first contact's pressure and report (Hertz, pressure.csv, VTK)
+  std::optional<ContactSolve> contact;      // the contact solve (every contact's multipliers)
+  std::vector<ContactResult> contacts;      // one per contact, in case order (pressure files, reports, VTK)
   std::vector<ObstacleReaction> reactions;  // every contact, in case order
   std::optional<HertzSolution> hertz;
   std::optional<ErrorNorms> displacement_errors;           // against a closed form
@@ -66,7 +94,6 @@ struct RunResult {
   double applied_force = 0;                                 // resultant of the pressure loads (modelled part)
   std::optional<LoadSteppingSummary> load_steps;            // large deformation only
   std::vector<LoadCurvePoint> load_curve;
-  double half_width_deformed = 0, max_pressure_cauchy = 0;  // large deformation contact
   Timing timing;
   LinearSolverRecord linear_solver;
   std::vector<std::string> warnings;  // what the solve found doubtful (printed unless quiet; summary.json)

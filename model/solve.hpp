@@ -35,9 +35,10 @@ WeightedGapOperator assemble_contact_operator(const Model& model);
 // Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
 std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
                                                 const Eigen::VectorXd& weights, const std::vector<char>& active);
-// The pressure and report of the model's first contact in `c` (Hertz,
-// pressure.csv, ParaView), from c.solution and c.op.weights.
-void report_first_contact(const Model& model, ContactResult& c);
+// Every contact's pressure and report (RunResult::contacts, case order:
+// the pressure files, the reports, ParaView), from the stacked s.solution
+// and s.op.weights.
+std::vector<ContactResult> report_contacts(const Model& model, const ContactSolve& s);
 // |int P n dGamma| summed over the pressure loads (the modelled part).
 double pressure_resultant(const Model& model);
 

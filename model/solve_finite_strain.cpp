@@ -32,26 +32,15 @@ double mean_face_displacement(const Body& body, const std::vector<PatchSide>& fa
   return area > 0 ? s / area : 0.0;
 }
 
-// Contact report of state x at load factor t.
-void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const Eigen::VectorXd& x, RunResult& r) {
-  const Model::Contact& first = m.contacts.front();  // reported in detail; every contact's force in reactions
-  const ContactFace& cf = *first.face;
-  auto c = std::make_unique<ContactResult>();
-  const int n = problem.num_displacements(), mm = problem.num_multipliers();
-  c->solution.u = x.head(n);
-  c->solution.lambda = x.tail(mm);
-  c->solution.active = problem.active_set(t, x);
-  c->solution.weighted_gap = problem.weighted_gaps(t, x);
-  c->solution.converged = true;
-  c->op.weights = problem.multiplier_weights();
-  r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
-  report_first_contact(m, *c);
-  const int m0 = problem.multiplier_offset(1);
+// The deformed extent and the Cauchy peak of contact `c` (face `cf`) for
+// the displacement u (n_cp x dim).
+void deformed_report(const Model& m, const ContactFace& cf, const Eigen::VectorXd& lambda, const Eigen::MatrixXd& u,
+                     ContactResult& c) {
   // Deformed extent: the face point at the reference half width, displaced.
   double best = std::numeric_limits<double>::infinity();
-  int K_max = 0;
-  for (int K = 0; K < m0; ++K)
-    if (-c->solution.lambda[K] > -c->solution.lambda[K_max]) K_max = K;
+  int K_max = 0;  // the most pressed multiplier, numbered on the face
+  for (int K = 0; K < c.num_multipliers; ++K)
+    if (-lambda[c.first_multiplier + K] > -lambda[c.first_multiplier + K_max]) K_max = K;
   std::vector<PatchSide> sides;
   std::vector<PatchQuadrature> quads;
   for (const ContactSide& side : cf.sides) {
@@ -61,30 +50,43 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   FaceQuadrature(std::move(sides), std::move(quads)).for_each_element([&](int, const auto& v) {
     for (int k = 0; k < v.n_q; ++k) {
       const Eigen::VectorXd X = v.X[k];
-      const double d = std::abs(c->pressure->r_of(X) - c->report.half_width);
+      const double d = std::abs(c.pressure->r_of(X) - c.report.half_width);
       if (d < best) {
         best = d;
         Eigen::VectorXd xk = X;
-        for (int a = 0; a < v.n_loc; ++a) xk += v.N(k, a) * r.u.row(v.cps[a]).transpose();
-        r.half_width_deformed = c->pressure->r_of(xk);
+        for (int a = 0; a < v.n_loc; ++a) xk += v.N(k, a) * u.row(v.cps[a]).transpose();
+        c.half_width_deformed = c.pressure->r_of(xk);
       }
     }
   });
   // Cauchy pressure at the most pressed multiplier: nominal / surface stretch.
-  {
-    const ContactSide* side = &cf.sides.front();
-    for (const ContactSide& s : cf.sides)
-      if (K_max >= s.first_multiplier) side = &s;
-    const Eigen::VectorXd xi = side->space.anchor(K_max - side->first_multiplier);
-    Eigen::MatrixXd uf(side->face_cps.size(), m.body.space_dim());
-    for (size_t a = 0; a < side->face_cps.size(); ++a) uf.row(a) = r.u.row(side->face_cps[a]);
-    Eigen::MatrixXd dudxi;
-    side->face_patch.field(uf, xi, &dudxi);
-    const Eigen::MatrixXd T0 = side->face_patch.jacobian(xi), T = T0 + dudxi;
-    const double stretch = face_area_vector(side->face(), T).norm() / face_area_vector(side->face(), T0).norm();
-    r.max_pressure_cauchy = c->report.max_pressure / stretch;
-  }
-  r.contact = std::move(c);
+  const ContactSide* side = &cf.sides.front();
+  for (const ContactSide& s : cf.sides)
+    if (K_max >= s.first_multiplier) side = &s;
+  const Eigen::VectorXd xi = side->space.anchor(K_max - side->first_multiplier);
+  Eigen::MatrixXd uf(side->face_cps.size(), m.body.space_dim());
+  for (size_t a = 0; a < side->face_cps.size(); ++a) uf.row(a) = u.row(side->face_cps[a]);
+  Eigen::MatrixXd dudxi;
+  side->face_patch.field(uf, xi, &dudxi);
+  const Eigen::MatrixXd T0 = side->face_patch.jacobian(xi), T = T0 + dudxi;
+  const double stretch = face_area_vector(side->face(), T).norm() / face_area_vector(side->face(), T0).norm();
+  c.max_pressure_cauchy = c.report.max_pressure / stretch;
+}
+
+// Contact report of state x at load factor t: every contact's, in r.contacts.
+void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const Eigen::VectorXd& x, RunResult& r) {
+  ContactSolve& c = r.contact.emplace();
+  const int n = problem.num_displacements(), mm = problem.num_multipliers();
+  c.solution.u = x.head(n);
+  c.solution.lambda = x.tail(mm);
+  c.solution.active = problem.active_set(t, x);
+  c.solution.weighted_gap = problem.weighted_gaps(t, x);
+  c.solution.converged = true;
+  c.op.weights = problem.multiplier_weights();
+  r.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active);
+  r.contacts = report_contacts(m, c);
+  for (size_t i = 0; i < r.contacts.size(); ++i)
+    deformed_report(m, *m.contacts[i].face, c.solution.lambda, r.u, r.contacts[i]);
 }
 
 // What loads a large-deformation body: something, nothing (u = 0 solves
@@ -170,7 +172,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     if (!m.contacts.empty()) fill_contact(m, problem, t, xs, out);
     LoadCurvePoint p;
     p.load_factor = t;
-    p.contact_force = out.contact ? out.contact->report.total_force : 0.0;
+    p.contact_force = out.contacts.empty() ? 0.0 : out.contacts.front().report.total_force;
+    for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
     p.face_displacement = mean_face_displacement(body, loaded, out.u);
     p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
     return p;
@@ -206,7 +209,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   r.timing.contact = summary.newton_seconds;
   const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
   snapshot(t_final, x, r);
-  if (r.contact && setup.follower_pressure && !setup.pressures.empty()) {
+  if (!r.contacts.empty() && setup.follower_pressure && !setup.pressures.empty()) {
     // the follower load's resultant along the obstacle normal, on the deformed faces
     Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());
     for (const auto& p : setup.pressures)
@@ -217,7 +220,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
       if (m.dofs->equation(i) >= 0) component[m.dofs->equation(i)] = i % dim;
     Eigen::VectorXd resultant = Eigen::VectorXd::Zero(dim);
     for (int e = 0; e < f_ext.size(); ++e) resultant[component[e]] += f_ext[e];
-    r.applied_force = std::abs(resultant.dot(r.contact->normal));
+    r.applied_force = std::abs(resultant.dot(r.contacts.front().normal));
   }
   compare_with_reference(m, r);
   r.timing.total = t_start.seconds();

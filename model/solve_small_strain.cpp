@@ -146,7 +146,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.timing.linear_solve = t0.seconds();
   } else {
     t0.restart();
-    auto c = std::make_unique<ContactResult>();
+    ContactSolve* c = &r.contact.emplace();
     c->op = assemble_contact_operator(m);
     r.timing.assembly += t0.seconds();
     ContactSolverOptions opt;
@@ -171,7 +171,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.u = m.dofs->expand(c->solution.u);
     t0.restart();
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
-    report_first_contact(m, *c);
+    r.contacts = report_contacts(m, *c);
     // A rigid obstacle can only push: a net pull on the body (tensile
     // multipliers) is a wrong result, never a converged one.
     for (const auto& rr : r.reactions)
@@ -179,7 +179,6 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
         r.status = fmt::format("failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)",
                                rr.face, rr.normal_force);
     r.timing.postprocess += t0.seconds();
-    r.contact = std::move(c);
   }
   t0.restart();
   if (auto w = small_deformation_warning(m, r)) r.warnings.push_back(std::move(*w));

@@ -8,7 +8,7 @@
 writes OUT/body.png (the whole body at the last load step, Warp By Vector
 with the displacement, coloured by the field) and, when the run has a contact
 face, OUT/body_zoom.png (the same around the contact zone, with the contact
-pressure along the face).  The cells are VTK's rational Bezier cells, so
+pressure along the face; the first contact's zone when there are several).  The cells are VTK's rational Bezier cells, so
 ParaView draws the exact geometry; --scale magnifies the displacement (by
 default 1 when it is visible, otherwise enough to make it about 5 % of the
 body's size, and the picture says so).
@@ -191,9 +191,12 @@ def render(args):
     SaveScreenshot(args.png, view, ImageResolution=[args.size, args.size])
     print(f"render_paraview: wrote {args.png}")
 
-    # Zoom on the contact zone: the extent of the active multipliers.
-    if "multipliers" in names and "contact_face" in names:
-        mult = sm.Fetch(block("multipliers"))
+    # Zoom on the contact zone: the extent of the active multipliers (of the
+    # first contact when there are several: parts contact_face_<face>, ...).
+    face_part = next((n for n in names if n.startswith("contact_face")), None)
+    mult_part = next((n for n in names if n.startswith("multipliers")), None)
+    if face_part and mult_part:
+        mult = sm.Fetch(block(mult_part))
         pts = None
         it = mult.NewIterator()
         it.InitTraversal()
@@ -207,7 +210,7 @@ def render(args):
             hi = [max(p[k] for p in xs) for k in range(3)]
             centre = [(lo[k] + hi[k]) / 2 for k in range(3)]
             extent = max(max(hi[k] - lo[k] for k in range(3)), 1e-3 * diag)
-            face = WarpByVector(Input=block("contact_face"), Vectors=["POINTS", "displacement"], ScaleFactor=scale)
+            face = WarpByVector(Input=block(face_part), Vectors=["POINTS", "displacement"], ScaleFactor=scale)
             fdisp = Show(face, view)
             fdisp.NonlinearSubdivisionLevel = 3
             fdisp.LineWidth = 7.0

@@ -78,6 +78,26 @@ TEST(OutputFolder, AFolderThatIsNotAnIgacOutputIsNeverReplaced) {
   EXPECT_EQ(listing(mine), std::set<std::string>{"chapter1.tex"});
 }
 
+// An output written before the manifest existed is recognised by its file
+// names, the per-contact ones of a case with several contacts among them.
+TEST(OutputFolder, AnOutputWithoutManifestIsReplacedWithItsPerContactFiles) {
+  TempDir tmp("old_output");
+  const fs::path out = tmp.path() / "out";
+  fs::create_directories(out);
+  for (const char* f : {"summary.json", "pressure_lower.csv", "pressure_upper.svg", "contact_lower_0000.vtu",
+                        "multipliers_upper_0003.vtu", "solution.pvd"})
+    std::ofstream(out / f) << "old";
+  const Outcome o = run_igac("run " + quote(kCases + "lame_cylinder.toml") + " --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(summary_case(out), "lame_cylinder");
+  EXPECT_FALSE(fs::exists(out / "pressure_lower.csv"));
+  // a name that only looks like one is someone else's
+  std::ofstream(out / "pressure_notes.txt") << "mine";
+  fs::remove(out / ".igac-manifest");
+  expect_out_refused(out.string(), tmp.path());
+  EXPECT_TRUE(fs::exists(out / "pressure_notes.txt"));
+}
+
 TEST(OutputFolder, BodyHeldByNothingIsAnInputError) {
   TempDir tmp("unheld");
   std::ifstream in(kCases + "lame_cylinder.toml");

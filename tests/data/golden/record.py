@@ -7,8 +7,9 @@ For each CASE (a cases/CASE.toml, or study:CASE for `igac study CASE
 --levels 4`) runs igac into RUN_FOLDER/CASE and writes
 tests/data/golden/CASE.json (study_CASE.json): the summary.json (study.json)
 without the keys that measure the machine rather than the numerics (timings,
-seconds, memory; see EXCLUDED), plus the rows of pressure.csv and
-load_curve.csv when the run writes them (an empty cell as null).  The
+seconds, memory; see EXCLUDED), plus the rows of pressure.csv (or of each
+pressure_<face>.csv of a case with several contacts) and load_curve.csv
+when the run writes them (an empty cell as null).  The
 numbers are written as Python's repr, which reads back to the same
 double.  Re-record only on purpose: the point of the files is to hold the
 values from before a change.
@@ -63,13 +64,15 @@ def main():
         with open(os.path.join(out, "study.json" if study else "summary.json")) as f:
             record = {"command": " ".join(["igac"] + cmd[1:2] + ["cases/" + name + ".toml"] + cmd[3:]),
                       "summary": strip(json.load(f))}
-        for csv_name in ("pressure.csv", "load_curve.csv"):
+        # pressure.csv, or pressure_<face>.csv per contact when there are several
+        pressure = sorted(f for f in os.listdir(out) if re.fullmatch(r"pressure(_.+)?\.csv", f))
+        for csv_name in pressure + ["load_curve.csv"]:
             path = os.path.join(out, csv_name)
             if study or not os.path.exists(path):
                 continue
             with open(path) as f:
                 rows = list(csv.reader(f))
-            record[csv_name.replace(".", "_")] = {"header": rows[0], "rows": [[cell(x) for x in r] for r in rows[1:]]}
+            record[csv_name[:-4] + "_csv"] = {"header": rows[0], "rows": [[cell(x) for x in r] for r in rows[1:]]}
         with open(os.path.join(here, tag + ".json"), "w") as f:
             json.dump(record, f, indent=1)
             f.write("\n")

@@ -83,7 +83,7 @@ TEST(MovingObstacle, PlateMovingOntoABlockGivesTheClosedFormReaction) {
   Model m = build_model(block_squeezed_by_moving_plate(delta, "linear_elastic"));
   const RunResult r = solve_model(m);
   ASSERT_EQ(r.status, "converged");
-  EXPECT_NEAR(r.contact->report.total_force / reaction, 1.0, 1e-10);
+  EXPECT_NEAR(r.contacts.front().report.total_force / reaction, 1.0, 1e-10);
   // The reaction is the sum of the contact pressures: -sum_K lambda_K K_K.
   const double sum = -r.contact->solution.lambda.dot(r.contact->op.weights);
   EXPECT_NEAR(sum / reaction, 1.0, 1e-10);
@@ -100,7 +100,7 @@ TEST(MovingObstacle, LargeDeformationRampsTheMotionWithTheLoad) {
   m.quiet = true;
   const RunResult r = solve_model(m);
   ASSERT_EQ(r.status, "converged");
-  EXPECT_NEAR(r.contact->report.total_force / reaction, 1.0, 1e-3);
+  EXPECT_NEAR(r.contacts.front().report.total_force / reaction, 1.0, 1e-3);
   ASSERT_FALSE(r.load_curve.empty());
   EXPECT_NEAR(r.load_curve.back().obstacle_displacement, delta, 1e-15);
   // The load curve rises with the motion.
@@ -113,7 +113,7 @@ TEST(MovingObstacle, ShippedORingConverges) {
   m.quiet = true;
   const RunResult r = solve_model(m);
   ASSERT_EQ(r.status, "converged");
-  EXPECT_GT(r.contact->report.total_force, 0.0);
+  EXPECT_GT(r.contacts.front().report.total_force, 0.0);
   int cut_backs = 0;
   for (const auto& st : r.load_steps->steps) cut_backs += st.cut_backs;
   EXPECT_EQ(cut_backs, 0);
@@ -176,7 +176,7 @@ TEST(SeveralObstacles, SummaryListsEveryObstacle) {
   std::ofstream(tmp.path() / "two.toml") << s;
   const auto o = igac_test::run_igac("run two.toml --out out", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output << s;
-  EXPECT_NE(o.output.find("obstacle      face 'top'"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("contact       face 'top'"), std::string::npos) << o.output;  // a block per contact
   std::ifstream js(tmp.path() / "out" / "summary.json");
   const auto j = nlohmann::json::parse(js);
   ASSERT_EQ(j["obstacles"].size(), 2u);

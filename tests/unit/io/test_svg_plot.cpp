@@ -232,7 +232,7 @@ TEST(SvgPlot, Hertz2DPressurePlot) {
   const RunResult r = solve_model(model);
   ASSERT_EQ(r.status, "converged");
   ASSERT_TRUE(r.contact && r.hertz);
-  const auto& rep = r.contact->report;
+  const auto& rep = r.contacts.front().report;
   ASSERT_EQ(rep.p1.size(), rep.multipliers.size() + 1) << "S0: one constant per face element";
 
   const svg::Figure fig = pressure_figure(r, spec.name);

@@ -349,7 +349,7 @@ TEST(VtkOutput, HertzFilesReadBackExactly) {
   vtkDataArray* a = c->GetCellData()->GetArray("active");
   vtkDataArray* gap = c->GetCellData()->GetArray("weighted_gap");
   ASSERT_TRUE(p && a && gap);
-  const double pscale = std::max(1e-300, r.contact->report.max_pressure);
+  const double pscale = std::max(1e-300, r.contacts.front().report.max_pressure);
   for (int K = 0; K < cf.sides[0].space.size(); ++K) {
     EXPECT_NEAR(p->GetComponent(K, 0), -sol.lambda[K], 1e-12 * pscale) << K;
     EXPECT_EQ(a->GetComponent(K, 0), sol.active[K] ? 1.0 : 0.0) << K;

@@ -160,12 +160,12 @@ TEST(FiniteStrainHertz, NeoHookeanAtSmallLoadReproducesLinearHertz) {
   const RunResult rl = solve_model(ml), rn = solve_model(mn);
   ASSERT_EQ(rn.status, "converged");
   std::printf("Neo-Hookean / linear: peak %.6f, half width %.6f; Neo-Hookean peak / Hertz %.6f\n",
-              rn.contact->report.max_pressure / rl.contact->report.max_pressure,
-              rn.contact->report.half_width / rl.contact->report.half_width, rn.contact->report.max_pressure / 0.045812);
-  EXPECT_NEAR(rn.contact->report.max_pressure / rl.contact->report.max_pressure, 1.0, kTolerance);
-  EXPECT_NEAR(rn.contact->report.half_width / rl.contact->report.half_width, 1.0, kTolerance);
+              rn.contacts.front().report.max_pressure / rl.contacts.front().report.max_pressure,
+              rn.contacts.front().report.half_width / rl.contacts.front().report.half_width, rn.contacts.front().report.max_pressure / 0.045812);
+  EXPECT_NEAR(rn.contacts.front().report.max_pressure / rl.contacts.front().report.max_pressure, 1.0, kTolerance);
+  EXPECT_NEAR(rn.contacts.front().report.half_width / rl.contacts.front().report.half_width, 1.0, kTolerance);
   // and against Hertz (the linear values have their own test, test_hertz)
-  EXPECT_NEAR(rn.contact->report.max_pressure / 0.045812, 1.0, kHertzTolerance);
+  EXPECT_NEAR(rn.contacts.front().report.max_pressure / 0.045812, 1.0, kHertzTolerance);
 }
 
 TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
@@ -194,9 +194,9 @@ TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
     EXPECT_EQ(r.status, "converged") << name;
     ASSERT_TRUE(r.contact) << name;
     EXPECT_TRUE(r.u.allFinite()) << name;
-    EXPECT_GT(r.contact->report.active, 10) << name;
+    EXPECT_GT(r.contacts.front().report.active, 10) << name;
     if (r.applied_force > 0) {
-      EXPECT_NEAR(r.contact->report.total_force / r.applied_force, 1.0, kForceTolerance) << name;
+      EXPECT_NEAR(r.contacts.front().report.total_force / r.applied_force, 1.0, kForceTolerance) << name;
     }
     int total = 0;
     for (const auto& st : r.load_steps->steps) {
@@ -232,9 +232,9 @@ TEST(FiniteStrainCases, ShippedCasesMatchGetFemConvergedValues) {
     Model m = model_of(kSource + "/cases/" + c.name + ".toml");
     const RunResult r = solve_model(m);
     ASSERT_EQ(r.status, "converged") << c.name;
-    EXPECT_NEAR(r.contact->report.total_force, c.force, kForce * c.force) << c.name;
-    EXPECT_NEAR(r.half_width_deformed, c.half_width, c.half_width_tolerance * c.half_width) << c.name;
-    EXPECT_NEAR(r.contact->report.max_pressure, c.max_pressure, kPeak * c.max_pressure) << c.name;
+    EXPECT_NEAR(r.contacts.front().report.total_force, c.force, kForce * c.force) << c.name;
+    EXPECT_NEAR(r.contacts.front().half_width_deformed, c.half_width, c.half_width_tolerance * c.half_width) << c.name;
+    EXPECT_NEAR(r.contacts.front().report.max_pressure, c.max_pressure, kPeak * c.max_pressure) << c.name;
   }
 }
 
@@ -284,6 +284,6 @@ TEST(FiniteStrainDriver, TangentPredictorSavesTheFirstStepsCutBacks) {
   for (const auto& st : rt.load_steps->steps) cuts_predicted += st.cut_backs;
   EXPECT_GT(cuts_plain, 0) << "the case is one that needs it";
   EXPECT_EQ(cuts_predicted, 0);
-  EXPECT_NEAR(rt.contact->report.total_force / rp.contact->report.total_force, 1.0, 1e-7);
+  EXPECT_NEAR(rt.contacts.front().report.total_force / rp.contacts.front().report.total_force, 1.0, 1e-7);
   EXPECT_LE((rt.u - rp.u).cwiseAbs().maxCoeff(), 1e-7 * rp.u.cwiseAbs().maxCoeff());
 }

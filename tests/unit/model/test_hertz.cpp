@@ -92,7 +92,7 @@ TEST(Hertz2D, DefaultCaseMatchesHertz) {
   ASSERT_TRUE(r.hertz);
   EXPECT_NEAR(r.hertz->a, 0.083378, printed_tolerance(0.083378));
   EXPECT_NEAR(r.hertz->p0, 0.045812, printed_tolerance(0.045812));
-  const PressureReport& rep = r.contact->report;
+  const PressureReport& rep = r.contacts.front().report;
   EXPECT_NEAR(rep.max_pressure, 0.045812, kMaxPressureBand * 0.045812);
   EXPECT_NEAR(rep.half_width, 0.083378, kHalfWidthBand * 0.083378);
   EXPECT_NEAR(rep.total_force, 0.003 * kR, kForceTolerance * 0.003 * kR);
@@ -119,7 +119,7 @@ TEST(Hertz2D, HighLoadCaseConverges) {
   ASSERT_TRUE(r.hertz);
   EXPECT_NEAR(r.hertz->a, 0.15223, printed_tolerance(0.15223));
   EXPECT_NEAR(r.hertz->p0, 0.083641, printed_tolerance(0.083641));
-  const PressureReport& rep = r.contact->report;
+  const PressureReport& rep = r.contacts.front().report;
   EXPECT_LE(rep.max_pressure, 0.083641) << "below Hertz";
   EXPECT_GE(rep.max_pressure, (1 - kBelowHertzBand) * 0.083641);
   EXPECT_NEAR(rep.half_width, 0.15223, kHalfWidthBand * 0.15223);
@@ -136,7 +136,7 @@ TEST(Hertz2D, CubicIsStableWithoutOscillation) {
   const RunResult& r = run.result;
   ASSERT_EQ(r.status, "converged");
   const HertzSolution h = *r.hertz;
-  const PressureReport& rep = r.contact->report;
+  const PressureReport& rep = r.contacts.front().report;
   EXPECT_NEAR(rep.max_pressure, h.p0, kMaxPressureBand * h.p0);
   EXPECT_NEAR(rep.total_force, 0.003 * kR, kForceTolerance * 0.003 * kR);
   EXPECT_NEAR(rep.half_width, h.a, kHalfWidthBand * h.a);
@@ -169,7 +169,7 @@ TEST(Hertz3D, CubicOnAFittedMeshReachesFivePercent) {
   ASSERT_EQ(r.status, "converged");
   ASSERT_TRUE(r.hertz && r.pressure_error);
   EXPECT_EQ(run.model.dofs->num_free(), 6613);
-  const PressureReport& rep = r.contact->report;
+  const PressureReport& rep = r.contacts.front().report;
   // The contact force balances the load to round-off; the load is pi R^2 P / 4
   // up to the quadrature of the rational top face on 16 x 16 spans (7e-8).
   const double F = std::numbers::pi * kR * kR * 1e-4 / 4;
@@ -204,7 +204,7 @@ std::vector<StudyLevel> hertz_study(CaseSpec spec, int levels) {
   }
   const CaseRun& ref = runs.back();
   const NurbsPatch& ref_patch = ref.model.body.patch(0);
-  const ContactPressure& p_ref = *ref.result.contact->pressure;
+  const ContactPressure& p_ref = *ref.result.contacts.front().pressure;
   std::vector<StudyLevel> out;
   for (int l = 0; l + 1 < levels; ++l) {
     const CaseRun& r = runs[l];
@@ -215,7 +215,7 @@ std::vector<StudyLevel> hertz_study(CaseSpec spec, int levels) {
     s.displacement = errors_against_reference(r.model.body.patch(0), r.result.u, ref_patch, ref.result.u,
                                               ref_patch.degree(0) + 1);
     s.pressure_vs_reference =
-        r.result.contact->pressure
+        r.result.contacts.front().pressure
             ->l2_error(*ref.model.contacts.front().face,
                        [&](int side, const Eigen::VectorXd& xi, const Eigen::VectorXd&) { return p_ref.pressure_at(side, xi); },
                        ref_patch.degree(0) + 2)

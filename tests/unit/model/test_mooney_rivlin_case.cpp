@@ -47,9 +47,9 @@ TEST(MooneyRivlinCase, SmallLoadReproducesTheLinearHertzSolution) {
   rubber.quiet = true;
   const RunResult rr = solve_model(rubber), rl = solve_model(linear);
   ASSERT_EQ(rr.status, "converged");
-  EXPECT_NEAR(rr.contact->report.max_pressure / rl.contact->report.max_pressure, 1.0, 0.01);
-  EXPECT_NEAR(rr.contact->report.half_width / rl.contact->report.half_width, 1.0, 0.01);
-  EXPECT_NEAR(rr.contact->report.total_force / rr.applied_force, 1.0, 1e-7);
+  EXPECT_NEAR(rr.contacts.front().report.max_pressure / rl.contacts.front().report.max_pressure, 1.0, 0.01);
+  EXPECT_NEAR(rr.contacts.front().report.half_width / rl.contacts.front().report.half_width, 1.0, 0.01);
+  EXPECT_NEAR(rr.contacts.front().report.total_force / rr.applied_force, 1.0, 1e-7);
 }
 
 struct BadRubber {

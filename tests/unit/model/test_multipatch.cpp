@@ -148,16 +148,16 @@ TEST(MultiPatchHertz, TwoPatchesGiveHertzAndTheOnePatchResult) {
   ASSERT_EQ(m.body.num_patches(), 2);
   ASSERT_EQ(m.contacts.front().face->sides.size(), 2u);
   const double P = 0.003, R = 1.0;
-  EXPECT_NEAR(two.contact->report.total_force, P * R, 1e-10 * P * R);
+  EXPECT_NEAR(two.contacts.front().report.total_force, P * R, 1e-10 * P * R);
   EXPECT_NEAR(two.applied_force, P * R, 1e-10 * P * R);
-  EXPECT_NEAR(two.contact->report.max_pressure, two.hertz->p0, 0.01 * two.hertz->p0);
-  EXPECT_NEAR(two.contact->report.half_width, two.hertz->a, 0.01 * two.hertz->a);
+  EXPECT_NEAR(two.contacts.front().report.max_pressure, two.hertz->p0, 0.01 * two.hertz->p0);
+  EXPECT_NEAR(two.contacts.front().report.half_width, two.hertz->a, 0.01 * two.hertz->a);
   // Within the discretisation error of the one-patch mesh (p0 -0.19 %, a
   // -0.76 % from Hertz; a is read at multiplier resolution): the two agree
   // to a fraction of it.
-  EXPECT_NEAR(two.contact->report.max_pressure, one.contact->report.max_pressure,
-              0.002 * one.contact->report.max_pressure);
-  EXPECT_NEAR(two.contact->report.half_width, one.contact->report.half_width, 0.002 * one.contact->report.half_width);
+  EXPECT_NEAR(two.contacts.front().report.max_pressure, one.contacts.front().report.max_pressure,
+              0.002 * one.contacts.front().report.max_pressure);
+  EXPECT_NEAR(two.contacts.front().report.half_width, one.contacts.front().report.half_width, 0.002 * one.contacts.front().report.half_width);
   EXPECT_NEAR(two.pressure_error->first / two.pressure_error->second,
               one.pressure_error->first / one.pressure_error->second, 0.01);
 }
@@ -254,7 +254,7 @@ TEST(MultiPatchContact, BallIndentsTwoPatchBlockAcrossTheInterface) {
   // for a ball of radius R pressed delta into a half-space, to within one
   // face element (the multipliers' anchors sit at element centres).
   const double element = 1.0 / spec.elements[0], sqrt_R_delta = std::sqrt(0.5 * 0.1);
-  EXPECT_NEAR(r.contact->report.half_width, sqrt_R_delta, element);
+  EXPECT_NEAR(r.contacts.front().report.half_width, sqrt_R_delta, element);
 }
 
 // Bad multi-patch geometry files: exit 2, one line naming the file, the
