@@ -2,8 +2,22 @@
 #include "contact/mortar_gap.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace igac {
+
+ObstacleProbe MasterAsObstacle::probe(const Eigen::VectorXd& x, bool with_derivative) const {
+  if (with_derivative)
+    throw std::logic_error("a master surface has no normal derivative here: two-body contact is small-deformation");
+  const std::optional<MasterPoint> mp = master_->project(x);
+  if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+  ObstacleProbe out;
+  out.gap = mp->gap;
+  out.normal = mp->normal;
+  return out;
+}
+
+std::string MasterAsObstacle::describe() const { return "the deformable face '" + name_ + "'"; }
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master) {
   const int dim = dofs.dim(), m = slave.num_multipliers();

@@ -24,6 +24,22 @@
 
 namespace igac {
 
+// The master surface seen as a rigid obstacle at its reference position:
+// the gap to the nearest master point along the master's outward normal.
+// What the contact reports (the initial contact point, the checks that a
+// face can touch, the obstacle's description) read for a two-body contact;
+// the coupling itself is assemble_mortar_gaps.  Borrows `master`.
+class MasterAsObstacle final : public Obstacle {
+ public:
+  MasterAsObstacle(const MasterSurface& master, std::string face_name) : master_(&master), name_(std::move(face_name)) {}
+  ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override;
+  std::string describe() const override;
+
+ private:
+  const MasterSurface* master_;
+  std::string name_;
+};
+
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master);
 
 }  // namespace igac

@@ -17,6 +17,7 @@
 #include "engine/quadrature.hpp"
 #include "engine/spline/refinement.hpp"
 #include "engine/spline/split.hpp"
+#include "contact/mortar_gap.hpp"
 #include "model/case_body.hpp"
 
 namespace igac {
@@ -325,8 +326,16 @@ Model build_model(const CaseSpec& spec) {
           throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", spec.path,
                                        cs.master, cs.face, m.body.describe(s)));
       resolve_faces(m, {cs.master}, "contact");  // (refuses an interface inside the body)
+      if (spec.finite_strain())
+        throw InputError(fmt::format("{}: [contact] master: contact between two deformable bodies runs in small "
+                                     "deformation only (model \"linear_elastic\")", spec.path));
       c.master_name = cs.master;
       c.master = std::make_unique<MasterSurface>(m.body, *master);
+      // The reports read the master as an obstacle at its reference position.
+      c.obstacle = std::make_unique<MasterAsObstacle>(*c.master, cs.master);
+      if (auto why = contact_cannot_happen(*c.face, *c.obstacle))
+        throw InputError(fmt::format("{}: [contact] face '{}' and its master '{}': {}", spec.path, cs.face, cs.master,
+                                     *why));
       m.contacts.push_back(std::move(c));
       continue;
     }

@@ -15,6 +15,8 @@
 #include "model/references.hpp"
 #include "model/solve.hpp"
 
+#include "contact/mortar_gap.hpp"
+
 namespace igac {
 
 double pressure_resultant(const Model& m) {
@@ -34,7 +36,9 @@ double pressure_resultant(const Model& m) {
 
 WeightedGapOperator assemble_contact_operator(const Model& m) {
   std::vector<WeightedGapOperator> ops;
-  for (const auto& c : m.contacts) ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
+  for (const auto& c : m.contacts)
+    ops.push_back(c.master ? assemble_mortar_gaps(*m.dofs, *c.face, *c.master)
+                           : assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
   return stack(ops);
 }
 
