@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/master_surface.hpp"
 
+#include "engine/spline/bezier_extraction.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -42,43 +44,57 @@ void MasterSurface::update(const Eigen::MatrixXd& u) {
 void MasterSurface::build_elements() {
   elements_.clear();
   for (int k = 0; k < int(sides_.size()); ++k) {
-    const NurbsPatch& p = sides_[k].current;
-    const int n = p.param_dim();
-    std::array<std::vector<double>, 2> breaks;
-    std::array<std::vector<int>, 2> spans;
-    std::array<int, 2> ne{1, 1};
-    for (int d = 0; d < n; ++d) {
-      breaks[d] = p.knots(d).breakpoints();
-      spans[d] = p.knots(d).element_spans();
-      ne[d] = int(spans[d].size());
+    const BezierMesh mesh(sides_[k].current);
+    const int n = mesh.param_dim();
+    for (int i = 0; i < mesh.num_elements(); ++i) {
+      const BezierElement& be = mesh.element(i);
+      Element e;
+      e.side = k;
+      e.index = i;
+      e.lo.resize(n);
+      e.hi.resize(n);
+      for (int d = 0; d < n; ++d) e.lo[d] = be.lower[d], e.hi[d] = be.upper[d], e.degree[d] = mesh.degree(d);
+      e.points = be.points;
+      e.weights = be.weights;
+      // The Bezier control points hold the element (positive weights).
+      e.box_lo = be.points.colwise().minCoeff().transpose();
+      e.box_hi = be.points.colwise().maxCoeff().transpose();
+      elements_.push_back(std::move(e));
     }
-    for (int j = 0; j < ne[1]; ++j)
-      for (int i = 0; i < ne[0]; ++i) {
-        Element e;
-        e.side = k;
-        e.index = i + ne[0] * j;
-        e.lo.resize(n);
-        e.hi.resize(n);
-        const std::array<int, 2> ij{i, j};
-        for (int d = 0; d < n; ++d) e.lo[d] = breaks[d][ij[d]], e.hi[d] = breaks[d][ij[d] + 1];
-        // The control points that support the element: a box that holds it.
-        e.box_lo = Eigen::VectorXd::Constant(p.space_dim(), std::numeric_limits<double>::infinity());
-        e.box_hi = -e.box_lo;
-        const int p0 = p.degree(0), p1 = n > 1 ? p.degree(1) : 0;
-        for (int b = 0; b <= p1; ++b)
-          for (int a = 0; a <= p0; ++a) {
-            std::array<int, 3> mi{spans[0][i] - p0 + a, n > 1 ? spans[1][j] - p1 + b : 0, 0};
-            const Eigen::VectorXd X = p.points().row(p.index(mi)).transpose();
-            e.box_lo = e.box_lo.cwiseMin(X);
-            e.box_hi = e.box_hi.cwiseMax(X);
-          }
-        elements_.push_back(std::move(e));
-      }
   }
   order_.resize(elements_.size());
   std::iota(order_.begin(), order_.end(), 0);
   nodes_.clear();
   if (!elements_.empty()) build_tree(0, int(elements_.size()));
+}
+
+void MasterSurface::evaluate(const Element& e, const Eigen::VectorXd& s, Eigen::VectorXd& S, Eigen::MatrixXd& dS) const {
+  const int n = int(s.size()), sd = int(e.points.cols());
+  std::array<std::array<double, 32>, 2> B{}, dB{};
+  for (int d = 0; d < n; ++d) bernstein(e.degree[d], s[d], B[d].data(), dB[d].data());
+  if (n == 1) B[1][0] = 1, dB[1][0] = 0;
+  const int n0 = e.degree[0] + 1, n1 = n > 1 ? e.degree[1] + 1 : 1;
+  // Homogeneous sums: w, num = sum w B X, and their derivatives.
+  double w = 0;
+  std::array<double, 2> dw{0, 0};
+  Eigen::VectorXd num = Eigen::VectorXd::Zero(sd);
+  Eigen::MatrixXd dnum = Eigen::MatrixXd::Zero(sd, n);
+  for (int j = 0; j < n1; ++j)
+    for (int i = 0; i < n0; ++i) {
+      const int a = i + n0 * j;
+      const double wa = e.weights[a];
+      const double b = B[0][i] * B[1][j];
+      const std::array<double, 2> db{dB[0][i] * B[1][j], B[0][i] * dB[1][j]};
+      w += wa * b;
+      num += (wa * b) * e.points.row(a).transpose();
+      for (int d = 0; d < n; ++d) {
+        dw[d] += wa * db[d];
+        dnum.col(d) += (wa * db[d]) * e.points.row(a).transpose();
+      }
+    }
+  S = num / w;
+  dS.resize(sd, n);
+  for (int d = 0; d < n; ++d) dS.col(d) = (dnum.col(d) - S * dw[d]) / w;
 }
 
 int MasterSurface::build_tree(int first, int count) {
@@ -114,24 +130,20 @@ int MasterSurface::build_tree(int first, int count) {
 
 MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::VectorXd& x) const {
   const Side& side = sides_[e.side];
-  const NurbsPatch& p = side.current;
   const int n = int(e.lo.size());
-  auto inside = [&](const Eigen::VectorXd& xi) { return Eigen::VectorXd(xi.cwiseMax(e.lo).cwiseMin(e.hi)); };
-  // The point and its tangents in one evaluation.
-  auto evaluate = [&](const Eigen::VectorXd& xi, Eigen::VectorXd& S, Eigen::MatrixXd& J) {
-    S = p.field(p.points(), xi, &J);
-  };
-  Eigen::VectorXd xi = (e.lo + e.hi) / 2, S, Sn, Sa, Sb;
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n), one = Eigen::VectorXd::Ones(n);
+  auto inside = [&](const Eigen::VectorXd& s) { return Eigen::VectorXd(s.cwiseMax(zero).cwiseMin(one)); };
+  Eigen::VectorXd s = Eigen::VectorXd::Constant(n, 0.5), S, Sn, Sa, Sb;
   Eigen::MatrixXd J, Jn, Ja, Jb;
-  evaluate(xi, S, J);
+  evaluate(e, s, S, J);
   double f = 0.5 * (S - x).squaredNorm();
-  const Eigen::VectorXd h = 1e-6 * (e.hi - e.lo);
+  constexpr double h = 1e-6;
   // Gauss-Newton first (cheap, and fast for the points near the master that
   // contact asks about); Newton with the curvature term once Gauss-Newton
   // stalls or goes uphill (far from a curved master it diverges): the
   // Hessian by central differences of the exact gradient J^T (S - x).  J^T J
   // where that Hessian is not positive; a halving line search; kept inside
-  // the element.
+  // the element, in its Bezier coordinates s in [0, 1]^n.
   bool curvature = false;
   for (int it = 0; it < kNewtonIterations; ++it) {
     const Eigen::VectorXd g = J.transpose() * (S - x);
@@ -140,20 +152,20 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
     Eigen::MatrixXd H = J.transpose() * J;
     if (curvature) {
       for (int j = 0; j < n; ++j) {
-        Eigen::VectorXd a = xi, b = xi;
-        a[j] += h[j];
-        b[j] -= h[j];
-        evaluate(a, Sa, Ja);
-        evaluate(b, Sb, Jb);
-        H.col(j) = (Ja.transpose() * (Sa - x) - Jb.transpose() * (Sb - x)) / (2 * h[j]);
+        Eigen::VectorXd a = s, b = s;
+        a[j] += h;
+        b[j] -= h;
+        evaluate(e, a, Sa, Ja);
+        evaluate(e, b, Sb, Jb);
+        H.col(j) = (Ja.transpose() * (Sa - x) - Jb.transpose() * (Sb - x)) / (2 * h);
       }
       H = (H + H.transpose()).eval() / 2;
     }
-    // Parameters held at a bound of the element that the gradient pushes
+    // Coordinates held at a bound of the element that the gradient pushes
     // outward stay there; Newton runs on the others.
     std::vector<int> free;
     for (int j = 0; j < n; ++j)
-      if (!((xi[j] <= e.lo[j] && g[j] > 0) || (xi[j] >= e.hi[j] && g[j] < 0))) free.push_back(j);
+      if (!((s[j] <= 0 && g[j] > 0) || (s[j] >= 1 && g[j] < 0))) free.push_back(j);
     if (free.empty()) break;  // a corner of the element is the nearest point
     const int m = int(free.size());
     Eigen::MatrixXd Hf(m, m), JtJ(m, m);
@@ -169,31 +181,33 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
     if (!sf.allFinite()) break;
     Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
     for (int a = 0; a < m; ++a) step[free[a]] = sf[a];
-    // Converged: a step below round-off of the parameters (the gradient
+    // Converged: a step below round-off of the coordinates (the gradient
     // itself stalls at round-off of the coordinates, far above 0 when the
     // point is away from the surface).
-    if (step.norm() <= 1e-13 * (e.hi - e.lo).norm()) break;
+    if (step.norm() <= 1e-13) break;
     double t = 1;
-    Eigen::VectorXd next = inside(xi + step);
-    evaluate(next, Sn, Jn);
+    Eigen::VectorXd next = inside(s + step);
+    evaluate(e, next, Sn, Jn);
     while (0.5 * (Sn - x).squaredNorm() > f * (1 + 1e-13) && t > 1e-6) {  // (round-off of f tolerated)
       curvature = true;
       t /= 2;
-      next = inside(xi + t * step);
-      evaluate(next, Sn, Jn);
+      next = inside(s + t * step);
+      evaluate(e, next, Sn, Jn);
     }
-    const double moved = (next - xi).norm();
-    xi = next;
+    const double moved = (next - s).norm();
+    s = next;
     std::swap(S, Sn);
     std::swap(J, Jn);
     f = 0.5 * (S - x).squaredNorm();
-    if (moved <= 1e-13 * (e.hi - e.lo).norm()) break;
+    if (moved <= 1e-13) break;
   }
   MasterPoint mp;
   mp.side = e.side;
   mp.element = e.index;
-  mp.xi = xi;
+  mp.xi = e.lo + s.cwiseProduct(e.hi - e.lo);
   mp.x = S;
+  // (dS/ds is dS/dxi with each column scaled by a positive span length: the
+  // same outward direction.)
   mp.normal = face_area_vector(side.side.face, J).normalized();
   mp.distance = (x - S).norm();
   mp.gap = (x - S).dot(mp.normal);

@@ -9,18 +9,19 @@
 //
 // The search must not visit every master element per slave point: the
 // master's elements are kept in a bounding-volume hierarchy (an AABB tree
-// over the boxes of the control points that support each element, which
-// contain the element by the convex hull property of NURBS with positive
-// weights).  A query descends the tree nearest box first and prunes every
+// over the boxes of each element's rational Bezier control points, which
+// contain the element by the convex hull property, positive weights).  A query descends the tree nearest box first and prunes every
 // box farther than the best point found: O(log n) elements per point for a
 // point near the surface.  On each candidate element the projection is
-// Newton's method on the element's parameters (Gauss-Newton in 3D), kept
-// inside the element's parameter box, started at its centre.  update()
+// Newton's method on the element's Bezier coordinates (Gauss-Newton first),
+// kept inside the element, started at its centre; the element is evaluated
+// in its Bezier form (Bernstein polynomials, no knot search).  update()
 // moves the surface (large deformation: every Newton iteration) and
 // rebuilds the boxes and the tree.
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -71,7 +72,12 @@ class MasterSurface {
     int side = 0, index = 0;
     Eigen::VectorXd lo, hi;              // parameter box
     Eigen::VectorXd box_lo, box_hi;      // bounding box in space
+    std::array<int, 2> degree{0, 0};
+    Eigen::MatrixXd points;              // rational Bezier control points (n_local x dim), first direction fastest
+    Eigen::VectorXd weights;
   };
+  // The element's point S and tangents dS/ds at Bezier coordinates s.
+  void evaluate(const Element& e, const Eigen::VectorXd& s, Eigen::VectorXd& S, Eigen::MatrixXd& dS) const;
   struct Node {
     Eigen::VectorXd lo, hi;
     int left = -1, right = -1;           // children, or -1 for a leaf
