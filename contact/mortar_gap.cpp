@@ -20,7 +20,7 @@ ObstacleProbe MasterAsObstacle::probe(const Eigen::VectorXd& x, bool with_deriva
 std::string MasterAsObstacle::describe() const { return "the deformable face '" + name_ + "'"; }
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master) {
-  const int dim = dofs.dim(), m = slave.num_multipliers();
+  const int m = slave.num_multipliers();
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
@@ -28,15 +28,6 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
   Eigen::MatrixXd master_derivs;
-  // One coupling entry: multiplier K, body control point a, weight w n_i.
-  auto couple = [&](int K, int a, double w, const Eigen::VectorXd& n) {
-    for (int i = 0; i < dim; ++i) {
-      const int dof = a * dim + i;
-      const double v = w * n[i];
-      if (dofs.equation(dof) >= 0) trip.emplace_back(K, dofs.equation(dof), v);
-      else op.g0[K] += v * dofs.prescribed_value(dof);
-    }
-  };
   ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                               const std::vector<double>& B) {
     const Eigen::VectorXd X = ev.X[q];
@@ -49,9 +40,9 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
       if (bw == 0.0) continue;
       op.weights[K[k]] += bw;
       op.g0[K[k]] += mp->gap * bw;
-      for (int a = 0; a < ev.n_loc; ++a) couple(K[k], ev.cps[a], bw * ev.N(q, a), mp->normal);
+      for (int a = 0; a < ev.n_loc; ++a) add_gap_coupling(dofs, K[k], ev.cps[a], bw * ev.N(q, a), mp->normal, trip, op.g0);
       for (size_t a = 0; a < master_local.size(); ++a)
-        couple(K[k], master_cps[master_local[a]], -bw * master_values[a], mp->normal);
+        add_gap_coupling(dofs, K[k], master_cps[master_local[a]], -bw * master_values[a], mp->normal, trip, op.g0);
     }
   });
   op.G.resize(m, dofs.num_free());

@@ -36,8 +36,19 @@ FaceQuadrature ContactFace::face_quadrature(int points) const {
 ContactQuadrature::ContactQuadrature(const ContactFace& cf)
     : cf_(&cf), faces_(cf.face_quadrature(cf.quadrature_points())) {}
 
+void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::Ref<const Eigen::VectorXd>& n,
+                      std::vector<Eigen::Triplet<double>>& trip, Eigen::VectorXd& g0) {
+  const int dim = dofs.dim();
+  for (int i = 0; i < dim; ++i) {
+    const int dof = a * dim + i;
+    const double v = w * n[i];
+    if (dofs.equation(dof) >= 0) trip.emplace_back(K, dofs.equation(dof), v);
+    else g0[K] += v * dofs.prescribed_value(dof);
+  }
+}
+
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle) {
-  const int dim = dofs.dim(), m = cf.num_multipliers();
+  const int m = cf.num_multipliers();
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
@@ -50,15 +61,7 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
       if (bw == 0.0) continue;
       op.weights[K[k]] += bw;
       op.g0[K[k]] += pr.gap * bw;
-      for (int a = 0; a < ev.n_loc; ++a)
-        for (int i = 0; i < dim; ++i) {
-          const int dof = ev.cps[a] * dim + i;
-          const double v = bw * ev.N(q, a) * pr.normal[i];
-          if (dofs.equation(dof) >= 0)
-            trip.emplace_back(K[k], dofs.equation(dof), v);
-          else
-            op.g0[K[k]] += v * dofs.prescribed_value(dof);
-        }
+      for (int a = 0; a < ev.n_loc; ++a) add_gap_coupling(dofs, K[k], ev.cps[a], bw * ev.N(q, a), pr.normal, trip, op.g0);
     }
   });
   op.G.resize(m, dofs.num_free());

@@ -88,6 +88,12 @@ struct WeightedGapOperator {
   }
 };
 
+// One coupling of multiplier K to body control point a with weight w along
+// the normal n: G_{K,(a,i)} += w n_i for a free dof, or its prescribed value
+// moved into g0.  The one scatter of the obstacle and the mortar gaps.
+void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::Ref<const Eigen::VectorXd>& n,
+                      std::vector<Eigen::Triplet<double>>& trip, Eigen::VectorXd& g0);
+
 // Several operators (one per contact) as one: rows stacked in order.
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle);

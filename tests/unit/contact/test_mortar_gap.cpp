@@ -40,6 +40,29 @@ struct TwoBlocks {
   double slave_force = 0, master_force = 0;  // along the load (y in 2D, z in 3D)
 };
 
+// The contact of `slave` on `master` solved with the body's free rigid
+// motions; the contact forces -G^T lambda (K u + G^T lambda = f) along
+// `load_dir`, summed per body.
+TwoBlocks solve_pair(const Body& body, const DofMap& dofs, const LinearSystem& sys, const PatchSide& slave,
+                     const PatchSide& master, int load_dir) {
+  TwoBlocks out;
+  const RigidModes modes = free_rigid_modes(body, dofs);
+  out.free_modes = int(modes.modes.cols());
+  out.op = assemble_mortar_gaps(dofs, ContactFace(body, slave), MasterSurface(body, {master}));
+  SparseCholesky chol;
+  ContactSolverOptions opt;
+  opt.complementarity_scale = 1.0 / 0.1;
+  out.sol = solve_small_strain_contact(sys.K, sys.f, out.op, modes, chol, opt);
+  const Eigen::VectorXd force = -(out.op.G.transpose() * out.sol.lambda);
+  const int dim = body.space_dim();
+  for (int k = 0; k < 2; ++k)
+    for (int a : body.body_cps(k)) {
+      const int eq = dofs.equation(a * dim + load_dir);
+      if (eq >= 0) (k == 1 ? out.slave_force : out.master_force) += force[eq];
+    }
+  return out;
+}
+
 // Patch 0: the lower block [0, 1] x [0, 1], held at its bottom (u_y) and
 // left side (u_x), the master.  Patch 1: the upper block [0, 1] x [1, 1.5],
 // its left side held in x, pressed by kPressure on top, its bottom the slave.
@@ -48,25 +71,7 @@ TwoBlocks press(int p, int n_lower, int n_upper) {
   const DofMap dofs(body, {{{PatchSide{0, kBottom}}, 1, 0.0}, {{PatchSide{0, kLeft}}, 0, 0.0}, {{PatchSide{1, kLeft}}, 0, 0.0}});
   LinearSystem sys = assemble_linear_elasticity(body, dofs, LinearElastic{1.0, 0.3}, Eigen::VectorXd::Zero(2));
   add_pressure_load(body, dofs, {PatchSide{1, kTop}}, kPressure, sys.f);
-  TwoBlocks out;
-  const RigidModes modes = free_rigid_modes(body, dofs);
-  out.free_modes = int(modes.modes.cols());
-  const ContactFace slave(body, PatchSide{1, kBottom});
-  const MasterSurface master(body, {PatchSide{0, kTop}});
-  out.op = assemble_mortar_gaps(dofs, slave, master);
-  SparseCholesky chol;
-  ContactSolverOptions opt;
-  opt.complementarity_scale = 1.0 / 0.1;
-  out.sol = solve_small_strain_contact(sys.K, sys.f, out.op, modes, chol, opt);
-  // The contact forces on the bodies, -G^T lambda (K u + G^T lambda = f),
-  // y components, summed per body.
-  const Eigen::VectorXd force = -(out.op.G.transpose() * out.sol.lambda);
-  for (int k = 0; k < 2; ++k)
-    for (int a : body.body_cps(k)) {
-      const int eq = dofs.equation(a * 2 + 1);
-      if (eq >= 0) (k == 1 ? out.slave_force : out.master_force) += force[eq];
-    }
-  return out;
+  return solve_pair(body, dofs, sys, PatchSide{1, kBottom}, PatchSide{0, kTop}, 1);
 }
 
 double worst_pressure_error(const TwoBlocks& r) {
@@ -120,21 +125,7 @@ TwoBlocks press_3d(int p, int n_lower, int n_upper) {
                            {{PatchSide{0, y0}, PatchSide{1, y0}}, 1, 0.0}});
   LinearSystem sys = assemble_linear_elasticity(body, dofs, LinearElastic{1.0, 0.3}, Eigen::VectorXd::Zero(3));
   add_pressure_load(body, dofs, {PatchSide{1, z1}}, kPressure, sys.f);
-  TwoBlocks out;
-  const RigidModes modes = free_rigid_modes(body, dofs);
-  out.free_modes = int(modes.modes.cols());
-  out.op = assemble_mortar_gaps(dofs, ContactFace(body, PatchSide{1, z0}), MasterSurface(body, {PatchSide{0, z1}}));
-  SparseCholesky chol;
-  ContactSolverOptions opt;
-  opt.complementarity_scale = 1.0 / 0.1;
-  out.sol = solve_small_strain_contact(sys.K, sys.f, out.op, modes, chol, opt);
-  const Eigen::VectorXd force = -(out.op.G.transpose() * out.sol.lambda);
-  for (int k = 0; k < 2; ++k)
-    for (int a : body.body_cps(k)) {
-      const int eq = dofs.equation(a * 3 + 2);
-      if (eq >= 0) (k == 1 ? out.slave_force : out.master_force) += force[eq];
-    }
-  return out;
+  return solve_pair(body, dofs, sys, PatchSide{1, z0}, PatchSide{0, z1}, 2);
 }
 
 TEST(MortarGap, BoxOnBoxIn3D) {
