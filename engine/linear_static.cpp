@@ -9,8 +9,6 @@
 
 namespace igac {
 
-namespace {
-
 // The bodies of a Body: its patches grouped by the interfaces that join
 // them (two deformable parts in contact are two groups: each has its own
 // rigid motions).  component[k] for patch k, numbered from 0.
@@ -34,8 +32,6 @@ std::vector<int> patch_components(const Body& body) {
   }
   return out;
 }
-
-}  // namespace
 
 RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
   const int dim = body.space_dim(), n_cp = body.num_control_points();

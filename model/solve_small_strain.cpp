@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The small-deformation path of solve_model: one linear solve, or the
 // active-set contact solve; the reactions and the contact report.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "contact/coarse_start.hpp"
 #include "engine/stopwatch.hpp"
@@ -42,18 +44,39 @@ WeightedGapOperator assemble_contact_operator(const Model& m) {
   return stack(ops);
 }
 
+namespace {
+// Which patches the rigid motions `free` (free numbering, one per column)
+// move, said when the body is several bodies (patches no interface joins):
+// the patch that came loose is the one to look at.
+std::string loose_patches(const Model& m, const Eigen::MatrixXd& free) {
+  const std::vector<int> component = patch_components(m.body);
+  if (free.cols() == 0 || *std::max_element(component.begin(), component.end()) == 0) return "";
+  const int dim = m.body.space_dim();
+  std::vector<int> moved;
+  for (int k = 0; k < m.body.num_patches(); ++k) {
+    double amount = 0;
+    for (int a : m.body.body_cps(k))
+      for (int i = 0; i < dim; ++i)
+        if (const int eq = m.dofs->equation(a * dim + i); eq >= 0) amount += free.row(eq).squaredNorm();
+    if (amount > 1e-16 * free.squaredNorm()) moved.push_back(k);
+  }
+  return fmt::format(" (they move patch(es) {}: the body is {} parts that no interface joins, and these are not held)",
+                     fmt::join(moved, ", "), *std::max_element(component.begin(), component.end()) + 1);
+}
+}  // namespace
+
 void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f) {
   const int k = int(modes.modes.cols());
   if (k == 0) return;
   if (m.contacts.empty())
     throw InputError(fmt::format(
-        "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]",
-        m.spec.path, k));
+        "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]{}",
+        m.spec.path, k, loose_patches(m, modes.modes)));
   // A frictionless contact holds a rigid motion only if the motion changes
   // the weighted gaps: H = G * modes must have full column rank.
   const WeightedGapOperator op = assemble_contact_operator(m);
   const Eigen::MatrixXd H = op.G * modes.modes;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(H);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(H, Eigen::ComputeFullV);
   const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
   int held = 0;
   for (int i = 0; i < svd.singularValues().size(); ++i)
@@ -61,8 +84,8 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   if (held < k)
     throw InputError(fmt::format(
         "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and the frictionless contact "
-        "cannot stop them (it pushes only along the obstacle's normal); add a [[dirichlet]] condition",
-        m.spec.path, k - held));
+        "cannot stop them (it pushes only along the obstacle's normal); add a [[dirichlet]] condition{}",
+        m.spec.path, k - held, loose_patches(m, modes.modes * svd.matrixV().rightCols(k - held))));
   // One free motion (the usual symmetric case): the load must move the body
   // toward the obstacle, closing some gap, or nothing balances it.
   if (k == 1) {

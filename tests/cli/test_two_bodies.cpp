@@ -71,6 +71,9 @@ INSTANTIATE_TEST_SUITE_P(
                   "not both"},
         BadMaster{"large_deformation", "model = \"linear_elastic\"", "model = \"neo_hookean\"",
                   "two deformable bodies runs in small deformation only"},
+        // A part nothing holds sideways: the message names the loose patch.
+        BadMaster{"loose_part", "faces = [\"0:west\", \"1:west\"]", "faces = [\"0:west\"]",
+                  "they move patch(es) 1: the body is 2 parts that no interface joins"},
         BadMaster{"faces_away", "master = \"0:north\"", "master = \"0:south\"", "[contact] face '1:south' and its master '0:south'"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
