@@ -51,4 +51,20 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
   return op;
 }
 
+Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& slave, MasterSurface& master) {
+  master.update(u);
+  const int m = slave.num_multipliers();
+  Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
+  ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
+                                              const std::vector<double>& B) {
+    const std::optional<MasterPoint> mp = master.project(ev.displaced(q, u));
+    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    for (size_t k = 0; k < K.size(); ++k) {
+      num[K[k]] += mp->gap * B[k] * ev.JxW[q];
+      den[K[k]] += B[k] * ev.JxW[q];
+    }
+  });
+  return num.cwiseQuotient(den);
+}
+
 }  // namespace igac

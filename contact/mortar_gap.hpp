@@ -42,4 +42,9 @@ class MasterAsObstacle final : public Obstacle {
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master);
 
+// Weighted gaps of the exact gap in the displaced configuration, u per body
+// control point (n_cp x dim): each slave point X + u(X) projected on the
+// master moved by u (`master` is updated to it).  What G linearises.
+Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& slave, MasterSurface& master);
+
 }  // namespace igac

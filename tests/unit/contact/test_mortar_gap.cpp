@@ -143,6 +143,37 @@ TEST(MortarGap, BoxOnBoxIn3D) {
   EXPECT_NEAR(other.slave_force + other.master_force, 0.0, 1e-14);
 }
 
+// G is the derivative of the exact weighted gaps (both bodies displaced,
+// the slave points projected again on the moved master): central
+// differences in every free dof, on a curved pair (the quarter disc's arc
+// over a block, with a gap) so that the normal and the projection point
+// move.  A wrong sign or a missing master column is an O(1) mismatch.
+TEST(MortarGap, OperatorIsTheDerivativeOfTheExactGaps) {
+  NurbsPatch disc = elevate_to(quarter_disc(1.0).patch, 2);
+  disc = refine_to(disc, 0, KnotVector::uniform(2, 6));
+  disc = refine_to(disc, 1, KnotVector::uniform(2, 2));
+  const NurbsPatch under = block(2, 5, 2, -1.6, 0.5);  // [0, 1] x [-1.6, -1.1]: a gap of 0.1 under the arc's bottom
+  const Body body({disc, under}, {});
+  const DofMap dofs(body, {});
+  const ContactFace slave(body, PatchSide{0, Face{1, false}});
+  MasterSurface master(body, {PatchSide{1, kTop}});
+  const WeightedGapOperator op = assemble_mortar_gaps(dofs, slave, master);
+  const Eigen::MatrixXd J = op.weights.cwiseInverse().asDiagonal() * Eigen::MatrixXd(op.G);
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(body.num_control_points(), 2);
+  EXPECT_LE((exact_mortar_gaps(zero, slave, master) - op.g0.cwiseQuotient(op.weights)).cwiseAbs().maxCoeff(), 1e-14);
+  const double h = 1e-6;
+  double worst = 0;
+  for (int dof = 0; dof < dofs.num_dofs(); ++dof) {
+    Eigen::MatrixXd up = zero, down = zero;
+    up(dof / 2, dof % 2) = h;
+    down(dof / 2, dof % 2) = -h;
+    const Eigen::VectorXd fd = (exact_mortar_gaps(up, slave, master) - exact_mortar_gaps(down, slave, master)) / (2 * h);
+    worst = std::max(worst, (fd - J.col(dofs.equation(dof))).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-6 * J.cwiseAbs().maxCoeff());
+  EXPECT_GT(J.cwiseAbs().maxCoeff(), 0.1);
+}
+
 TEST(MortarGap, ForceOnTheSlaveIsMinusTheForceOnTheMaster) {
   const TwoBlocks r = press(2, 5, 3);
   ASSERT_TRUE(r.sol.converged);
