@@ -259,6 +259,7 @@ int main(int argc, char** argv) {
   // the idle cores cost several times the work (measured 3x on 2 shared cores).
   omp_set_dynamic(1);
   CLI::App app{"igac: isogeometric contact mechanics (NURBS bodies pressed on rigid obstacles)"};
+  app.set_version_flag("--version", std::string("igac ") + IGAC_VERSION);
   app.require_subcommand(1);
   std::string case_path, out;
   std::optional<int> refine, degree;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
@@ -86,12 +87,32 @@ Json contact_numbers(const RunResult& r, const ContactResult& cr) {
   c["total_force"] = finite_or_null(rep.total_force);
   return c;
 }
+// FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
+// summary came from (not a cryptographic hash).  Empty when unreadable.
+std::string fnv1a64_of_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  std::uint64_t h = 14695981039346656037ull;
+  char buf[4096];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      h ^= static_cast<unsigned char>(buf[i]);
+      h *= 1099511628211ull;
+    }
+    if (!in) break;
+  }
+  return fmt::format("{:016x}", h);
+}
+
 }  // namespace
 
 Json run_summary(const Model& m, const RunResult& r) {
   const Body& body = m.body;
   Json j;
   j["case"] = m.spec.name;
+  j["igac_version"] = IGAC_VERSION;
+  if (const std::string hash = fnv1a64_of_file(m.spec.path); !hash.empty())
+    j["input"] = {{"path", std::filesystem::absolute(m.spec.path).lexically_normal().string()}, {"fnv1a64", hash}};
   j["dim"] = body.space_dim();
   j["degree"] = body.degree();
   j["elements"] = body.num_elements();
