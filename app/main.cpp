@@ -309,6 +309,14 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // A mistyped command ("igac rn case.toml"): name it, and the one meant.
+    if (const std::vector<std::string> commands{"run", "study", "geometry"};
+        argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+      const auto near = nearest_name(argv[1], commands);
+      say(fmt::format("igac: error: unknown command '{}'{} (see igac --help)", argv[1],
+                      near ? fmt::format("; did you mean '{}'?", *near) : ""));
+      return 2;
+    }
     say(fmt::format("igac: error: {} (see igac --help)", e.what()));
     return 2;
   }

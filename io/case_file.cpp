@@ -42,6 +42,33 @@ const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increm
 const std::set<std::string> kOutputKeys{"vtk"};
 const std::set<std::string> kSolverKeys{"type", "options", "preconditioner"};
 
+}  // namespace
+
+std::optional<std::string> nearest_name(const std::string& word, const std::vector<std::string>& candidates) {
+  // Levenshtein distance, one row at a time.
+  auto distance = [](const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+      size_t diagonal = row[0];
+      row[0] = i;
+      for (size_t j = 1; j <= b.size(); ++j) {
+        const size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+        diagonal = up;
+      }
+    }
+    return row[b.size()];
+  };
+  std::optional<std::string> best;
+  size_t best_d = std::max<size_t>(1, word.size() / 3) + 1;
+  for (const std::string& c : candidates)
+    if (const size_t d = distance(word, c); d < best_d) best_d = d, best = c;
+  return best;
+}
+
+namespace {
+
 // A view of one TOML table that knows its name for messages and refuses
 // keys it does not expect.
 class Section {
@@ -49,9 +76,13 @@ class Section {
   Section(const std::string& file, std::string name, const toml::table& t, std::set<std::string> allowed)
       : file_(file), name_(std::move(name)), t_(t) {
     for (const auto& [k, v] : t)
-      if (!allowed.count(std::string(k.str())))
-        fail(std::string(k.str()), fmt::format("unknown key (expected one of: {})", fmt::join(allowed, ", ")),
+      if (!allowed.count(std::string(k.str()))) {
+        const auto near = nearest_name(std::string(k.str()), {allowed.begin(), allowed.end()});
+        fail(std::string(k.str()),
+             fmt::format("unknown key{} (expected one of: {})", near ? fmt::format("; did you mean '{}'?", *near) : "",
+                         fmt::join(allowed, ", ")),
              v.source().begin.line);
+      }
   }
   [[noreturn]] void fail(const std::string& key, const std::string& why, int line = 0) const {
     if (!line)

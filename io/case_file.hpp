@@ -24,6 +24,11 @@ CaseSpec read_case(const std::string& path);
 // obstacles contribute their registered keys.  docs/case_file.md documents
 // each one (tests/unit/io/test_docs.cpp checks both ways).
 std::vector<std::string> declared_case_keys();
+
+// The candidate nearest to `word` by edit distance, when it is near enough
+// to be a slip (at most a third of the word's letters, at least one):
+// "did you mean" for unknown keys and subcommands.
+std::optional<std::string> nearest_name(const std::string& word, const std::vector<std::string>& candidates);
 // Why a case file's [solver] options cannot be given to PETSc ("" when they
 // can): a case file may give only a few known options with checked values.
 std::string check_case_petsc_options(const std::string& options);

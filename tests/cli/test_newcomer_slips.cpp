@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Slips a newcomer makes get the name they meant: a mistyped command
+// (`igac rn`) or key (`Ee`, `center` for `centre`) is still a one-line
+// error with exit code 2, and says "did you mean".  A word far from every
+// name gets no guess.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "io/case_file.hpp"
+#include "tests/support/igac_process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(NewcomerSlips, MistypedCommandNamesTheCommandMeant) {
+  igac_test::TempDir tmp("slips_command");
+  const auto o = igac_test::run_igac("rn case.toml", tmp.path());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.output, "igac: error: unknown command 'rn'; did you mean 'run'? (see igac --help)\n");
+  const auto far = igac_test::run_igac("zzzzz case.toml", tmp.path());
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
+}
+
+TEST(NewcomerSlips, MistypedKeyNamesTheKeyMeant) {
+  igac_test::TempDir tmp("slips_key");
+  std::string text = igac_test::read_file(fs::path(IGAC_SOURCE_DIR) / "cases" / "hertz2d.toml");
+  text.replace(text.find("\nnu = 0.3"), 9, "\nnuu = 0.3");
+  std::ofstream(tmp.path() / "case.toml") << text;
+  const auto o = igac_test::run_igac("run case.toml --out result", tmp.path());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  EXPECT_NE(o.output.find("[material] nuu: unknown key; did you mean 'nu'?"), std::string::npos) << o.output;
+}
+
+TEST(NewcomerSlips, NearestNameGuessesOnlyCloseWords) {
+  const std::vector<std::string> keys{"centre", "radius", "motion", "type"};
+  EXPECT_EQ(igac::nearest_name("center", keys), "centre");
+  EXPECT_EQ(igac::nearest_name("raduis", keys), "radius");
+  EXPECT_EQ(igac::nearest_name("colour", keys), std::nullopt);
+  EXPECT_EQ(igac::nearest_name("x", {"y", "z"}), "y");  // one letter off a one-letter name
+}
+
+}  // namespace
