@@ -284,7 +284,7 @@ int main(int argc, char** argv) {
   study->add_option("case", case_path, "case file (TOML)")->required();
   study->add_option("--levels", levels, "number of refinement levels")->required();
   study->add_option("--degree", degree, "NURBS degree p");
-  study->add_option("--out", out, "output folder for study.json, study.csv, study.svg");
+  study->add_option("--out", out, "output folder for study.json, study.csv, study.svg (default out/<case name>_study)");
   study->add_flag("--quiet", quiet, "print only the table");
   study->add_option("--solver", solver, "linear solver: direct (CHOLMOD) or petsc (one process)")
       ->check(CLI::IsMember({"direct", "petsc"}));
@@ -317,7 +317,11 @@ int main(int argc, char** argv) {
                       near ? fmt::format("; did you mean '{}'?", *near) : ""));
       return 2;
     }
-    say(fmt::format("igac: error: {} (see igac --help)", e.what()));
+    // The help of the command that was given, when there is one.
+    std::string help = "igac --help";
+    for (const CLI::App* sub : app.get_subcommands())
+      if (sub->parsed()) help = "igac " + sub->get_name() + " --help";
+    say(fmt::format("igac: error: {} (see {})", e.what(), help));
     return 2;
   }
   try {
@@ -325,7 +329,10 @@ int main(int argc, char** argv) {
                                           preconditioner, argv);
     if (geometry->parsed()) {
       check_geometry_destination(out, case_path);
-      write_gismo_xml(case_body(read_case(case_path)), out);
+      const MultiPatch body = case_body(read_case(case_path));
+      write_gismo_xml(body, out);
+      fmt::print("igac: wrote {}: {} patch(es), {} interface(s), before refinement\n", out, body.patches.size(),
+                 body.interfaces.size());
       return 0;
     }
     CaseSpec spec = read_case(case_path);
@@ -344,7 +351,9 @@ int main(int argc, char** argv) {
     std::optional<PetscSession> petsc;
     if (spec.solver.type == "petsc") petsc.emplace(spec.solver.options);
 #endif
-    return run_study(spec, StudyOptions{levels, out, quiet});
+    // Without --out a study writes beside the runs, out/<name>_study (not
+    // out/<name>: that would replace the case's own run output).
+    return run_study(spec, StudyOptions{levels, out.empty() ? "out/" + spec.name + "_study" : out, quiet});
   } catch (const InputError& e) {
     say(fmt::format("igac: error: {}", e.what()));
     return 2;

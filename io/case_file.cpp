@@ -321,6 +321,9 @@ CaseSpec read_case(const std::string& path) {
     if (geo.has("shape")) geo.fail("file", "give either a shape or a file, not both");
     const std::filesystem::path f = geo.string("file");
     c.geometry_file = (f.is_absolute() ? f : std::filesystem::path(path).parent_path() / f).lexically_normal().string();
+    if (std::error_code ec; !std::filesystem::exists(c.geometry_file, ec))
+      geo.fail("file", fmt::format("no such file: {} (a relative file is read from the case file's folder)",
+                                   std::filesystem::absolute(c.geometry_file).lexically_normal().string()));
     auto read = std::make_shared<const MultiPatch>(read_gismo_xml(c.geometry_file));  // one-line errors naming the file's line
     const MultiPatch& body = *read;
     c.file_body = read;

@@ -44,3 +44,39 @@ TEST(NewcomerSlips, NearestNameGuessesOnlyCloseWords) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(NewcomerSlips, GeometrySaysWhatItWroteAndWhereItsHelpIs) {
+  igac_test::TempDir tmp("slips_geometry");
+  const std::string case_file = (fs::path(IGAC_SOURCE_DIR) / "cases" / "two_blocks.toml").string();
+  const auto missing = igac_test::run_igac("geometry " + case_file, tmp.path());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("(see igac geometry --help)"), std::string::npos) << missing.output;
+  const auto wrote = igac_test::run_igac("geometry " + case_file + " --out body.xml", tmp.path());
+  EXPECT_EQ(wrote.exit_code, 0);
+  EXPECT_EQ(wrote.output, "igac: wrote body.xml: 2 patch(es), 0 interface(s), before refinement\n");
+  EXPECT_TRUE(fs::is_regular_file(tmp.path() / "body.xml"));
+}
+
+TEST(NewcomerSlips, MissingGeometryFileNamesTheCaseAndTheResolvedPath) {
+  igac_test::TempDir tmp("slips_missing_file");
+  std::string text = igac_test::read_file(fs::path(IGAC_SOURCE_DIR) / "cases" / "two_blocks.toml");
+  text.replace(text.find("file = \"two_blocks.xml\""), 23, "file = \"nowhere.xml\"");
+  std::ofstream(tmp.path() / "case.toml") << text;
+  const auto o = igac_test::run_igac("run case.toml --out result", tmp.path());
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("case.toml:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("[geometry] file: no such file: " + (tmp.path() / "nowhere.xml").string()),
+            std::string::npos) << o.output;
+}
+
+TEST(NewcomerSlips, StudyWithoutOutWritesBesideTheRuns) {
+  igac_test::TempDir tmp("slips_study_out");
+  const fs::path cases = fs::path(IGAC_SOURCE_DIR) / "cases";
+  const auto o = igac_test::run_igac("study " + (cases / "two_blocks.toml").string() + " --levels 4 --quiet", tmp.path());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(fs::is_regular_file(tmp.path() / "out" / "two_blocks_study" / "study.json"));
+}
+
+}  // namespace
