@@ -463,6 +463,7 @@ CaseSpec read_case(const std::string& path) {
       s.fail("obstacle", "missing: give an obstacle (a rigid body) or a master face (a second deformable body)");
     if (s.has("master")) {
       cs.master = s.string("master");
+      if (cs.master.empty()) s.fail("master", "empty: name the face of the second body");  // ("" means no master)
       if (cs.master == cs.face) s.fail("master", "the master face is the contact face itself");
       if (c.finite_strain())
         s.fail("master", fmt::format("contact between two deformable bodies runs in small deformation only (material "

@@ -71,7 +71,14 @@ INSTANTIATE_TEST_SUITE_P(
                   "not both"},
         BadMaster{"large_deformation", "model = \"linear_elastic\"", "model = \"neo_hookean\"",
                   "two deformable bodies runs in small deformation only"},
-        BadMaster{"faces_away", "master = \"0:north\"", "master = \"0:south\"", "[contact] face '1:south' and its master '0:south'"}),
+        BadMaster{"faces_away", "master = \"0:north\"", "master = \"0:south\"", "[contact] face '1:south' and its master '0:south'"},
+        // bench/hostile_inputs.py: an empty master read as "no master" and
+        // the contact built an obstacle of no type (SIGSEGV).
+        BadMaster{"empty", "master = \"0:north\"", "master = \"\"", "[contact] master: empty"},
+        // and a master on the slave's own body "converged" to displacements
+        // of 1e30: the mortar gap of a body with itself holds nothing.
+        BadMaster{"same_body", "master = \"0:north\"", "master = \"1:north\"",
+                  "master '1:north' is on the same body as the face '1:south'"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
 }  // namespace
