@@ -270,7 +270,7 @@ CaseSpec read_case(const std::string& path) {
   const bool plain = !c.name.empty() && c.name != "." && c.name != ".." && c.name.size() <= 200 &&
                      std::none_of(c.name.begin(), c.name.end(), [](unsigned char ch) { return ch == '/' || ch == '\\' || ch < 32 || ch == 127; });
   if (!plain)
-    top.fail("name", fmt::format("'{}' is not a plain file name (it names the output folder out/<name>: "
+    top.fail("name", fmt::format("{:?} is not a plain file name (it names the output folder out/<name>: "
                                  "no '/', not empty, not '.' or '..')", c.name));
   c.description = top.string("description", "");
 
@@ -487,13 +487,13 @@ CaseSpec read_case(const std::string& path) {
       for (const ObstacleKey& k : kind->keys) {
         const std::string key(k.key);
         if (k.vector) {
-          const auto v = o.numbers(key, dim);
+          const auto v = o.loads(key, dim);  // finite, at most 1e100 in size
           double n2 = 0;
           for (double x : v) n2 += x * x;
           if (k.nonzero && !(n2 > 0)) o.fail(key, "must not be zero");
           cs.obstacle.values[key] = v;
         } else {
-          const double v = o.number(key);
+          const double v = o.load(key);
           if (k.positive && !(v > 0)) o.fail(key, "must be positive");
           cs.obstacle.values[key] = {v};
         }

@@ -162,7 +162,17 @@ INSTANTIATE_TEST_SUITE_P(
         MessageCase{"not_held_large_deformation", "hertz2d_neohookean_pressure", "faces = [\"left\"]\ncomponent = \"x\"",
                     "faces = [\"left\"]\ncomponent = \"y\"\nvalue = 0.0", {"the body is not held"}},
         MessageCase{"load_pulls_away_small_deformation", "hertz2d", "value = 0.003", "value = -0.003",
-                    {"the load pulls the body away from the obstacle"}}),
+                    {"the load pulls the body away from the obstacle"}},
+        // bench/hostile_inputs.py: an obstacle 1e300 away ran, printed a
+        // displacement of inf and ended in a failed VTU write (exit 1).
+        MessageCase{"obstacle_point_1e300", "hertz2d", "point = [0.0, -1.0]", "point = [0.0, 1e300]",
+                    {"[contact.obstacle] point:", "1e+300", "larger than 1e100"}},
+        MessageCase{"obstacle_radius_1e300", "hertz2d", "type = \"plane\"\npoint = [0.0, -1.0]\nnormal = [0.0, 1.0]",
+                    "type = \"sphere\"\ncentre = [0.0, -2.0]\nradius = 1e300",
+                    {"[contact.obstacle] radius:", "larger than 1e100"}},
+        // a name with a line break made the one-line error two lines
+        MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
+                    {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),
     [](const ::testing::TestParamInfo<MessageCase>& info) { return info.param.name; });
 
 TEST(HostileInput, SelfContradictingCaseIsWarnedAbout) {
