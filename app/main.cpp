@@ -311,6 +311,13 @@ int main(int argc, char** argv) {
     say(fmt::format("igac: error: {} (see igac --help)", e.what()));
     return 2;
   }
+  // An empty --out (an unset shell variable) is no folder: refused, rather
+  // than read as "no --out given" and written to out/<name>.
+  for (auto* sub : {run, study, geometry})
+    if (sub->parsed() && sub->get_option("--out")->count() > 0 && out.empty()) {
+      say("igac: error: --out: an empty folder name (give a folder, or leave --out out for out/<name>)");
+      return 2;
+    }
   try {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options,
                                           preconditioner, argv);

@@ -57,6 +57,14 @@ TEST(OutputFolder, OutThatIsAFileIsRefusedAndKept) {
   EXPECT_EQ(listing(tmp.path()), std::set<std::string>{"results"});
 }
 
+// bench/hostile_inputs.py: `--out ""` (an unset shell variable) wrote to
+// out/<name> as if no --out had been given.
+TEST(OutputFolder, EmptyOutIsRefused) {
+  TempDir tmp("emptyout");
+  expect_out_refused("", tmp.path());
+  EXPECT_TRUE(tmp.empty());
+}
+
 TEST(OutputFolder, OutUnderSystemFoldersIsRefused) {
   TempDir tmp("outsys");
   expect_out_refused("/dev/null", tmp.path());
