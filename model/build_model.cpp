@@ -50,6 +50,10 @@ std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::stri
                                        m.body.describe(side_in_file(m, itf.second))));
     out.insert(out.end(), f->begin(), f->end());
   }
+  for (auto it = out.begin(); it != out.end(); ++it)  // a load counted twice, multipliers made twice over
+    if (std::find(out.begin(), it, *it) != it)
+      throw InputError(fmt::format("{}: [{}] faces {}: the side {} is listed twice", m.spec.path, section,
+                                   fmt::join(names, ", "), m.body.describe(*it)));
   return out;
 }
 

@@ -170,6 +170,12 @@ INSTANTIATE_TEST_SUITE_P(
         MessageCase{"obstacle_radius_1e300", "hertz2d", "type = \"plane\"\npoint = [0.0, -1.0]\nnormal = [0.0, 1.0]",
                     "type = \"sphere\"\ncentre = [0.0, -2.0]\nradius = 1e300",
                     {"[contact.obstacle] radius:", "larger than 1e100"}},
+        // a side listed twice doubled its pressure silently, and made a
+        // contact face's multipliers twice over: a "singular contact system" (exit 1)
+        MessageCase{"pressure_face_twice", "hertz2d", "faces = [\"top\"]", "faces = [\"top\", \"top\"]",
+                    {"[pressure] faces top, top:", "listed twice"}},
+        MessageCase{"contact_set_lists_a_side_twice", "hertz2d", "face = \"curved\"",
+                    "face = \"both\"\n[faces]\nboth = [\"curved\", \"curved\"]", {"[faces] faces curved, curved:", "listed twice"}},
         // a name with a line break made the one-line error two lines
         MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
                     {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),
