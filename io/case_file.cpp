@@ -501,6 +501,10 @@ CaseSpec read_case(const std::string& path) {
       if (o.has("motion")) cs.obstacle.motion = o.loads("motion", dim);
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
+    for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system
+      if (o.face == cs.face && o.master == cs.master && o.obstacle.type == cs.obstacle.type &&
+          o.obstacle.values == cs.obstacle.values && o.obstacle.motion == cs.obstacle.motion)
+        s.fail("face", fmt::format("the contact of face '{}' is given twice", cs.face));
     c.contacts.push_back(cs);
   }
   if (root.contains("reference")) {

@@ -176,6 +176,10 @@ INSTANTIATE_TEST_SUITE_P(
                     {"[pressure] faces top, top:", "listed twice"}},
         MessageCase{"contact_set_lists_a_side_twice", "hertz2d", "face = \"curved\"",
                     "face = \"both\"\n[faces]\nboth = [\"curved\", \"curved\"]", {"[faces] faces curved, curved:", "listed twice"}},
+        MessageCase{"same_obstacle_twice", "lame_cylinder", "[reference]",
+                    "[[contact]]\nface = \"outer\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [2.0, 0.0]\nnormal = [-1.0, 0.0]\n"
+                    "[[contact]]\nface = \"outer\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [2.0, 0.0]\nnormal = [-1.0, 0.0]\n"
+                    "[reference]", {"[contact] face: the contact of face 'outer' is given twice"}},
         // a name with a line break made the one-line error two lines
         MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
                     {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),

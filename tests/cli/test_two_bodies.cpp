@@ -77,6 +77,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadMaster{"empty", "master = \"0:north\"", "master = \"\"", "[contact] master: empty"},
         // and a master on the slave's own body "converged" to displacements
         // of 1e30: the mortar gap of a body with itself holds nothing.
+        // and the same contact twice ran into a misleading "singular contact system" (exit 1)
+        BadMaster{"twice", "master = \"0:north\"", "master = \"0:north\"\n[[contact]]\nface = \"1:south\"\nmaster = \"0:north\"",
+                  "[contact] face: the contact of face '1:south' is given twice"},
         BadMaster{"same_body", "master = \"0:north\"", "master = \"1:north\"",
                   "master '1:north' is on the same body as the face '1:south'"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
