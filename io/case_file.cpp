@@ -254,7 +254,13 @@ std::string check_case_petsc_options(const std::string& options) {
 }
 
 CaseSpec read_case(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("{}: no such case file", path));
+  std::error_code ec;  // (a symlink loop, a folder without search permission: not a library's words, exit 1)
+  const auto st = std::filesystem::status(path, ec);
+  if (st.type() == std::filesystem::file_type::not_found) throw InputError(fmt::format("{}: no such case file", path));
+  if (!std::filesystem::exists(st))
+    throw InputError(fmt::format("{}: cannot read the case file ({})", path, ec.message()));
+  if (!std::filesystem::is_regular_file(st))
+    throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a case file must be a regular file", path));
   toml::table root;
   try {
     root = toml::parse_file(path);

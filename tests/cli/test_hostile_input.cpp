@@ -5,6 +5,7 @@
 // its name contains "null", zero and tiny loads, obstacles the body can never
 // touch, and exceptions thrown inside KINSOL's callbacks.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -236,6 +237,30 @@ TEST(HostileInput, ExceptionInsideKinsolCallbackEndsTheRunCleanly) {
   EXPECT_NE(s.status, "converged");
   EXPECT_NE(s.status.find("material law blew up"), std::string::npos) << s.status;
   EXPECT_TRUE(x.allFinite());
+}
+
+}  // namespace
+
+namespace {
+
+// bench/hostile_inputs.py: a case file that is a symlink loop ended with the
+// library's "filesystem error: status: ..." as a failed run (exit 1), and a
+// FIFO was called "no such case file".
+TEST(HostileInput, CaseFileThatIsNoRegularFileIsAnInputError) {
+  TempDir tmp("case_not_regular");
+  fs::create_symlink("loop2.toml", tmp.path() / "loop.toml");
+  fs::create_symlink("loop.toml", tmp.path() / "loop2.toml");
+  ASSERT_EQ(mkfifo((tmp.path() / "fifo.toml").c_str(), 0600), 0);
+  const Outcome loop = run_igac("run loop.toml --out out", tmp.path());
+  EXPECT_EQ(loop.exit_code, 2) << loop.output;
+  EXPECT_EQ(loop.output.rfind("igac: error: loop.toml: cannot read the case file (", 0), 0u) << loop.output;
+  const Outcome fifo = run_igac("run fifo.toml --out out", tmp.path());
+  EXPECT_EQ(fifo.exit_code, 2) << fifo.output;
+  EXPECT_EQ(fifo.output, "igac: error: fifo.toml: not a regular file (a folder, FIFO or device): a case file must be a "
+                         "regular file\n");
+  const Outcome none = run_igac("run none.toml --out out", tmp.path());
+  EXPECT_EQ(none.output, "igac: error: none.toml: no such case file\n");
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
 }
 
 }  // namespace
