@@ -304,6 +304,14 @@ int main(int argc, char** argv) {
     if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
     else fmt::print(stderr, "{} (process {})\n", line, process_rank());
   };
+  // A first word that is no command (and no option such as --help): CLI11
+  // would say only "A subcommand is required".
+  bool command = argc < 2 || argv[1][0] == '-';
+  for (const CLI::App* c : {run, study, geometry}) command = command || c->check_name(argv[1]);
+  if (!command) {
+    say(fmt::format("igac: error: unknown command '{}' (run, study or geometry; see igac --help)", argv[1]));
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
