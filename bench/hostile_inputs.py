@@ -321,6 +321,10 @@ def gen_structure():
     add("file", "case file is JSON", files={"case.toml": json.dumps(base("h2"))})
     add("file", "case file unterminated string", files={"case.toml": 'name = "oops\n' + toml_text(base("h2"))})
     add("file", "case file missing", args=["run", "nothere.toml"])
+    add("file", "case file is a named pipe (FIFO) nobody writes", args=["run", "fifo.toml", "--out", "out"],
+        setup=lambda d: os.mkfifo(d / "fifo.toml"))
+    add("file", "case file a symlink loop", args=["run", "loop.toml", "--out", "out"],
+        setup=lambda d: (os.symlink("loop2.toml", d / "loop.toml"), os.symlink("loop.toml", d / "loop2.toml")))
     add("file", "case file is a folder", args=["run", "adir"], setup=lambda d: (d / "adir").mkdir())
     add("file", "case file unreadable" + AS_ROOT, expect=PERMS, args=["run", "case.toml"], files={"case.toml": toml_text(base("h2"))},
         setup=lambda d: os.chmod(d / "case.toml", 0))
@@ -409,7 +413,14 @@ def gen_faces():
     case_input("face", "h2f: [faces] set a string, not an array", c, "h2f", expect="any")
     c = base("h2f")
     c["faces"]["contact"] = ["0:south", "0:south"]
-    case_input("face", "h2f: a face listed twice in a set", c, "h2f", expect="any")
+    case_input("face", "h2f: a face listed twice in a set", c, "h2f")
+    c = base("h2")
+    c["pressure"][0]["faces"] = ["top", "top"]
+    case_input("face", "h2: pressure faces = [top, top]", c, "h2")
+    c = base("h2f")
+    c["faces"]["loaded"] = ["0:east"]
+    c["pressure"][0]["faces"] = ["loaded", "0:east"]
+    case_input("face", "h2f: pressure on a set and on a side it holds", c, "h2f")
     c = base("h2")
     c["contact"]["face"] = "top"
     c["pressure"][0]["faces"] = ["curved"]
@@ -452,7 +463,16 @@ def gen_contact():
     case_input("contact", "tb: master with a hyperelastic law", c, "tb")
     c = base("tb")
     c["contact"].append(copy.deepcopy(c["contact"][0]))
-    case_input("contact", "tb: the same master contact twice", c, "tb", expect="any")
+    case_input("contact", "tb: the same master contact twice", c, "tb")
+    c = base("h2")
+    c.pop("reference")
+    c["contact"] = [c["contact"], copy.deepcopy(c["contact"])]
+    case_input("contact", "h2 (no reference): the same obstacle contact twice", c, "h2")
+    c = base("h2")
+    c.pop("reference")
+    c["contact"] = [c["contact"], copy.deepcopy(c["contact"])]
+    c["contact"][1]["obstacle"]["point"] = [0.0, -1.001]
+    case_input("contact", "h2 (no reference): one face on two parallel planes", c, "h2", expect="any")
     for t in ["cone", "", "PLANE", "cylinder"]:
         c = base("h2")
         c["contact"]["obstacle"]["type"] = t
@@ -664,6 +684,10 @@ def gen_geometry():
     c["geometry"]["file"] = "/dev/zero"
     case_input("geometry", "geometry file /dev/zero (endless)", c, "h2f")
     c = base("h2f")
+    c["geometry"]["file"] = "fifo.xml"
+    add("geometry", "geometry file is a named pipe (FIFO) nobody writes",
+        files={"case.toml": toml_text(c)}, setup=lambda d: os.mkfifo(d / "fifo.xml"))
+    c = base("h2f")
     c["geometry"]["shape"] = "quarter_disc"
     case_input("geometry", "geometry with both shape and file", c, "h2f")
     lol = '<!ENTITY lol "lol">' + "".join(
@@ -764,6 +788,11 @@ def gen_geometry():
                       IB, flags=re.S), expect="any", basekey="ib")
     geom_input("3D: NaN coordinate", map_coefs(IB, lambda rows: [["nan"] + rows[0][1:]] + rows[1:]), basekey="ib")
     geom_input("3D: 2D patch for a 3D case", QD, basekey="ib")
+    geom_input("3D: folded patch (first and last control points swapped)",
+               map_coefs(IB, lambda rows: [rows[-1]] + rows[1:-1] + [rows[0]]), basekey="ib")
+    c = base("h3")
+    c["mesh"]["elements"] = [2000, 2000, 2000]
+    case_input("mesh", "h3: elements [2000, 2000, 2000] (memory guard)", c, "h3")
 
 
 # ---------------------------------------------------------------- command line, --out, signals
@@ -787,6 +816,14 @@ def gen_cli():
     add("out", "--out a dangling symlink", files=dict(f), out="dangling",
         setup=lambda d: os.symlink(d / "nowhere", d / "dangling"))
     add("out", "--out is the case file", files=dict(f), out="case.toml")
+    earlier = lambda d: ((d / "earlier.toml").write_text(toml_text(base("h2"))),
+                         subprocess.run([IGAC, "run", "earlier.toml", "--quiet", "--out", "out"], cwd=d, check=True))
+    add("out", "bad input over an earlier output", files={"case.toml": h2.replace("E = 1.0", "E = -1.0")},
+        setup=earlier)
+    add("out", "a failed run over an earlier output", expect="any",
+        files={"case.toml": toml_text(mutated("nh", lambda c: (c["pressure"][0].__setitem__("value", 10.0),
+                                                               c["loading"].__setitem__("min_increment", 0.5))))},
+        setup=earlier)
     add("cli", "no arguments", args=[])
     add("cli", "unknown subcommand", args=["solve", "case.toml"], files=dict(f))
     add("cli", "run without a case", args=["run"])
@@ -799,6 +836,13 @@ def gen_cli():
         args = ["run", "case.toml", "--out", "out", opt] + ([v] if v is not None else [])
         add("cli", f"{opt} {v}", args=args, files=dict(f), expect=exp)
     add("cli", "case given twice", args=["run", "case.toml", "case.toml", "--out", "out"], files=dict(f))
+    add("cli", "study of a case with an unknown key", args=["study", "case.toml", "--levels", "2", "--out", "out"],
+        files={"case.toml": h2 + "\ncolour = 1\n"})
+    add("cli", "study --levels 2 of a case whose level 1 is refused (elements 600000)",
+        args=["study", "case.toml", "--levels", "2", "--out", "out"],
+        files={"case.toml": toml_text(mutated("h2", lambda c: c["mesh"].__setitem__("elements", [600000, 4])))})
+    add("cli", "study --levels 2 (fine)", expect="any", args=["study", "case.toml", "--levels", "2", "--out", "out"],
+        files=dict(f))
     add("cli", "study --levels 0", args=["study", "case.toml", "--levels", "0", "--out", "out"], files=dict(f))
     add("cli", "study --levels -2", args=["study", "case.toml", "--levels", "-2", "--out", "out"], files=dict(f))
     add("cli", "study --levels 40", args=["study", "case.toml", "--levels", "40", "--out", "out"], files=dict(f))
