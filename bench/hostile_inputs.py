@@ -320,6 +320,14 @@ def gen_structure():
         "case.toml": toml_text(base("h2")).encode().replace(b'"hertz2d"', b'"hertz\xff\xfe2d"', 1)})
     add("file", "case file is JSON", files={"case.toml": json.dumps(base("h2"))})
     add("file", "case file unterminated string", files={"case.toml": 'name = "oops\n' + toml_text(base("h2"))})
+    add("file", "case file: an array nested 100000 deep", files={"case.toml": "x = " + "[" * 100000 + "]" * 100000 + "\n"})
+    add("file", "case file: an inline table nested 100000 deep",
+        files={"case.toml": "x = " + "{a = " * 100000 + "1" + "}" * 100000 + "\n"})
+    add("file", "case file: a dotted key 100000 parts long", files={"case.toml": "a" + ".a" * 100000 + " = 1\n"})
+    add("file", "case file: integer beyond 64 bits", files={"case.toml": toml_text(base("h2")).replace(
+        "degree = 2", "degree = 99999999999999999999999")})
+    add("file", "case file: a 5 MB description", expect="any",
+        files={"case.toml": toml_text(mutated("h2", lambda c: c.__setitem__("description", "x" * 5_000_000)))})
     add("file", "case file missing", args=["run", "nothere.toml"])
     add("file", "case file is a named pipe (FIFO) nobody writes", args=["run", "fifo.toml", "--out", "out"],
         setup=lambda d: os.mkfifo(d / "fifo.toml"))
@@ -698,6 +706,27 @@ def gen_geometry():
                '<!ENTITY lol2 "&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;&lol;">'
                '<!ENTITY lol3 "&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;&lol2;">]>\n'
                + QD.split("?>", 1)[1].replace("<xml>", "<xml>&lol3;", 1))
+    geom_input("XML elements nested 200000 deep", QD.replace("<xml>", "<xml>" + "<a>" * 200000 + "</a>" * 200000, 1),
+               expect="any")
+    geom_input("XML attribute 10 MB long", QD.replace('id="0"', 'id="0" junk="' + "j" * 10_000_000 + '"', 1),
+               expect="any")
+    grid = []
+    n = 40
+    for i in range(n):
+        for j in range(n):
+            x0, y0, h = i / n, j / n, 1 / n
+            grid.append(f'<Geometry type="TensorBSpline2" id="{i * n + j}"><Basis type="TensorBSplineBasis2">'
+                        '<Basis type="BSplineBasis" index="0"><KnotVector degree="1">0 0 1 1</KnotVector></Basis>'
+                        '<Basis type="BSplineBasis" index="1"><KnotVector degree="1">0 0 1 1</KnotVector></Basis>'
+                        f'</Basis><coefs geoDim="2">{x0} {y0}\n{x0 + h} {y0}\n{x0} {y0 + h}\n{x0 + h} {y0 + h}</coefs></Geometry>')
+    geom_input(f"{n * n} <Geometry> squares, no <MultiPatch> (all joined by igac)", "<xml>\n" + "\n".join(grid) + "\n</xml>\n",
+               expect="any", fn=lambda c: (c.pop("contact"), c.pop("reference"), c["mesh"].pop("grading"),
+                                          c["mesh"].__setitem__("elements", [1, 1]),
+                                          c.__setitem__("faces", {"symmetry": ["0:west"], "loaded": ["0:south"]}),
+                                          c["dirichlet"].append({"faces": ["0:south"], "component": "y"})))
+    geom_input("file degree 0", QD.replace('degree="2"', 'degree="0"', 1))
+    IB3 = (ROOT / "cases" / "indented_block.xml").read_text()
+    geom_input("3D file for a 2D case", IB3)
     # knots
     geom_input("huge knot count (200000 interior knots)",
                QD.replace('<KnotVector degree="2">0 0 0 1 1 1</KnotVector>',

@@ -2,8 +2,12 @@
 #include "io/case_file.hpp"
 
 #include <cmath>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <set>
@@ -14,6 +18,7 @@
 #include "contact/obstacle.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "io/gismo_xml.hpp"
+#include "io/toml_guard.hpp"
 #include "model/references.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
@@ -261,9 +266,14 @@ CaseSpec read_case(const std::string& path) {
     throw InputError(fmt::format("{}: cannot read the case file ({})", path, ec.message()));
   if (!std::filesystem::is_regular_file(st))
     throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a case file must be a regular file", path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the case file ({})", path, std::strerror(errno)));
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (const auto line = overlong_toml_key(text))  // (toml++ would overflow its stack)
+    throw InputError(fmt::format("{}:{}: a key of more than {} dotted parts", path, *line, kMaxTomlKeyParts));
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw InputError(fmt::format("{}:{}: malformed TOML: {}", path, e.source().begin.line, e.description()));
   }

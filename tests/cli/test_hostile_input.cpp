@@ -264,3 +264,20 @@ TEST(HostileInput, CaseFileThatIsNoRegularFileIsAnInputError) {
 }
 
 }  // namespace
+
+namespace {
+
+// bench/hostile_inputs.py: a table header or key of 100000 dotted parts
+// overflowed toml++'s stack (SIGSEGV).
+TEST(HostileInput, KeyOfManyDottedPartsIsAnInputError) {
+  TempDir tmp("dotted");
+  std::string header = "[a";
+  for (int k = 0; k < 100000; ++k) header += ".a";
+  std::ofstream(tmp.path() / "case.toml") << "name = \"x.y\" # a.b.c\n" << header << "]\n";
+  const Outcome o = run_igac("run case.toml --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output.substr(0, 300);
+  EXPECT_EQ(o.output, "igac: error: case.toml:2: a key of more than 64 dotted parts\n");
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+}  // namespace
