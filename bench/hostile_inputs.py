@@ -632,8 +632,8 @@ def ring_xml(closed=True):
     for r in (1.0, 2.0):
         for (x, y) in pts:
             rows.append(f"{r * x} {r * y}")
-    if not closed:
-        rows = [r.replace("1.0 0.0", "1.0 0.01") for r in rows]
+    if not closed:  # the last column of control points lifted by 0.01: the seam no longer closes
+        rows = [r if k % 9 != 8 else f"{float(r.split()[0])} 0.01" for k, r in enumerate(rows)]
     return f"""<?xml version="1.0"?>
 <xml>
  <Geometry type="TensorNurbs2" id="0">

@@ -489,9 +489,10 @@ CaseSpec read_case(const std::string& path) {
       const std::string type = ot["type"].value_or(std::string());
       const ObstacleType* kind = find_obstacle_type(type);
       std::set<std::string> keys = kObstacleKeys;
-      if (kind)
-        for (const ObstacleKey& k : kind->keys) keys.insert(std::string(k.key));
-      const Section o(path, "contact.obstacle", ot, kind ? keys : kObstacleKeys);
+      for (const ObstacleType* t : obstacle_types())  // an unknown type: the type is the error, not the keys
+        if (t == kind || !kind)
+          for (const ObstacleKey& k : t->keys) keys.insert(std::string(k.key));
+      const Section o(path, "contact.obstacle", ot, keys);
       cs.obstacle.type = o.string("type");
       if (!kind) {
         std::vector<std::string> names;

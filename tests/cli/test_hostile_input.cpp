@@ -181,6 +181,9 @@ INSTANTIATE_TEST_SUITE_P(
                     "[[contact]]\nface = \"outer\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [2.0, 0.0]\nnormal = [-1.0, 0.0]\n"
                     "[[contact]]\nface = \"outer\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [2.0, 0.0]\nnormal = [-1.0, 0.0]\n"
                     "[reference]", {"[contact] face: the contact of face 'outer' is given twice"}},
+        // an obstacle type with a typo was reported as "normal: unknown key"
+        MessageCase{"obstacle_type_typo", "hertz2d", "type = \"plane\"", "type = \"PLANE\"",
+                    {"[contact.obstacle] type:", "unknown obstacle 'PLANE'"}},
         // a name with a line break made the one-line error two lines
         MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
                     {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),
