@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <initializer_list>
+#include <mutex>
 #include <stdexcept>
 #include <pthread.h>
 #include <signal.h>
@@ -54,6 +55,16 @@ void block_termination_signals_in_every_thread(char** argv) {
   execv("/proc/self/exe", argv);  // the mask survives exec; on failure go on as we are
 }
 
+namespace {
+std::mutex removal_mutex;
+std::string folder_to_remove;  // guarded by removal_mutex
+}  // namespace
+
+void remove_on_termination(const std::string& folder) {
+  std::lock_guard<std::mutex> lock(removal_mutex);
+  folder_to_remove = folder;
+}
+
 void end_on_termination_signals() {
   const sigset_t set = termination_signals();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
@@ -63,6 +74,14 @@ void end_on_termination_signals() {
     // End here, with the status a shell gives a process the signal killed:
     // re-raising it would run whatever handler a library holds at that
     // moment (METIS's longjmps into the thread it interrupted).
+    {
+      // Held to the end: the run cannot register or commit a folder meanwhile.
+      // A file written between two sweeps keeps the folder: sweep again.
+      std::lock_guard<std::mutex> lock(removal_mutex);
+      std::error_code ec;
+      for (int sweep = 0; sweep < 3 && !folder_to_remove.empty() && std::filesystem::exists(folder_to_remove, ec); ++sweep)
+        std::filesystem::remove_all(folder_to_remove, ec);
+    }
     const std::string line = fmt::format("igac: stopped by {}\n", sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGHUP");
     [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, line.data(), line.size());
     _exit(128 + sig);

@@ -13,6 +13,8 @@
 // (exec), so mpirun and the user see one program.
 #pragma once
 
+#include <string>
+
 namespace igac {
 
 // 0 and 1 without a launcher.
@@ -29,6 +31,10 @@ int launcher_size();
 // run went on.)  Threads inherit the blocked mask from the thread that
 // starts them.
 void end_on_termination_signals();
+// A folder that thread removes before it ends the process (the staging
+// folder of app/output_folder.hpp, so that a run stopped by SIGTERM leaves
+// nothing behind); "" removes nothing.
+void remove_on_termination(const std::string& folder);
 // Libraries start threads before main (OpenBLAS's pool, in its loader
 // constructor), with the signals unblocked: such a thread would take a
 // SIGTERM and run the library handler of the moment there (METIS's longjmp

@@ -305,6 +305,14 @@ int main(int argc, char** argv) {
     if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
     else fmt::print(stderr, "{} (process {})\n", line, process_rank());
   };
+  // A first word that is no command (and no option such as --help): CLI11
+  // would say only "A subcommand is required".
+  bool command = argc < 2 || argv[1][0] == '-';
+  for (const CLI::App* c : {run, study, geometry}) command = command || c->check_name(argv[1]);
+  if (!command) {
+    say(fmt::format("igac: error: unknown command '{}' (run, study or geometry; see igac --help)", argv[1]));
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -324,6 +332,13 @@ int main(int argc, char** argv) {
     say(fmt::format("igac: error: {} (see {})", e.what(), help));
     return 2;
   }
+  // An empty --out (an unset shell variable) is no folder: refused, rather
+  // than read as "no --out given" and written to out/<name>.
+  for (auto* sub : {run, study, geometry})
+    if (sub->parsed() && sub->get_option("--out")->count() > 0 && out.empty()) {
+      say("igac: error: --out: an empty folder name (give a folder, or leave --out out for out/<name>)");
+      return 2;
+    }
   try {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options,
                                           preconditioner, argv);

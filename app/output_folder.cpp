@@ -16,6 +16,7 @@
 #include <set>
 #include <vector>
 
+#include "app/launcher.hpp"
 #include "io/case_file.hpp"
 #include "io/json_out.hpp"
 
@@ -139,6 +140,7 @@ void OutputFolder::create_staging() {
   if (ec) throw bad(fmt::format("cannot create its parent folder ({})", ec.message()));
   remove_abandoned_staging(parent, name);
   staging_ = (parent / ("." + name + kStagingTag + std::to_string(getpid()))).string();
+  remove_on_termination(staging_);  // a SIGTERM from here on removes it (app/launcher.hpp)
   fs::remove_all(staging_, ec);
   if (!fs::create_directory(staging_, ec) || ec)
     throw bad(fmt::format("cannot create a folder beside it ({})", ec ? ec.message() : "already exists"));
@@ -163,10 +165,12 @@ void OutputFolder::commit() {
     fs::remove_all(staging_, ec);  // now the previous run's files
   }
   committed_ = true;
+  remove_on_termination("");
 }
 
 OutputFolder::~OutputFolder() {
   if (committed_ || staging_.empty()) return;
+  remove_on_termination("");
   std::error_code ec;
   fs::remove_all(staging_, ec);
   for (const auto& p : created_parents_) fs::remove(p, ec);  // innermost first; only if still empty

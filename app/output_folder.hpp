@@ -4,7 +4,8 @@
 // with the target in one atomic rename (renameat2 RENAME_EXCHANGE), then
 // removes the old contents.  A run killed at any moment therefore leaves the
 // target as the previous complete run left it; its staging folder is removed
-// by the next run that writes beside it.
+// at once when a termination signal (SIGTERM, SIGINT, SIGHUP) ends the run,
+// and by the next run that writes beside it when nothing could (SIGKILL).
 #pragma once
 
 #include <string>

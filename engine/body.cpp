@@ -201,6 +201,25 @@ Eigen::MatrixXd Body::patch_field(int k, const Eigen::MatrixXd& body_field) cons
 
 std::string Body::describe(const PatchSide& s) const { return side_name(s.patch, s.face); }
 
+std::vector<int> Body::parts() const {
+  // Labels spread along the interfaces until nothing changes (a few sweeps
+  // for the handful of patches a body has).
+  std::vector<int> part(patches_.size());
+  for (size_t k = 0; k < part.size(); ++k) part[k] = int(k);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const PatchInterface& itf : interfaces_) {
+      int& a = part[itf.first.patch];
+      int& b = part[itf.second.patch];
+      if (a != b) {
+        a = b = std::min(a, b);
+        changed = true;
+      }
+    }
+  }
+  return part;
+}
+
 BodyQuadrature::BodyQuadrature(const Body& body, int points) {
   for (int k = 0; k < body.num_patches(); ++k) {
     patches_.emplace_back(body.patch(k), points, std::nullopt,

@@ -76,6 +76,9 @@ class Body {
   Eigen::MatrixXd patch_field(int k, const Eigen::MatrixXd& body_field) const;
   // "patch 1 (east)"
   std::string describe(const PatchSide& s) const;
+  // The separate bodies: part[k] is the same for patches k that interfaces
+  // join, directly or through others (the smallest patch number among them).
+  std::vector<int> parts() const;
 
  private:
   std::vector<NurbsPatch> patches_;

@@ -2,8 +2,12 @@
 #include "io/case_file.hpp"
 
 #include <cmath>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <set>
@@ -14,6 +18,7 @@
 #include "contact/obstacle.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "io/gismo_xml.hpp"
+#include "io/toml_guard.hpp"
 #include "model/references.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
@@ -285,10 +290,21 @@ std::string check_case_petsc_options(const std::string& options) {
 }
 
 CaseSpec read_case(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError(fmt::format("{}: no such case file", path));
+  std::error_code ec;  // (a symlink loop, a folder without search permission: not a library's words, exit 1)
+  const auto st = std::filesystem::status(path, ec);
+  if (st.type() == std::filesystem::file_type::not_found) throw InputError(fmt::format("{}: no such case file", path));
+  if (!std::filesystem::exists(st))
+    throw InputError(fmt::format("{}: cannot read the case file ({})", path, ec.message()));
+  if (!std::filesystem::is_regular_file(st))
+    throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a case file must be a regular file", path));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the case file ({})", path, std::strerror(errno)));
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (const auto line = overlong_toml_key(text))  // (toml++ would overflow its stack)
+    throw InputError(fmt::format("{}:{}: a key of more than {} dotted parts", path, *line, kMaxTomlKeyParts));
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw InputError(fmt::format("{}:{}: malformed TOML: {}", path, e.source().begin.line, e.description()));
   }
@@ -301,7 +317,7 @@ CaseSpec read_case(const std::string& path) {
   const bool plain = !c.name.empty() && c.name != "." && c.name != ".." && c.name.size() <= 200 &&
                      std::none_of(c.name.begin(), c.name.end(), [](unsigned char ch) { return ch == '/' || ch == '\\' || ch < 32 || ch == 127; });
   if (!plain)
-    top.fail("name", fmt::format("'{}' is not a plain file name (it names the output folder out/<name>: "
+    top.fail("name", fmt::format("{:?} is not a plain file name (it names the output folder out/<name>: "
                                  "no '/', not empty, not '.' or '..')", c.name));
   c.description = top.string("description", "");
 
@@ -497,6 +513,7 @@ CaseSpec read_case(const std::string& path) {
       s.fail("obstacle", "missing: give an obstacle (a rigid body) or a master face (a second deformable body)");
     if (s.has("master")) {
       cs.master = s.string("master");
+      if (cs.master.empty()) s.fail("master", "empty: name the face of the second body");  // ("" means no master)
       if (cs.master == cs.face) s.fail("master", "the master face is the contact face itself");
       if (c.finite_strain())
         s.fail("master", fmt::format("contact between two deformable bodies runs in small deformation only (material "
@@ -506,9 +523,10 @@ CaseSpec read_case(const std::string& path) {
       const std::string type = ot["type"].value_or(std::string());
       const ObstacleType* kind = find_obstacle_type(type);
       std::set<std::string> keys = kObstacleKeys;
-      if (kind)
-        for (const ObstacleKey& k : kind->keys) keys.insert(std::string(k.key));
-      const Section o(path, "contact.obstacle", ot, kind ? keys : kObstacleKeys);
+      for (const ObstacleType* t : obstacle_types())  // an unknown type: the type is the error, not the keys
+        if (t == kind || !kind)
+          for (const ObstacleKey& k : t->keys) keys.insert(std::string(k.key));
+      const Section o(path, "contact.obstacle", ot, keys);
       cs.obstacle.type = o.string("type");
       if (!kind) {
         std::vector<std::string> names;
@@ -520,13 +538,13 @@ CaseSpec read_case(const std::string& path) {
       for (const ObstacleKey& k : kind->keys) {
         const std::string key(k.key);
         if (k.vector) {
-          const auto v = o.numbers(key, dim);
+          const auto v = o.loads(key, dim);  // finite, at most 1e100 in size
           double n2 = 0;
           for (double x : v) n2 += x * x;
           if (k.nonzero && !(n2 > 0)) o.fail(key, "must not be zero");
           cs.obstacle.values[key] = v;
         } else {
-          const double v = o.number(key);
+          const double v = o.load(key);
           if (k.positive && !(v > 0)) o.fail(key, "must be positive");
           cs.obstacle.values[key] = {v};
         }
@@ -534,6 +552,10 @@ CaseSpec read_case(const std::string& path) {
       if (o.has("motion")) cs.obstacle.motion = o.loads("motion", dim);
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
+    for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system
+      if (o.face == cs.face && o.master == cs.master && o.obstacle.type == cs.obstacle.type &&
+          o.obstacle.values == cs.obstacle.values && o.obstacle.motion == cs.obstacle.motion)
+        s.fail("face", fmt::format("the contact of face '{}' is given twice", cs.face));
     c.contacts.push_back(cs);
   }
   if (root.contains("reference")) {

@@ -50,6 +50,10 @@ std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::stri
                                        m.body.describe(side_in_file(m, itf.second))));
     out.insert(out.end(), f->begin(), f->end());
   }
+  for (auto it = out.begin(); it != out.end(); ++it)  // a load counted twice, multipliers made twice over
+    if (std::find(out.begin(), it, *it) != it)
+      throw InputError(fmt::format("{}: [{}] faces {}: the side {} is listed twice", m.spec.path, section,
+                                   fmt::join(names, ", "), m.body.describe(*it)));
   return out;
 }
 
@@ -326,6 +330,13 @@ Model build_model(const CaseSpec& spec) {
           throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", spec.path,
                                        cs.master, cs.face, m.body.describe(s)));
       resolve_faces(m, {cs.master}, "contact");  // (refuses an interface inside the body)
+      const std::vector<int> part = m.body.parts();  // a master on the slave's own body holds nothing
+      for (const PatchSide& s : *master)
+        for (const PatchSide& f : *faces)
+          if (part[s.patch] == part[f.patch])
+            throw InputError(fmt::format("{}: [contact] master '{}' is on the same body as the face '{}' ({} and {} are "
+                                         "joined): the master is a face of a second body", spec.path, cs.master,
+                                         cs.face, m.body.describe(s), m.body.describe(f)));
       if (spec.finite_strain())
         throw InputError(fmt::format("{}: [contact] master: contact between two deformable bodies runs in small "
                                      "deformation only (model \"linear_elastic\")", spec.path));

@@ -139,6 +139,15 @@ TEST(BadInput, UnknownCommandLineOption) {
   EXPECT_TRUE(tmp.empty());
 }
 
+// bench/hostile_inputs.py: `igac solve case.toml` said "A subcommand is
+// required", not which word it did not know.
+TEST(BadInput, UnknownCommandIsNamed) {
+  TempDir tmp("bad");
+  const Outcome o = run_igac("solve case.toml", tmp.path());
+  expect_rejected(o, {"unknown command 'solve'", "run, study or geometry"});
+  EXPECT_TRUE(tmp.empty());
+}
+
 TEST(BadInput, MissingCaseFile) {
   TempDir tmp("bad");
   const Outcome o = run_igac("run no_such_case.toml --out " + quote((tmp.path() / "out").string()), tmp.path());

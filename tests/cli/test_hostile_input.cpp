@@ -5,6 +5,7 @@
 // its name contains "null", zero and tiny loads, obstacles the body can never
 // touch, and exceptions thrown inside KINSOL's callbacks.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -162,7 +163,30 @@ INSTANTIATE_TEST_SUITE_P(
         MessageCase{"not_held_large_deformation", "hertz2d_neohookean_pressure", "faces = [\"left\"]\ncomponent = \"x\"",
                     "faces = [\"left\"]\ncomponent = \"y\"\nvalue = 0.0", {"the body is not held"}},
         MessageCase{"load_pulls_away_small_deformation", "hertz2d", "value = 0.003", "value = -0.003",
-                    {"the load pulls the body away from the obstacle"}}),
+                    {"the load pulls the body away from the obstacle"}},
+        // bench/hostile_inputs.py: an obstacle 1e300 away ran, printed a
+        // displacement of inf and ended in a failed VTU write (exit 1).
+        MessageCase{"obstacle_point_1e300", "hertz2d", "point = [0.0, -1.0]", "point = [0.0, 1e300]",
+                    {"[contact.obstacle] point:", "1e+300", "larger than 1e100"}},
+        MessageCase{"obstacle_radius_1e300", "hertz2d", "type = \"plane\"\npoint = [0.0, -1.0]\nnormal = [0.0, 1.0]",
+                    "type = \"sphere\"\ncentre = [0.0, -2.0]\nradius = 1e300",
+                    {"[contact.obstacle] radius:", "larger than 1e100"}},
+        // a side listed twice doubled its pressure silently, and made a
+        // contact face's multipliers twice over: a "singular contact system" (exit 1)
+        MessageCase{"pressure_face_twice", "hertz2d", "faces = [\"top\"]", "faces = [\"top\", \"top\"]",
+                    {"[pressure] faces top, top:", "listed twice"}},
+        MessageCase{"contact_set_lists_a_side_twice", "hertz2d", "face = \"curved\"",
+                    "face = \"both\"\n[faces]\nboth = [\"curved\", \"curved\"]", {"[faces] faces curved, curved:", "listed twice"}},
+        MessageCase{"same_obstacle_twice", "lame_cylinder", "[reference]",
+                    "[[contact]]\nface = \"outer\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [2.0, 0.0]\nnormal = [-1.0, 0.0]\n"
+                    "[[contact]]\nface = \"outer\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [2.0, 0.0]\nnormal = [-1.0, 0.0]\n"
+                    "[reference]", {"[contact] face: the contact of face 'outer' is given twice"}},
+        // an obstacle type with a typo was reported as "normal: unknown key"
+        MessageCase{"obstacle_type_typo", "hertz2d", "type = \"plane\"", "type = \"PLANE\"",
+                    {"[contact.obstacle] type:", "unknown obstacle 'PLANE'"}},
+        // a name with a line break made the one-line error two lines
+        MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
+                    {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),
     [](const ::testing::TestParamInfo<MessageCase>& info) { return info.param.name; });
 
 TEST(HostileInput, SelfContradictingCaseIsWarnedAbout) {
@@ -216,6 +240,47 @@ TEST(HostileInput, ExceptionInsideKinsolCallbackEndsTheRunCleanly) {
   EXPECT_NE(s.status, "converged");
   EXPECT_NE(s.status.find("material law blew up"), std::string::npos) << s.status;
   EXPECT_TRUE(x.allFinite());
+}
+
+}  // namespace
+
+namespace {
+
+// bench/hostile_inputs.py: a case file that is a symlink loop ended with the
+// library's "filesystem error: status: ..." as a failed run (exit 1), and a
+// FIFO was called "no such case file".
+TEST(HostileInput, CaseFileThatIsNoRegularFileIsAnInputError) {
+  TempDir tmp("case_not_regular");
+  fs::create_symlink("loop2.toml", tmp.path() / "loop.toml");
+  fs::create_symlink("loop.toml", tmp.path() / "loop2.toml");
+  ASSERT_EQ(mkfifo((tmp.path() / "fifo.toml").c_str(), 0600), 0);
+  const Outcome loop = run_igac("run loop.toml --out out", tmp.path());
+  EXPECT_EQ(loop.exit_code, 2) << loop.output;
+  EXPECT_EQ(loop.output.rfind("igac: error: loop.toml: cannot read the case file (", 0), 0u) << loop.output;
+  const Outcome fifo = run_igac("run fifo.toml --out out", tmp.path());
+  EXPECT_EQ(fifo.exit_code, 2) << fifo.output;
+  EXPECT_EQ(fifo.output, "igac: error: fifo.toml: not a regular file (a folder, FIFO or device): a case file must be a "
+                         "regular file\n");
+  const Outcome none = run_igac("run none.toml --out out", tmp.path());
+  EXPECT_EQ(none.output, "igac: error: none.toml: no such case file\n");
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+}  // namespace
+
+namespace {
+
+// bench/hostile_inputs.py: a table header or key of 100000 dotted parts
+// overflowed toml++'s stack (SIGSEGV).
+TEST(HostileInput, KeyOfManyDottedPartsIsAnInputError) {
+  TempDir tmp("dotted");
+  std::string header = "[a";
+  for (int k = 0; k < 100000; ++k) header += ".a";
+  std::ofstream(tmp.path() / "case.toml") << "name = \"x.y\" # a.b.c\n" << header << "]\n";
+  const Outcome o = run_igac("run case.toml --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output.substr(0, 300);
+  EXPECT_EQ(o.output, "igac: error: case.toml:2: a key of more than 64 dotted parts\n");
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
 }
 
 }  // namespace

@@ -57,6 +57,14 @@ TEST(OutputFolder, OutThatIsAFileIsRefusedAndKept) {
   EXPECT_EQ(listing(tmp.path()), std::set<std::string>{"results"});
 }
 
+// bench/hostile_inputs.py: `--out ""` (an unset shell variable) wrote to
+// out/<name> as if no --out had been given.
+TEST(OutputFolder, EmptyOutIsRefused) {
+  TempDir tmp("emptyout");
+  expect_out_refused("", tmp.path());
+  EXPECT_TRUE(tmp.empty());
+}
+
 TEST(OutputFolder, OutUnderSystemFoldersIsRefused) {
   TempDir tmp("outsys");
   expect_out_refused("/dev/null", tmp.path());
@@ -159,6 +167,44 @@ TEST(OutputFolder, KilledRunLeavesThePreviousOutputWhole) {
   // The next run removes the killed run's staging folder.
   ASSERT_EQ(run_igac("run " + quote(kCases + "hertz2d.toml") + " --quiet --out " + quote(out.string()), tmp.path()).exit_code, 0);
   EXPECT_EQ(listing(tmp.path()), std::set<std::string>{"out"});
+}
+
+}  // namespace
+
+namespace {
+
+// bench/hostile_inputs.py: a run stopped by SIGTERM left its staging folder
+// (".out.igac-tmp-PID", half a result) beside --out until the next run.
+TEST(OutputFolder, TerminatedRunLeavesNothingBeside) {
+  TempDir tmp("terminated");
+  const fs::path out = tmp.path() / "out";
+  ASSERT_EQ(run_igac("run " + quote(kCases + "hertz2d.toml") + " --quiet --out " + quote(out.string()), tmp.path()).exit_code, 0);
+  const auto before = listing(out);
+
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string c = kCases + "hertz2d_neohookean_pressure.toml";
+    execl(IGAC_BINARY, IGAC_BINARY, "run", c.c_str(), "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  bool staged = false;
+  for (int i = 0; i < 6000 && !staged; ++i) {  // up to 30 s on a loaded machine
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    for (const auto& e : fs::directory_iterator(tmp.path()))
+      if (e.path().filename().string().find(".igac-tmp-") != std::string::npos &&
+          fs::exists(e.path() / "solution.pvd"))
+        staged = true;
+  }
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(staged) << "the second run never wrote a step";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  EXPECT_EQ(listing(tmp.path()), std::set<std::string>{"out"});
+  EXPECT_EQ(listing(out), before) << "the previous output changed";
+  EXPECT_EQ(summary_case(out), "hertz2d");
 }
 
 }  // namespace

@@ -74,7 +74,17 @@ INSTANTIATE_TEST_SUITE_P(
         // A part nothing holds sideways: the message names the loose patch.
         BadMaster{"loose_part", "faces = [\"0:west\", \"1:west\"]", "faces = [\"0:west\"]",
                   "they move patch(es) 1: the body is 2 parts that no interface joins"},
-        BadMaster{"faces_away", "master = \"0:north\"", "master = \"0:south\"", "[contact] face '1:south' and its master '0:south'"}),
+        BadMaster{"faces_away", "master = \"0:north\"", "master = \"0:south\"", "[contact] face '1:south' and its master '0:south'"},
+        // bench/hostile_inputs.py: an empty master read as "no master" and
+        // the contact built an obstacle of no type (SIGSEGV).
+        BadMaster{"empty", "master = \"0:north\"", "master = \"\"", "[contact] master: empty"},
+        // and the same contact twice ran into a misleading "singular contact system" (exit 1)
+        BadMaster{"twice", "master = \"0:north\"", "master = \"0:north\"\n[[contact]]\nface = \"1:south\"\nmaster = \"0:north\"",
+                  "[contact] face: the contact of face '1:south' is given twice"},
+        // and a master on the slave's own body "converged" to displacements
+        // of 1e30: the mortar gap of a body with itself holds nothing.
+        BadMaster{"same_body", "master = \"0:north\"", "master = \"1:north\"",
+                  "master '1:north' is on the same body as the face '1:south'"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
 }  // namespace
