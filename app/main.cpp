@@ -309,22 +309,16 @@ int main(int argc, char** argv) {
   // would say only "A subcommand is required".
   bool command = argc < 2 || argv[1][0] == '-';
   for (const CLI::App* c : {run, study, geometry}) command = command || c->check_name(argv[1]);
-  if (!command) {
-    say(fmt::format("igac: error: unknown command '{}' (run, study or geometry; see igac --help)", argv[1]));
+  if (!command) {  // a slip ("igac rn case.toml") gets the command meant
+    const auto near = nearest_name(argv[1], {"run", "study", "geometry"});
+    say(fmt::format("igac: error: unknown command '{}'{} (run, study or geometry; see igac --help)", argv[1],
+                    near ? fmt::format("; did you mean '{}'?", *near) : ""));
     return 2;
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    // A mistyped command ("igac rn case.toml"): name it, and the one meant.
-    if (const std::vector<std::string> commands{"run", "study", "geometry"};
-        argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
-      const auto near = nearest_name(argv[1], commands);
-      say(fmt::format("igac: error: unknown command '{}'{} (see igac --help)", argv[1],
-                      near ? fmt::format("; did you mean '{}'?", *near) : ""));
-      return 2;
-    }
     // The help of the command that was given, when there is one.
     std::string help = "igac --help";
     for (const CLI::App* sub : app.get_subcommands())

@@ -9,36 +9,15 @@
 
 namespace igac {
 
-// The bodies of a Body: its patches grouped by the interfaces that join
-// them (two deformable parts in contact are two groups: each has its own
-// rigid motions).  component[k] for patch k, numbered from 0.
-std::vector<int> patch_components(const Body& body) {
-  std::vector<int> c(body.num_patches());
-  std::iota(c.begin(), c.end(), 0);
-  auto find = [&](int i) {
-    while (c[i] != i) i = c[i] = c[c[i]];
-    return i;
-  };
-  for (const PatchInterface& itf : body.interfaces()) {
-    const int a = find(itf.first.patch), b = find(itf.second.patch);
-    if (a != b) c[std::max(a, b)] = std::min(a, b);
-  }
-  std::vector<int> number(c.size(), -1), out(c.size());
-  int n = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    const int r = find(int(k));
-    if (number[r] < 0) number[r] = n++;
-    out[k] = number[r];
-  }
-  return out;
-}
-
 RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
   const int dim = body.space_dim(), n_cp = body.num_control_points();
   const int per_body = dim == 2 ? 3 : 6;
   // Each body (group of joined patches) moves rigidly on its own.
-  const std::vector<int> component_of_patch = patch_components(body);
-  const int n_bodies = component_of_patch.empty() ? 1 : *std::max_element(component_of_patch.begin(), component_of_patch.end()) + 1;
+  // (Body::parts labels each part by its smallest patch: numbered here 0, 1, ...)
+  std::vector<int> component_of_patch = body.parts(), number(body.num_patches(), -1);
+  int n_bodies = 0;
+  for (int& c : component_of_patch) c = number[c] < 0 ? (number[c] = n_bodies++) : number[c];
+  n_bodies = std::max(n_bodies, 1);
   std::vector<int> component(n_cp, 0);
   for (int k = 0; k < body.num_patches(); ++k)
     for (int a : body.body_cps(k)) component[a] = component_of_patch[k];

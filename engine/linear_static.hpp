@@ -21,11 +21,7 @@ struct RigidModes {
   std::vector<int> pinned;   // k free equations where the modes are best conditioned
 };
 
-// The separate bodies of a Body: patch k belongs to body component[k]
-// (numbered from 0), patches joined by interfaces to the same one.  Each
-// body has its own rigid motions.
-std::vector<int> patch_components(const Body& body);
-
+// Each separate body (Body::parts) has its own rigid motions.
 RigidModes free_rigid_modes(const Body& body, const DofMap& dofs);
 
 // K with the pinned equations replaced by identity rows and columns (SPD

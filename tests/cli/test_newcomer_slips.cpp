@@ -18,7 +18,7 @@ TEST(NewcomerSlips, MistypedCommandNamesTheCommandMeant) {
   igac_test::TempDir tmp("slips_command");
   const auto o = igac_test::run_igac("rn case.toml", tmp.path());
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_EQ(o.output, "igac: error: unknown command 'rn'; did you mean 'run'? (see igac --help)\n");
+  EXPECT_EQ(o.output, "igac: error: unknown command 'rn'; did you mean 'run'? (run, study or geometry; see igac --help)\n");
   const auto far = igac_test::run_igac("zzzzz case.toml", tmp.path());
   EXPECT_EQ(far.exit_code, 2);
   EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
