@@ -40,10 +40,7 @@ fs::path edited_case(const std::string& name, const std::string& from, const std
   return path;
 }
 
-nlohmann::json summary(const fs::path& out) {
-  std::ifstream in(out / "summary.json");
-  return nlohmann::json::parse(in);
-}
+nlohmann::json summary(const fs::path& out) { return igac_test::read_summary(out); }
 
 TEST(HostileInput, ShellMetacharactersInNameAndOutRunNothing) {
   TempDir tmp("inject");

@@ -131,6 +131,26 @@ TEST(OutputFolder, StudyTooLargeIsRefusedBeforeTheFirstLevel) {
   EXPECT_TRUE(tmp.empty());
 }
 
+// Starts `igac run` of the large-deformation Hertz case into `out` and
+// returns once its staging folder (beside `out`, under `dir`) holds a
+// written step (`staged`), or after 30 s: a run to stop in the middle.
+pid_t start_run_until_staged(const fs::path& dir, const fs::path& out, bool& staged) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string c = kCases + "hertz2d_neohookean_pressure.toml";
+    execl(IGAC_BINARY, IGAC_BINARY, "run", c.c_str(), "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  staged = false;
+  for (int i = 0; i < 6000 && !staged && pid > 0; ++i) {  // up to 30 s on a loaded machine
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().filename().string().find(".igac-tmp-") != std::string::npos && fs::exists(e.path() / "solution.pvd"))
+        staged = true;
+  }
+  return pid;
+}
+
 // A large-deformation run killed while it writes its steps leaves the output
 // folder as the previous run left it; the next run clears its staging folder.
 TEST(OutputFolder, KilledRunLeavesThePreviousOutputWhole) {
@@ -140,22 +160,9 @@ TEST(OutputFolder, KilledRunLeavesThePreviousOutputWhole) {
   const auto before = listing(out);
   ASSERT_EQ(summary_case(out), "hertz2d");
 
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string c = kCases + "hertz2d_neohookean_pressure.toml";
-    execl(IGAC_BINARY, IGAC_BINARY, "run", c.c_str(), "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  // Kill it while it runs: after its first steps are written.
   bool staged = false;
-  for (int i = 0; i < 6000 && !staged; ++i) {  // up to 30 s on a loaded machine
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    for (const auto& e : fs::directory_iterator(tmp.path()))
-      if (e.path().filename().string().find(".igac-tmp-") != std::string::npos &&
-          fs::exists(e.path() / "solution.pvd"))
-        staged = true;
-  }
+  const pid_t pid = start_run_until_staged(tmp.path(), out, staged);
+  ASSERT_GE(pid, 0);
   kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
@@ -181,21 +188,9 @@ TEST(OutputFolder, TerminatedRunLeavesNothingBeside) {
   ASSERT_EQ(run_igac("run " + quote(kCases + "hertz2d.toml") + " --quiet --out " + quote(out.string()), tmp.path()).exit_code, 0);
   const auto before = listing(out);
 
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const std::string c = kCases + "hertz2d_neohookean_pressure.toml";
-    execl(IGAC_BINARY, IGAC_BINARY, "run", c.c_str(), "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
   bool staged = false;
-  for (int i = 0; i < 6000 && !staged; ++i) {  // up to 30 s on a loaded machine
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    for (const auto& e : fs::directory_iterator(tmp.path()))
-      if (e.path().filename().string().find(".igac-tmp-") != std::string::npos &&
-          fs::exists(e.path() / "solution.pvd"))
-        staged = true;
-  }
+  const pid_t pid = start_run_until_staged(tmp.path(), out, staged);
+  ASSERT_GE(pid, 0);
   kill(pid, SIGTERM);
   int status = 0;
   waitpid(pid, &status, 0);

@@ -31,10 +31,7 @@ fs::path rectangle_case(const fs::path& dir, double L, double H, const std::stri
   return c;
 }
 
-nlohmann::json summary(const fs::path& out) {
-  std::ifstream in(out / "summary.json");
-  return nlohmann::json::parse(in);
-}
+nlohmann::json summary(const fs::path& out) { return igac_test::read_summary(out); }
 
 TEST(WeakSpots, ContactFacePerpendicularToTheObstacleIsRefused) {
   TempDir tmp("perpendicular");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -75,6 +76,12 @@ inline std::string read_file(const std::filesystem::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// An output folder's summary.json, parsed (throws when it is not JSON).
+inline nlohmann::json read_summary(const std::filesystem::path& out) {
+  std::ifstream in(out / "summary.json");
+  return nlohmann::json::parse(in);
 }
 
 // The cells of a CSV file, row by row (a trailing comma is an empty cell).
