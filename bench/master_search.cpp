@@ -34,7 +34,9 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "usage: {} N [N ...] [--queries Q] [--brute-max M] [--csv FILE]\n", argv[0]);
     return 2;
   }
-  std::string out = "master_elements,queries,tree_s_per_query,tree_elements_per_query,brute_s_per_query,ratio\n";
+  const std::string header = "master_elements,queries,tree_s_per_query,tree_elements_per_query,brute_s_per_query,ratio\n";
+  fmt::print("{}", header);
+  std::string out = header;
   const Geometry g = sphere_octant(1.0);
   for (int n : sizes) {
     NurbsPatch patch = elevate_to(g.patch, 3);
