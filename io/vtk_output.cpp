@@ -298,7 +298,7 @@ void write_pvd(const std::string& dir, const std::vector<VtkStep>& steps) {
   for (const VtkStep& st : steps) {
     if (!std::isfinite(st.load_factor)) throw std::runtime_error("VTK output: a load factor is not finite");
     for (size_t k = 0; k < st.files.size(); ++k)
-      s += fmt::format("    <DataSet timestep=\"{:.17g}\" part=\"{}\" name=\"{}\" file=\"{}\"/>\n", st.load_factor, k,
+      s += fmt::format("    <DataSet timestep=\"{}\" part=\"{}\" name=\"{}\" file=\"{}\"/>\n", st.load_factor, k,
                        k < st.parts.size() ? st.parts[k] : std::string("part"), st.files[k]);
   }
   s += "  </Collection>\n</VTKFile>\n";

@@ -249,6 +249,9 @@ void expect_files_sound(const std::string& dir, int expected_steps) {
   for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it) {
     ++entries;
     EXPECT_TRUE(std::isfinite(std::stod((*it)[1]))) << (*it)[0];
+    // The shortest digits that read back to the load factor ("0.1", not
+    // "0.10000000000000001").
+    EXPECT_EQ((*it)[1].str(), fmt::format("{}", std::stod((*it)[1]))) << (*it)[0];
     const std::string f = (*it)[2];
     listed.insert(f);
     EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
