@@ -96,7 +96,7 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
              m.dofs->num_free(), m.num_multipliers());
   std::string status = r.status;
   if (r.load_steps) {
-    int newton = 0, cuts = 0;
+    int newton = 0, cuts = r.load_steps->unfinished_cut_backs;  // (a failed run's last attempts too)
     for (const auto& st : r.load_steps->steps) {
       newton += st.newton_iterations;
       cuts += st.cut_backs;

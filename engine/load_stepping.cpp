@@ -308,6 +308,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     if (dt < opt.min_increment) {
       summary.status = fmt::format("stopped at load factor {:.6g}: {} even with an increment below {:.3g}", t, why,
                                    opt.min_increment);
+      summary.unfinished_cut_backs = cut_backs;
       break;
     }
   }

@@ -90,6 +90,7 @@ struct LoadStepRecord {
 struct LoadSteppingSummary {
   std::string status = "converged";
   std::vector<LoadStepRecord> steps;
+  int unfinished_cut_backs = 0;  // a failed run: the cut-backs after its last converged step
   double newton_seconds = 0;
   double residual_seconds = 0, jacobian_seconds = 0;  // inside newton_seconds
   SaddleSolverStats linear;                           // the linear solves, ditto

@@ -151,6 +151,8 @@ Json run_summary(const Model& m, const RunResult& r) {
       steps.push_back(step);
     }
     j["load_steps"] = steps;
+    // A failed run: the attempts it cut back after its last converged step.
+    if (r.load_steps->unfinished_cut_backs > 0) j["cut_backs_before_stopping"] = r.load_steps->unfinished_cut_backs;
   } else {
     Json step;
     step["load_factor"] = 1.0;

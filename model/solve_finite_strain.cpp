@@ -208,7 +208,12 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;
   const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
+  // No step converged: the state is the reference one, u = 0 and no contact
+  // force (not the multipliers primed for the first Newton iteration), and
+  // there is no contact zone to report.
+  if (summary.steps.empty()) x.setZero();
   snapshot(t_final, x, r);
+  if (summary.steps.empty()) r.contacts.clear();
   if (!r.contacts.empty() && setup.follower_pressure && !setup.pressures.empty()) {
     // the follower load's resultant along the obstacle normal, on the deformed faces
     Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());

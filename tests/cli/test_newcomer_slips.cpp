@@ -80,3 +80,26 @@ TEST(NewcomerSlips, StudyWithoutOutWritesBesideTheRuns) {
 }
 
 }  // namespace
+
+namespace {
+
+// A failed large-deformation run counts the cut-backs it made after its
+// last converged step (the console said "0 cut-backs" after two).
+TEST(NewcomerSlips, FailedRunCountsItsLastCutBacks) {
+  igac_test::TempDir tmp("slips_cut_backs");
+  std::string text = igac_test::read_file(fs::path(IGAC_SOURCE_DIR) / "cases" / "hertz2d_neohookean_pressure.toml");
+  ASSERT_NE(text.find("[loading]"), std::string::npos);
+  // One Newton iteration per step cannot converge: 0.1 -> 0.05 -> 0.025, below 0.04.
+  text.replace(text.find("[loading]"), 9, "[loading]\nmax_newton_iterations = 1\nmin_increment = 0.04");
+  std::ofstream(tmp.path() / "case.toml") << text;
+  const auto o = igac_test::run_igac("run case.toml --out result", tmp.path());
+  EXPECT_EQ(o.exit_code, 1) << o.output;
+  EXPECT_NE(o.output.find("(0 load steps, 0 Newton iterations, 2 cut-backs)"), std::string::npos) << o.output;
+  EXPECT_EQ(igac_test::read_summary(tmp.path() / "result")["cut_backs_before_stopping"], 2);
+  // Nothing converged: no contact zone is reported (it said "half width
+  // 0.0235" at load factor 0, from the multipliers primed for Newton).
+  EXPECT_EQ(o.output.find("half width"), std::string::npos) << o.output;
+  EXPECT_FALSE(igac_test::read_summary(tmp.path() / "result").contains("contact"));
+}
+
+}  // namespace
