@@ -523,8 +523,11 @@ CaseSpec read_case(const std::string& path) {
       const std::string type = ot["type"].value_or(std::string());
       const ObstacleType* kind = find_obstacle_type(type);
       std::set<std::string> keys = kObstacleKeys;
-      for (const ObstacleType* t : obstacle_types())  // an unknown type: the type is the error, not the keys
-        if (t == kind || !kind)
+      // An unknown type, or one for another dimension: the type is the
+      // error, not the keys written for the type meant.
+      const bool fits = kind && dim >= kind->min_dim && dim <= kind->max_dim;
+      for (const ObstacleType* t : obstacle_types())
+        if (t == kind || !fits)
           for (const ObstacleKey& k : t->keys) keys.insert(std::string(k.key));
       const Section o(path, "contact.obstacle", ot, keys);
       cs.obstacle.type = o.string("type");

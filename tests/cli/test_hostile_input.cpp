@@ -181,6 +181,9 @@ INSTANTIATE_TEST_SUITE_P(
         // an obstacle type with a typo was reported as "normal: unknown key"
         MessageCase{"obstacle_type_typo", "hertz2d", "type = \"plane\"", "type = \"PLANE\"",
                     {"[contact.obstacle] type:", "unknown obstacle 'PLANE'"}},
+        // a 3D obstacle in a 2D case was reported as "normal: unknown key"
+        MessageCase{"cylinder_in_2d", "hertz2d", "type = \"plane\"", "type = \"cylinder\"",
+                    {"[contact.obstacle] type:", "a cylinder obstacle needs a 3D body"}},
         // a name with a line break made the one-line error two lines
         MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
                     {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),
