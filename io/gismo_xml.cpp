@@ -232,6 +232,13 @@ NurbsPatch read_geometry(const Source& src, pugi::xml_node g, const std::string&
   Eigen::MatrixXd P(n, d);
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < d; ++k) P(i, k) = c[size_t(i) * gd + k];
+  // Beyond 1e100 the Jacobians and strains overflow (a fold would be
+  // reported where the numbers ran out): the same range as a case's lengths.
+  for (int i = 0; i < n; ++i)
+    if (P.row(i).cwiseAbs().maxCoeff() > 1e100)
+      src.fail(coefs, coefs_name, fmt::format("control point {} has a coordinate beyond 1e100 ({:g}), where the "
+                                              "computation overflows; choose units that bring it near 1",
+                                              i, P.row(i).cwiseAbs().maxCoeff()));
   if (planar_in_3d) {
     const double extent = std::max(1e-300, P.cwiseAbs().maxCoeff());
     for (int i = 0; i < n; ++i)
@@ -256,6 +263,10 @@ NurbsPatch read_geometry(const Source& src, pugi::xml_node g, const std::string&
       if (!(wv[i] > 0)) src.fail(weights_node, wname, fmt::format("weight {} of control point {} is not positive", wv[i], i));
       w[i] = wv[i];
     }
+    // Only the weights' ratios matter; beyond 1e100 apart they overflow.
+    if (w.maxCoeff() > 1e100 * w.minCoeff())
+      src.fail(weights_node, wname, fmt::format("the weights range from {:g} to {:g}, more than 1e100 apart, where the "
+                                                "rational basis overflows", w.minCoeff(), w.maxCoeff()));
   }
   try {
     return NurbsPatch(std::move(knots), std::move(P), std::move(w));

@@ -428,6 +428,11 @@ INSTANTIATE_TEST_SUITE_P(
                 {"<weights>", "weight -2 of control point 1 is not positive"}},
         BadFile{"infinite_weight", "<weights>1 2 1 1 2 1", "<weights>1 2 inf 1 2 1", "<weights>",
                 {"<weights>", "entry 2 is not finite"}},
+        // (1e308 passed as positive and finite, and the patch then "folded")
+        BadFile{"huge_weight", "<weights>1 2 1 1 2 1", "<weights>1 2 1 1 1e308 1", "<weights>",
+                {"<weights>", "the weights range from 1 to 1e+308, more than 1e100 apart"}},
+        BadFile{"huge_coordinate", "1.5 0 2 0", "1.5 0 2e200 0", "2e200",
+                {"<coefs>", "control point 2 has a coordinate beyond 1e100 (2e+200)"}},
         BadFile{"weight_count", "<weights>1 2 1 1 2 1", "<weights>1 2 1 1 2", "<weights>",
                 {"<weights>", "5 weights where the basis (sizes 3 x 2) has 6 functions"}},
         BadFile{"degree_does_not_fit", "degree=\"2\">0 0 0 1 1 1", "degree=\"3\">0 0 0 1 1 1", "degree=\"3\"",
