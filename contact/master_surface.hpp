@@ -55,7 +55,6 @@ class MasterSurface {
   std::optional<MasterPoint> project_by_every_element(const Eigen::VectorXd& x) const;
 
   int num_elements() const { return int(elements_.size()); }
-  int num_sides() const { return int(sides_.size()); }
   // Body numbers of side s's control points, in its face patch's numbering.
   const std::vector<int>& side_control_points(int s) const { return sides_[s].cps; }
   const NurbsPatch& side_patch(int s) const { return sides_[s].current; }

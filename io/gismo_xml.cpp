@@ -25,24 +25,6 @@ constexpr double kCornerTolerance = 1e-10;
 
 // ---------------------------------------------------------------- reading
 
-// Corner control point of side `f` of patch `p`; `bits[k]` picks the end of
-// the k-th tangential direction (ascending order).
-Eigen::VectorXd side_corner(const NurbsPatch& p, const Face& f, const std::vector<int>& bits) {
-  std::array<int, 3> idx{0, 0, 0};
-  int k = 0;
-  for (int d = 0; d < p.param_dim(); ++d) {
-    if (d == f.direction) idx[d] = f.at_end ? p.num_basis(d) - 1 : 0;
-    else idx[d] = bits[k++] ? p.num_basis(d) - 1 : 0;
-  }
-  return p.points().row(p.index(idx)).transpose();
-}
-
-std::vector<int> tangential(int dim, int normal) {
-  std::vector<int> t;
-  for (int d = 0; d < dim; ++d)
-    if (d != normal) t.push_back(d);
-  return t;
-}
 
 
 // Where a node sits in the file (for messages), and the one-line errors.
@@ -290,12 +272,12 @@ void check_sides_meet(const Source& src, pugi::xml_node node, const std::string&
   for (int ca = 0; ca < (1 << nt); ++ca) {
     std::vector<int> bits_a(nt);
     for (int k = 0; k < nt; ++k) bits_a[k] = (ca >> k) & 1;
-    const Eigen::VectorXd x = side_corner(a, pi.first.face, bits_a);
+    const Eigen::VectorXd x = face_corner(a, pi.first.face, bits_a);
     bool found = false;
     for (int cb = 0; cb < (1 << nt) && !found; ++cb) {
       std::vector<int> bits_b(nt);
       for (int k = 0; k < nt; ++k) bits_b[k] = (cb >> k) & 1;
-      found = (side_corner(b, pi.second.face, bits_b) - x).norm() <= kCornerTolerance * extent;
+      found = (face_corner(b, pi.second.face, bits_b) - x).norm() <= kCornerTolerance * extent;
     }
     if (!found)
       src.fail(node, element,
@@ -555,7 +537,7 @@ std::pair<std::vector<int>, std::vector<int>> interface_map(const std::string& p
   const NurbsPatch& b = body.patches[pi.second.patch];
   const int dim = a.param_dim();
   const Face fa = pi.first.face, fb = pi.second.face;
-  const auto ta = tangential(dim, fa.direction), tb = tangential(dim, fb.direction);
+  const auto ta = face_directions(dim, fa), tb = face_directions(dim, fb);
   const int nt = dim - 1, n_corners = 1 << nt;
   auto bits_of = [&](int c) {
     std::vector<int> bits(nt);
@@ -563,9 +545,9 @@ std::pair<std::vector<int>, std::vector<int>> interface_map(const std::string& p
     return bits;
   };
   auto match = [&](const std::vector<int>& bits_a) -> std::vector<int> {
-    const Eigen::VectorXd x = side_corner(a, fa, bits_a);
+    const Eigen::VectorXd x = face_corner(a, fa, bits_a);
     for (int c = 0; c < n_corners; ++c)
-      if ((side_corner(b, fb, bits_of(c)) - x).norm() <= tol) return bits_of(c);
+      if ((face_corner(b, fb, bits_of(c)) - x).norm() <= tol) return bits_of(c);
     throw InputError(fmt::format("{}: interface {}: side {} of patch {} and side {} of patch {} do not meet at "
                                  "their corners", path, index, gismo_side_of(fa), pi.first.patch, gismo_side_of(fb), pi.second.patch));
   };

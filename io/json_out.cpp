@@ -247,7 +247,7 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
       for (size_t i = 0; i < tags.size(); ++i)
         s += fmt::format(",{}", csv_number(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan("")));
     else
-      s += fmt::format(",{}", csv_number(p.contact_force));
+      s += fmt::format(",{}", csv_number(p.contact_force()));
     s += fmt::format(",{},{}\n", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
   }
   return s;

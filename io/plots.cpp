@@ -93,7 +93,7 @@ svg::Figure load_curve_figure(const RunResult& r, const std::string& title, cons
   double travel = 0;
   for (const auto& p : r.load_curve) {
     t.push_back(p.load_factor);
-    force.push_back(p.contact_force);
+    force.push_back(p.contact_force());
     for (size_t i = 0; i < faces.size(); ++i)
       forces[i].push_back(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan(""));
     disp.push_back(p.face_displacement);

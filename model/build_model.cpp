@@ -321,17 +321,14 @@ Model build_model(const CaseSpec& spec) {
       throw InputError(fmt::format("{}: [contact] face '{}': {}", spec.path, cs.face, e.what()));
     }
     if (!cs.master.empty()) {  // a second deformable body (contact/mortar_gap.hpp)
-      const auto master = find_faces(m, cs.master);
-      if (!master)
-        throw InputError(fmt::format("{}: [contact] master: unknown face '{}' (known: {})", spec.path, cs.master,
-                                     fmt::join(face_names(m), ", ")));
-      for (const PatchSide& s : *master)
+      // (resolve_faces refuses an unknown face, a side inside the body, a side twice)
+      const std::vector<PatchSide> master = resolve_faces(m, {cs.master}, "contact");
+      for (const PatchSide& s : master)
         if (std::find(faces->begin(), faces->end(), s) != faces->end())
           throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", spec.path,
                                        cs.master, cs.face, m.body.describe(s)));
-      resolve_faces(m, {cs.master}, "contact");  // (refuses an interface inside the body)
       const std::vector<int> part = m.body.parts();  // a master on the slave's own body holds nothing
-      for (const PatchSide& s : *master)
+      for (const PatchSide& s : master)
         for (const PatchSide& f : *faces)
           if (part[s.patch] == part[f.patch])
             throw InputError(fmt::format("{}: [contact] master '{}' is on the same body as the face '{}' ({} and {} are "
@@ -341,7 +338,7 @@ Model build_model(const CaseSpec& spec) {
         throw InputError(fmt::format("{}: [contact] master: contact between two deformable bodies runs in small "
                                      "deformation only (model \"linear_elastic\")", spec.path));
       c.master_name = cs.master;
-      c.master = std::make_unique<MasterSurface>(m.body, *master);
+      c.master = std::make_unique<MasterSurface>(m.body, master);
       // The reports read the master as an obstacle at its reference position.
       c.obstacle = std::make_unique<MasterAsObstacle>(*c.master, cs.master);
       if (auto why = contact_cannot_happen(*c.face, *c.obstacle))

@@ -59,8 +59,8 @@ struct Timing {
 // One point of the load curve of a large-deformation run.
 struct LoadCurvePoint {
   double load_factor = 0;
-  double contact_force = 0;    // sum_K -lambda_K K_K (modelled part) of the first contact
-  std::vector<double> contact_forces;  // the same of every contact, in case order
+  std::vector<double> contact_forces;  // sum_K -lambda_K K_K (modelled part) of every contact, in case order
+  double contact_force() const { return contact_forces.empty() ? 0.0 : contact_forces.front(); }  // the first's
   double face_displacement = 0;  // mean displacement of the loaded face along the last axis
   double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|)
 };

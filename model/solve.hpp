@@ -29,7 +29,10 @@ RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 // Throws InputError (naming the case) when free rigid motions (`modes`, not
 // held by Dirichlet conditions) are not held: no contact, a contact that
 // cannot stop them, or a load `f` that pulls the body off the obstacle.
-void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen::VectorXd& f);
+// `op`: the contact operator when the caller has it (else assembled here,
+// and only when some rigid motion is free).
+void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen::VectorXd& f,
+                        const WeightedGapOperator* op = nullptr);
 // The stacked weighted-gap operator of every contact (small deformation).
 WeightedGapOperator assemble_contact_operator(const Model& model);
 // Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.

@@ -172,7 +172,6 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     if (!m.contacts.empty()) fill_contact(m, problem, t, xs, out);
     LoadCurvePoint p;
     p.load_factor = t;
-    p.contact_force = out.contacts.empty() ? 0.0 : out.contacts.front().report.total_force;
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
     p.face_displacement = mean_face_displacement(body, loaded, out.u);
     p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;

@@ -67,7 +67,8 @@ std::string loose_patches(const Model& m, const Eigen::MatrixXd& free) {
 }
 }  // namespace
 
-void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f) {
+void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f,
+                        const WeightedGapOperator* given) {
   const int k = int(modes.modes.cols());
   if (k == 0) return;
   if (m.contacts.empty())
@@ -76,7 +77,8 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
         m.spec.path, k, loose_patches(m, modes.modes)));
   // A frictionless contact holds a rigid motion only if the motion changes
   // the weighted gaps: H = G * modes must have full column rank.
-  const WeightedGapOperator op = assemble_contact_operator(m);
+  std::optional<WeightedGapOperator> assembled;
+  const WeightedGapOperator& op = given ? *given : assembled.emplace(assemble_contact_operator(m));
   const Eigen::MatrixXd H = op.G * modes.modes;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(H, Eigen::ComputeFullV);
   const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
@@ -157,7 +159,15 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
-  check_body_is_held(m, modes, sys.f);
+  // The contact operator once: the held-body check and the solve read it
+  // (for two bodies it projects every slave point on the master).
+  std::optional<WeightedGapOperator> op;
+  if (!m.contacts.empty()) {
+    t0.restart();
+    op = assemble_contact_operator(m);
+    r.timing.assembly += t0.seconds();
+  }
+  check_body_is_held(m, modes, sys.f, op ? &*op : nullptr);
   if (m.contacts.empty() && petsc) {
     WeightedGapOperator none;
     none.G.resize(0, m.dofs->num_free());
@@ -174,10 +184,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.u = m.dofs->expand(chol.solve(sys.f));
     r.timing.linear_solve = t0.seconds();
   } else {
-    t0.restart();
     ContactSolve* c = &r.contact.emplace();
-    c->op = assemble_contact_operator(m);
-    r.timing.assembly += t0.seconds();
+    c->op = std::move(*op);
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
     t0.restart();

@@ -11,23 +11,6 @@ namespace igac {
 
 namespace {
 
-// The patch directions along a side, in the order of its face patch.
-std::vector<int> along(const NurbsPatch& p, const Face& f) {
-  std::vector<int> d;
-  for (int k = 0; k < p.param_dim(); ++k)
-    if (k != f.direction) d.push_back(k);
-  return d;
-}
-
-// The point of side `f` at its corner `bits` (one 0/1 per direction along it).
-Eigen::VectorXd corner(const NurbsPatch& p, const Face& f, const std::vector<int>& bits) {
-  Eigen::VectorXd xi(p.param_dim());
-  const std::vector<int> dirs = along(p, f);
-  xi[f.direction] = f.at_end ? p.knots(f.direction).last() : p.knots(f.direction).first();
-  for (size_t k = 0; k < dirs.size(); ++k) xi[dirs[k]] = bits[k] ? p.knots(dirs[k]).last() : p.knots(dirs[k]).first();
-  return p.point(xi);
-}
-
 // Which of b's directions runs along direction `da` of a's side, and whether
 // it runs the other way: found from the sides' corners.
 std::optional<std::pair<int, bool>> partner_direction(const NurbsPatch& a, const Face& fa, int k, const NurbsPatch& b,
@@ -39,13 +22,13 @@ std::optional<std::pair<int, bool>> partner_direction(const NurbsPatch& a, const
     for (int c = 0; c < (1 << n); ++c) {
       std::vector<int> bits(n);
       for (int i = 0; i < n; ++i) bits[i] = (c >> i) & 1;
-      if ((corner(b, fb, bits) - x).norm() <= tol) return bits;
+      if ((face_corner(b, fb, bits) - x).norm() <= tol) return bits;
     }
     return std::nullopt;
   };
-  const auto b0 = find(corner(a, fa, start)), b1 = find(corner(a, fa, step));
+  const auto b0 = find(face_corner(a, fa, start)), b1 = find(face_corner(a, fa, step));
   if (!b0 || !b1) return std::nullopt;
-  const std::vector<int> dirs = along(b, fb);
+  const std::vector<int> dirs = face_directions(b.param_dim(), fb);
   for (int i = 0; i < n; ++i)
     if ((*b0)[i] != (*b1)[i]) return std::pair{dirs[i], (*b0)[i] == 1};
   return std::nullopt;
@@ -72,7 +55,7 @@ std::vector<InsertedKnots> make_interfaces_conform(std::vector<NurbsPatch>& patc
     bool changed = false;
     for (const PatchInterface& itf : interfaces) {
       NurbsPatch &a = patches[itf.first.patch], &b = patches[itf.second.patch];
-      const std::vector<int> dirs = along(a, itf.first.face);
+      const std::vector<int> dirs = face_directions(a.param_dim(), itf.first.face);
       for (int k = 0; k < int(dirs.size()); ++k) {
         const auto partner = partner_direction(a, itf.first.face, k, b, itf.second.face, tol);
         if (!partner) continue;  // sides that do not meet: the body says so

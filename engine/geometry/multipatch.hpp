@@ -9,6 +9,7 @@
 // (direction, at_end), so side s is Face{(s - 1) / 2, (s - 1) % 2 == 1}.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,25 @@ inline int gismo_side_of(const Face& f) { return 2 * f.direction + (f.at_end ? 2
 inline const char* gismo_side_name(int side) {
   static const char* names[] = {"west", "east", "south", "north", "front", "back"};
   return side >= 1 && side <= 6 ? names[side - 1] : "?";
+}
+
+// The patch directions along a face (all but its normal one), ascending:
+// the directions of NurbsPatch::face_patch.
+inline std::vector<int> face_directions(int param_dim, const Face& f) {
+  std::vector<int> t;
+  for (int d = 0; d < param_dim; ++d)
+    if (d != f.direction) t.push_back(d);
+  return t;
+}
+
+// A corner of side `f` of patch `p`: its control point (open knot vectors
+// interpolate there); bits[k] picks the end of face direction k.
+inline Eigen::VectorXd face_corner(const NurbsPatch& p, const Face& f, const std::vector<int>& bits) {
+  std::array<int, 3> idx{0, 0, 0};
+  int k = 0;
+  for (int d = 0; d < p.param_dim(); ++d)
+    idx[d] = d == f.direction ? (f.at_end ? p.num_basis(d) - 1 : 0) : (bits[k++] ? p.num_basis(d) - 1 : 0);
+  return p.points().row(p.index(idx)).transpose();
 }
 
 // "1:west": a side as case files name it.

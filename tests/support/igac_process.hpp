@@ -53,9 +53,10 @@ struct Outcome {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `igac ARGS` with the working directory `cwd`, capturing 2>&1.
-inline Outcome run_igac(const std::string& args, const std::filesystem::path& cwd) {
-  const std::string cmd = "cd " + quote(cwd.string()) + " && " + quote(IGAC_BINARY) + " " + args + " 2>&1";
+// Runs `igac ARGS` with the working directory `cwd`, capturing 2>&1;
+// `shell` runs first in the same shell (e.g. "ulimit -v N;").
+inline Outcome run_igac(const std::string& args, const std::filesystem::path& cwd, const std::string& shell = "") {
+  const std::string cmd = "cd " + quote(cwd.string()) + " && " + shell + " " + quote(IGAC_BINARY) + " " + args + " 2>&1";
   Outcome o;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) {

@@ -105,7 +105,7 @@ TEST(MovingObstacle, LargeDeformationRampsTheMotionWithTheLoad) {
   EXPECT_NEAR(r.load_curve.back().obstacle_displacement, delta, 1e-15);
   // The load curve rises with the motion.
   for (size_t i = 1; i < r.load_curve.size(); ++i)
-    EXPECT_GT(r.load_curve[i].contact_force, r.load_curve[i - 1].contact_force);
+    EXPECT_GT(r.load_curve[i].contact_force(), r.load_curve[i - 1].contact_force());
 }
 
 TEST(MovingObstacle, ShippedORingConverges) {
