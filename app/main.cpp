@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 
 #include "engine/spline/knot_vector.hpp"
@@ -89,10 +90,17 @@ std::string percent(double v, double ref) {
   return ref != 0 ? fmt::format("{:+.2f} %", 100 * (v - ref) / ref) : std::string("no relative difference to 0");
 }
 
+std::vector<std::string> body_names(const Model& m) {
+  std::vector<std::string> out;
+  for (const Model::Part& p : m.parts) out.push_back(p.name);
+  return out;
+}
+
 void print_summary(const Model& m, const RunResult& r, const std::string& out, double wall_seconds) {
   const Body& b = m.body;
   fmt::print("igac: {} — {}D, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
-             b.degree(), b.num_elements(), b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
+             b.degree(), b.num_elements(), m.parts.size() > 1 ? fmt::format(" in {} bodies ({})", m.parts.size(), fmt::join(body_names(m), ", "))
+                                           : b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
              m.dofs->num_free(), m.num_multipliers());
   std::string status = r.status;
   if (r.load_steps) {

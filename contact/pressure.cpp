@@ -314,4 +314,12 @@ std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Ob
   return std::nullopt;
 }
 
+Penetration deepest_penetration(const ContactFace& cf, const Obstacle& obstacle) {
+  Penetration deepest;
+  for_each_face_sample(cf, [&](const Eigen::VectorXd& X, const Eigen::VectorXd&) {
+    if (const double depth = -obstacle.probe(X).gap; depth > deepest.depth) deepest = {depth, X};
+  });
+  return deepest;
+}
+
 }  // namespace igac

@@ -84,5 +84,13 @@ bool touches_over_an_extent(const ContactFace& cf, const Obstacle& obstacle);
 // from the body), it faces away from it, or it is perpendicular to it
 // everywhere.  nullopt when contact can happen.
 std::optional<std::string> contact_cannot_happen(const ContactFace& cf, const Obstacle& obstacle);
+// The deepest point of the face inside the obstacle at the reference
+// geometry (the face's quadrature and corner points): depth = -gap > 0; a
+// depth of 0 and an empty point when the face nowhere enters it.
+struct Penetration {
+  double depth = 0;
+  Eigen::VectorXd point;
+};
+Penetration deepest_penetration(const ContactFace& cf, const Obstacle& obstacle);
 
 }  // namespace igac

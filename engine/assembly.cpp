@@ -116,11 +116,18 @@ PatchQuadrature face_quadrature(const Body& body, const PatchSide& side, int poi
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& mat, const Eigen::VectorXd& body_force,
                                         ElementRange elements) {
+  return assemble_linear_elasticity(body, dofs, std::vector<LinearElastic>{mat}, body_force, elements);
+}
+
+LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
+                                        const std::vector<LinearElastic>& materials,
+                                        const Eigen::VectorXd& body_force, ElementRange elements) {
   const int dim = body.space_dim();
   const BodyQuadrature quad(body, gauss_points_for(body.degree()));
   const int e_end = elements.end < 0 ? quad.num_elements() : std::min(elements.end, quad.num_elements());
   const int e_begin = std::clamp(elements.begin, 0, e_end);
-  const double lambda = mat.lambda(), mu = mat.mu();
+  if (materials.size() != 1 && int(materials.size()) != body.num_patches())
+    throw std::invalid_argument(fmt::format("{} materials for {} patches", materials.size(), body.num_patches()));
   const int n_free = dofs.num_free();
   const bool has_body_force = body_force.size() == dim && body_force.norm() > 0;
 
@@ -155,6 +162,8 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     std::vector<int> eq;
     auto assemble_element = [&](int e, auto& ed) {
       quad.evaluate(e, ed, true);
+      const LinearElastic& mat = materials[materials.size() == 1 ? 0 : quad.patch_of(e)];
+      const double lambda = mat.lambda(), mu = mat.mu();
       min_det = std::min(min_det, ed.min_det_J);
       const int nl = ed.n_loc, nq = ed.n_q, nd = nl * dim;
       // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then

@@ -80,6 +80,11 @@ struct ElementRange {
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
                                         const Eigen::VectorXd& body_force, ElementRange elements = {});
+// Patch k of the body of material patch_materials[k] (bodies of several
+// materials); one entry: every patch's.
+LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
+                                        const std::vector<LinearElastic>& patch_materials,
+                                        const Eigen::VectorXd& body_force, ElementRange elements = {});
 // Adds the work of a pressure P on the faces to f (free numbering): the dead
 // pressure of follower_pressure.hpp (one face loop for both).
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,

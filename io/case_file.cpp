@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "io/case_file.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cerrno>
 #include <cstdlib>
@@ -18,12 +19,14 @@
 #include "contact/obstacle.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "io/gismo_xml.hpp"
+#include "io/case_section.hpp"
 #include "io/toml_guard.hpp"
 #include "model/references.hpp"
 #include "materials/hyperelastic.hpp"
 #include <unistd.h>
 
 namespace igac {
+using namespace case_reading;
 namespace {
 
 // The keys of the tables whose keys are fixed; read_case refuses any other,
@@ -31,11 +34,8 @@ namespace {
 // keys of a shape, a law or an obstacle come from their registries.
 const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", "material", "dirichlet",
                                      "pressure", "body_force", "contact", "reference", "output", "loading",
-                                     "faces", "solver"};
-const std::set<std::string> kGeometryKeys{"shape", "file"};  // and the shape's own
-const std::set<std::string> kGeometryFileKeys{"radius", "inner_radius", "outer_radius"};  // with file =
-const std::set<std::string> kMeshKeys{"degree", "elements", "refine", "grading"};
-const std::set<std::string> kGradingKeys{"direction", "toward", "span_fraction", "range_fraction", "coarse"};
+                                     "faces", "solver", "body"};
+const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
 const std::set<std::string> kPressureKeys{"faces", "value"};
 const std::set<std::string> kBodyForceKeys{"value"};
@@ -72,170 +72,6 @@ std::optional<std::string> nearest_name(const std::string& word, const std::vect
   return best;
 }
 
-namespace {
-
-// A view of one TOML table that knows its name for messages and refuses
-// keys it does not expect.
-class Section {
- public:
-  Section(const std::string& file, std::string name, const toml::table& t, std::set<std::string> allowed)
-      : file_(file), name_(std::move(name)), t_(t) {
-    for (const auto& [k, v] : t)
-      if (!allowed.count(std::string(k.str()))) {
-        const auto near = nearest_name(std::string(k.str()), {allowed.begin(), allowed.end()});
-        fail(std::string(k.str()),
-             fmt::format("unknown key{} (expected one of: {})", near ? fmt::format("; did you mean '{}'?", *near) : "",
-                         fmt::join(allowed, ", ")),
-             v.source().begin.line);
-      }
-  }
-  [[noreturn]] void fail(const std::string& key, const std::string& why, int line = 0) const {
-    if (!line)
-      if (const auto* n = t_.get(key)) line = int(n->source().begin.line);
-    const std::string where = line ? fmt::format("{}:{}", file_, line) : file_;
-    throw InputError(fmt::format("{}: [{}] {}: {}", where, name_, key, why));
-  }
-  bool has(const std::string& key) const { return t_.contains(key); }
-  const toml::node* node(const std::string& key) const { return t_.get(key); }
-
-  // A length or modulus: positive and within the range where det J, strains
-  // and stresses neither underflow nor overflow in double precision.
-  double scale(const std::string& key, const char* what) const {
-    const double v = number(key);
-    if (!(v > 0)) fail(key, fmt::format("{} = {} must be positive ({})", key, v, what));
-    if (v < 1e-100 || v > 1e100)
-      fail(key, fmt::format("{} = {:g} is outside [1e-100, 1e100], where the computation under- or overflows; "
-                            "choose units that bring it near 1", key, v));
-    return v;
-  }
-
-  // A load (a pressure, a prescribed displacement, a body force, an
-  // obstacle's motion): finite and at most 1e100 in size, as the moduli and
-  // lengths are, so that what it produces neither overflows nor turns into
-  // inf or NaN in the results.
-  double load(const std::string& key, std::optional<double> def = {}) const {
-    const double v = number(key, def);
-    if (std::abs(v) > kLargestLoad)
-      fail(key, fmt::format("{} = {:g} is larger than 1e100 in size, where the computation overflows; choose units "
-                            "that bring it near 1", key, v));
-    return v;
-  }
-  std::vector<double> loads(const std::string& key, size_t len) const {
-    std::vector<double> v = numbers(key, len);
-    for (double x : v)
-      if (std::abs(x) > kLargestLoad)
-        fail(key, fmt::format("{:g} is larger than 1e100 in size, where the computation overflows; choose units that "
-                              "bring it near 1", x));
-    return v;
-  }
-  static constexpr double kLargestLoad = 1e100;
-
-  double number(const std::string& key, std::optional<double> def = {}) const {
-    const auto* n = t_.get(key);
-    if (!n) {
-      if (def) return *def;
-      fail(key, "missing (a number is required)");
-    }
-    if (auto v = n->value<double>()) {
-      if (!std::isfinite(*v)) fail(key, "must be a finite number");
-      return *v;
-    }
-    fail(key, "must be a number");
-  }
-  int integer(const std::string& key, std::optional<int> def = {}) const {
-    const auto* n = t_.get(key);
-    if (!n) {
-      if (def) return *def;
-      fail(key, "missing (an integer is required)");
-    }
-    if (n->is_integer()) {
-      const auto v = n->value<int64_t>().value();
-      if (v < -1000000000 || v > 1000000000) fail(key, "integer out of range");
-      return int(v);
-    }
-    fail(key, "must be an integer");
-  }
-  std::string string(const std::string& key, std::optional<std::string> def = {}) const {
-    const auto* n = t_.get(key);
-    if (!n) {
-      if (def) return *def;
-      fail(key, "missing (a string is required)");
-    }
-    if (auto v = n->value<std::string>()) return *v;
-    fail(key, "must be a string");
-  }
-  bool boolean(const std::string& key, bool def) const {
-    const auto* n = t_.get(key);
-    if (!n) return def;
-    if (auto v = n->value<bool>()) return *v;
-    fail(key, "must be true or false");
-  }
-  std::vector<double> numbers(const std::string& key, std::optional<size_t> len = {}) const {
-    const auto* n = t_.get(key);
-    if (!n) fail(key, "missing (an array of numbers is required)");
-    const auto* arr = n->as_array();
-    if (!arr) fail(key, "must be an array of numbers");
-    std::vector<double> out;
-    for (const auto& e : *arr) {
-      auto v = e.value<double>();
-      if (!v || !std::isfinite(*v)) fail(key, "must be an array of finite numbers");
-      out.push_back(*v);
-    }
-    if (len && out.size() != *len) fail(key, fmt::format("must have {} entries, has {}", *len, out.size()));
-    return out;
-  }
-  std::vector<std::string> strings(const std::string& key) const {
-    const auto* n = t_.get(key);
-    if (!n) fail(key, "missing (an array of face names is required)");
-    if (auto s = n->value<std::string>()) return {*s};
-    const auto* arr = n->as_array();
-    if (!arr || arr->empty()) fail(key, "must be a non-empty array of strings");
-    std::vector<std::string> out;
-    for (const auto& e : *arr) {
-      auto v = e.value<std::string>();
-      if (!v) fail(key, "must be an array of strings");
-      out.push_back(*v);
-    }
-    return out;
-  }
-  const toml::table& sub(const std::string& key) const {
-    const auto* n = t_.get(key);
-    if (!n || !n->is_table()) fail(key, "missing or not a table");
-    return *n->as_table();
-  }
-  const std::string& name() const { return name_; }
-
- private:
-  const std::string& file_;
-  std::string name_;
-  const toml::table& t_;
-};
-
-int component_index(const Section& s, const std::string& key, int dim) {
-  const std::string c = s.string(key);
-  static const std::string names = "xyz";
-  if (c.size() == 1 && names.find(c[0]) != std::string::npos && int(names.find(c[0])) < dim)
-    return int(names.find(c[0]));
-  s.fail(key, fmt::format("'{}' is not a displacement component (x, y{})", c, dim == 3 ? ", z" : ""));
-}
-
-// Tables may come as [x] or [[x]]: give every entry of an array of tables.
-std::vector<const toml::table*> tables(const std::string& file, const toml::table& root, const std::string& key) {
-  std::vector<const toml::table*> out;
-  const auto* n = root.get(key);
-  if (!n) return out;
-  if (const auto* t = n->as_table()) return {t};
-  if (const auto* a = n->as_array()) {
-    for (const auto& e : *a) {
-      if (!e.is_table()) break;
-      out.push_back(e.as_table());
-    }
-    if (out.size() == a->size()) return out;
-  }
-  throw InputError(fmt::format("{}:{}: {}: must be a table ([{}] or [[{}]])", file, n->source().begin.line, key, key, key));
-}
-
-}  // namespace
 
 // A case file is data: of PETSc's options it may give only these, each
 // with a value checked here (no option that names a file, so that a case
@@ -289,6 +125,57 @@ std::string check_case_petsc_options(const std::string& options) {
   return {};
 }
 
+namespace {
+
+// [[body]] tables: each body's own geometry, mesh and material, and what the
+// case's BodySpec part holds for all of them (model/case_spec.hpp).
+void read_bodies(const std::string& path, const toml::table& root, CaseSpec& c) {
+  std::vector<const toml::table*> tabs = tables(path, root, "body");
+  for (const toml::table* t : tabs) {
+    const Section s(path, "body", *t, kBodyKeys);
+    BodySpec b;
+    b.body_name = s.string("name");
+    // A face of a body is "NAME:FACE": the name starts with a letter (patch
+    // numbers start with a digit) and holds no ':'.
+    const bool word = !b.body_name.empty() && std::isalpha((unsigned char)b.body_name[0]) &&
+                      b.body_name.size() <= 64 &&
+                      std::all_of(b.body_name.begin(), b.body_name.end(), [](unsigned char ch) {
+                        return std::isalnum(ch) || ch == '_' || ch == '-';
+                      });
+    if (!word)
+      s.fail("name", fmt::format("{:?} is not a body name (a letter, then letters, digits, '_' or '-': faces are "
+                                 "named NAME:FACE)", b.body_name));
+    for (const BodySpec& other : c.bodies)
+      if (other.body_name == b.body_name) s.fail("name", fmt::format("two bodies are named '{}'", b.body_name));
+    read_body_tables(path, s, fmt::format("body '{}' ", b.body_name), b);
+    if (!c.bodies.empty() && b.dim() != c.bodies.front().dim())
+      s.fail("geometry", fmt::format("body '{}' is {}D, body '{}' {}D: the bodies of a case share one dimension",
+                                     b.body_name, b.dim(), c.bodies.front().body_name, c.bodies.front().dim()));
+    if (b.finite_strain() && tabs.size() > 1)
+      s.fail("material", fmt::format("body '{}' has model \"{}\": several bodies run in small deformation "
+                                     "(model \"linear_elastic\") today", b.body_name, b.model));
+    c.bodies.push_back(std::move(b));
+  }
+  // What the bodies share (model/case_spec.hpp): the stiffest body's E and
+  // nu set the contact's scales; the smallest degree is the one a contact
+  // check needs; refine is what --refine adds to every body.
+  const BodySpec* stiffest = &c.bodies.front();
+  for (const BodySpec& b : c.bodies)
+    if (b.E > stiffest->E) stiffest = &b;
+  static_cast<BodySpec&>(c) = *stiffest;
+  c.body_name.clear();
+  c.shape = fmt::format("case of {} bodies", c.bodies.size());
+  c.geometry_file.clear();
+  c.file_body.reset();
+  c.shape_values.clear();
+  c.elements.clear();
+  c.gradings.clear();
+  c.refine = 0;
+  for (const BodySpec& b : c.bodies) c.degree = std::min(c.degree, b.degree);
+}
+
+}  // namespace
+
 CaseSpec read_case(const std::string& path) {
   std::error_code ec;  // (a symlink loop, a folder without search permission: not a library's words, exit 1)
   const auto st = std::filesystem::status(path, ec);
@@ -321,164 +208,18 @@ CaseSpec read_case(const std::string& path) {
                                  "no '/', not empty, not '.' or '..')", c.name));
   c.description = top.string("description", "");
 
-  // The shape names a registered built-in shape (engine/geometry/shapes.hpp),
-  // which declares its keys: those, and only those, go with it.
-  const toml::table& gt = top.sub("geometry");
-  const ShapeType* kind = find_shape_type(gt["shape"].value_or(std::string()));
-  std::set<std::string> geo_keys = kGeometryKeys;
-  if (kind)
-    for (const ShapeKey& k : kind->keys) geo_keys.insert(std::string(k.key));
-  if (gt.contains("file")) geo_keys.insert(kGeometryFileKeys.begin(), kGeometryFileKeys.end());
-  if (!kind && !gt.contains("file"))
-    for (const ShapeType* t : shape_types())
-      for (const ShapeKey& k : t->keys) geo_keys.insert(std::string(k.key));
-  const Section geo(path, "geometry", gt, geo_keys);
-  if (geo.has("file")) {
-    if (geo.has("shape")) geo.fail("file", "give either a shape or a file, not both");
-    const std::filesystem::path f = geo.string("file");
-    c.geometry_file = (f.is_absolute() ? f : std::filesystem::path(path).parent_path() / f).lexically_normal().string();
-    if (std::error_code ec; !std::filesystem::exists(c.geometry_file, ec))
-      geo.fail("file", fmt::format("no such file: {} (a relative file is read from the case file's folder)",
-                                   std::filesystem::absolute(c.geometry_file).lexically_normal().string()));
-    auto read = std::make_shared<const MultiPatch>(read_gismo_xml(c.geometry_file));  // one-line errors naming the file's line
-    const MultiPatch& body = *read;
-    c.file_body = read;
-    c.dimension = body.patches.front().space_dim();
-    if (body.patches.front().param_dim() != c.dimension)
-      geo.fail("file", fmt::format("{}: a {}D patch in {}D space is not a solid body", c.geometry_file,
-                                   body.patches.front().param_dim(), c.dimension));
-    c.shape = "file";
-    c.radius = geo.has("radius") ? geo.scale("radius", "the radius a Hertz reference uses") : 0.0;
-    c.inner_radius = geo.has("inner_radius") ? geo.scale("inner_radius", "the inner radius a Lame reference uses") : 0.0;
-    c.outer_radius = geo.has("outer_radius") ? geo.scale("outer_radius", "the outer radius a Lame reference uses") : 0.0;
-    if (c.inner_radius > 0 && c.outer_radius > 0 && !(c.outer_radius > c.inner_radius))
-      geo.fail("outer_radius", "must be larger than inner_radius");
+  // One body: [geometry], [mesh] and [material] at the top level; several:
+  // [[body]] tables, each with its own.
+  if (root.contains("body")) {
+    for (const char* k : {"geometry", "mesh", "material"})
+      if (root.contains(k))
+        top.fail(k, fmt::format("a case of [[body]] tables gives each body its own [body.{}], not one [{}] at the "
+                                "top level", k, k));
+    read_bodies(path, root, c);
   } else {
-    c.shape = geo.string("shape");
-    if (kind) c.dimension = kind->dim;
-    if (!kind) {
-      std::vector<std::string> names;
-      for (const ShapeType* t : shape_types()) names.emplace_back(t->name);
-      geo.fail("shape", fmt::format("unknown shape '{}' ({}; or file = \"body.xml\")", c.shape, fmt::join(names, ", ")));
-    }
-    for (const ShapeKey& k : kind->keys) {
-      const std::string key(k.key);
-      std::vector<double> v;
-      if (k.length == 1) {
-        v = {geo.scale(key, std::string(k.meaning).c_str())};
-      } else {
-        v = geo.numbers(key, size_t(k.length));
-        for (double x : v)
-          if (!(x >= 1e-100 && x <= 1e100))
-            geo.fail(key, fmt::format("every length must be positive and within [1e-100, 1e100] (got {:g})", x));
-      }
-      c.shape_values[key] = v;
-    }
-    try {
-      static_cast<void>(kind->make(c.shape_values));  // the shape's own cross-checks (outer > inner radius, ...)
-    } catch (const SplineError& e) {
-      geo.fail(std::string(kind->keys.back().key), e.what());
-    }
-    // The reference solutions read these (Hertz: radius; Lame: the radii).
-    if (c.shape_values.count("radius")) c.radius = c.shape_values["radius"][0];
-    if (c.shape_values.count("inner_radius")) c.inner_radius = c.shape_values["inner_radius"][0];
-    if (c.shape_values.count("outer_radius")) c.outer_radius = c.shape_values["outer_radius"][0];
-    if (c.shape_values.count("size")) c.size = c.shape_values["size"];
+    read_body_tables(path, top, "", c);
   }
   const int dim = c.dim();
-
-  const Section mesh(path, "mesh", top.sub("mesh"), kMeshKeys);
-  c.degree = mesh.integer("degree");
-  if (c.degree < 1) mesh.fail("degree", fmt::format("degree {} must be at least 1", c.degree));
-  if (c.degree > 10) mesh.fail("degree", fmt::format("degree {} is above the supported 10", c.degree));
-  if (c.degree < 2 && kind && kind->curved)
-    mesh.fail("degree", fmt::format("degree {}: a {} has exact circular arcs, quadratic NURBS; the degree must be at "
-                                    "least 2", c.degree, c.shape));
-  for (double e : mesh.numbers("elements", dim)) {
-    if (e != std::floor(e) || e < 1 || e > 1e6) mesh.fail("elements", "entries must be whole numbers from 1 to 1e6");
-    c.elements.push_back(int(e));
-  }
-  c.refine = mesh.integer("refine", 0);
-  if (c.refine < 0) mesh.fail("refine", "must be >= 0");
-  if (mesh.has("grading")) {
-    // one table, or an array of tables (one per graded direction)
-    std::vector<const toml::table*> gts;
-    const toml::node* gn = mesh.node("grading");
-    if (gn->is_table()) gts.push_back(gn->as_table());
-    else if (gn->is_array_of_tables())
-      for (const auto& e : *gn->as_array()) gts.push_back(e.as_table());
-    else mesh.fail("grading", "must be a table [mesh.grading] or tables [[mesh.grading]]");
-    for (const auto* gt : gts) {
-      const Section g(path, "mesh.grading", *gt, kGradingKeys);
-      GradingSpec gs;
-      const std::string d = g.string("direction");
-      if (d != "u" && d != "v" && !(d == "w" && dim == 3))
-        g.fail("direction", fmt::format("'{}' is not a parametric direction (u, v{})", d, dim == 3 ? ", w" : ""));
-      gs.direction = d == "u" ? 0 : d == "v" ? 1 : 2;
-      for (const auto& other : c.gradings)
-        if (other.direction == gs.direction) g.fail("direction", fmt::format("direction '{}' is graded twice", d));
-      const std::string t = g.string("toward", "start");
-      if (t != "start" && t != "end") g.fail("toward", "must be \"start\" or \"end\"");
-      gs.at_start = t == "start";
-      gs.span_fraction = g.number("span_fraction");
-      gs.range_fraction = g.number("range_fraction");
-      const std::string coarse = g.string("coarse", "uniform");
-      if (coarse != "uniform" && coarse != "geometric") g.fail("coarse", "must be \"uniform\" or \"geometric\"");
-      gs.geometric_coarse = coarse == "geometric";
-      if (!(gs.span_fraction > 0 && gs.span_fraction < 1)) g.fail("span_fraction", "must lie in (0, 1)");
-      if (!(gs.range_fraction > 0 && gs.range_fraction < 1)) g.fail("range_fraction", "must lie in (0, 1)");
-      if (c.elements[gs.direction] < 2) g.fail("direction", "a graded direction needs at least 2 elements");
-      c.gradings.push_back(gs);
-    }
-  }
-
-  {
-    // The model names a registered law; the law declares its parameters
-    // (materials/hyperelastic.hpp): those, and only those, are the table's
-    // other keys.  linear_elastic runs the small-deformation path.
-    const toml::table& mt = top.sub("material");
-    const auto laws = law_names();
-    const std::string model = mt["model"].value_or(std::string("linear_elastic"));
-    std::set<std::string> keys{"model"};
-    const bool known = std::find(laws.begin(), laws.end(), model) != laws.end();
-    if (known)
-      for (const LawParameter& p : law_parameters(model)) keys.insert(std::string(p.key));
-    const Section mat(path, "material", mt, known ? keys : std::set<std::string>{"model", "E", "nu"});
-    c.model = mat.string("model", "linear_elastic");
-    if (!known)
-      mat.fail("model", fmt::format("unknown material model '{}' (available: {}; linear_elastic is small deformation)",
-                                    c.model, fmt::join(laws, ", ")));
-    MaterialParameters given;
-    for (const LawParameter& p : law_parameters(model)) {
-      const bool modulus = p.lower == 0 && std::isinf(p.upper);  // a stiffness: within the computable range
-      const double v = modulus ? mat.scale(std::string(p.key), std::string(p.meaning).c_str()) : mat.number(std::string(p.key));
-      if (!modulus && std::abs(v) > 1e100)  // a law's own constant (C10): the same range as a modulus
-        mat.fail(std::string(p.key), fmt::format("{} = {:g} is outside [-1e100, 1e100], where the computation "
-                                                 "overflows; choose units that bring it near 1", p.key, v));
-      if (p.key == "E") given.E = v;
-      else if (p.key == "nu") given.nu = v;
-      else given.values[std::string(p.key)] = v;
-    }
-    try {
-      const MaterialParameters linear = small_strain_equivalent(model, given);
-      const auto law = make_law(model, given);  // the law's own cross-checks (e.g. C10 + C01 > 0)
-      try {  // its stiffness at F = I, as both paths use it: blamed on the keys the user gave
-        static_cast<void>(small_strain_material(*law, dim));
-      } catch (const MaterialParameterError&) {
-        throw;
-      } catch (const MaterialError& e) {
-        std::vector<std::string> keys;
-        for (const LawParameter& p : law_parameters(model)) keys.push_back(fmt::format("{} = {:g}", p.key, given.value(p.key)));
-        mat.fail(std::string(law_parameters(model).front().key),
-                 fmt::format("{} give a small-strain stiffness that is not usable ({})", fmt::join(keys, ", "), e.what()));
-      }
-      c.E = linear.E;
-      c.nu = linear.nu;
-      c.material_parameters = given;
-    } catch (const MaterialParameterError& e) {
-      mat.fail(e.key(), e.what());
-    }
-  }
 
   if (root.contains("faces")) {  // names of one's own for sets of faces
     const toml::table& ft = top.sub("faces");
@@ -625,6 +366,7 @@ std::vector<std::string> declared_case_keys() {
     for (const auto& k : keys) out.insert(table.empty() ? std::string(k) : table + "." + std::string(k));
   };
   add("", kTopKeys);
+  add("body", kBodyKeys);
   add("geometry", kGeometryKeys);
   add("geometry", kGeometryFileKeys);
   for (const ShapeType* t : shape_types())

@@ -120,6 +120,26 @@ Json run_summary(const Model& m, const RunResult& r) {
   j["dofs"] = m.dofs->num_free();
   j["multipliers"] = m.num_multipliers();
   j["mesh_size"] = m.mesh_size;
+  if (m.parts.size() > 1) {  // [[body]] tables: each body's patches, elements and material
+    Json bodies = Json::array();
+    const std::vector<BodySpec> specs = m.spec.body_list();
+    for (size_t i = 0; i < m.parts.size(); ++i) {
+      const Model::Part& part = m.parts[i];
+      long elements = 0;  // the knot spans of its patches
+      for (int k = part.first_patch; k < part.first_patch + part.num_patches; ++k) {
+        long spans = 1;
+        for (int d = 0; d < body.param_dim(); ++d) spans *= long(body.patch(k).knots(d).breakpoints().size()) - 1;
+        elements += spans;
+      }
+      bodies.push_back({{"name", part.name},
+                        {"patches", part.num_patches},
+                        {"elements", elements},
+                        {"model", specs[i].model},
+                        {"E", specs[i].E},
+                        {"nu", specs[i].nu}});
+    }
+    j["bodies"] = bodies;
+  }
   if (!m.reoriented_patches.empty()) j["reoriented_patches"] = m.reoriented_patches;
   if (!m.joined_sides.empty()) {
     Json joined = Json::array();

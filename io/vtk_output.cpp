@@ -152,7 +152,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   auto grid = bezier_grid(mesh);
   // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
   // (plane strain in 2D is the 3D law with F_33 = 1).
-  const RecoveredStress s = recover_stress(mesh, model_stress_law(model));
+  const RecoveredStress s = recover_model_stress(model, r.u);
   const vtkIdType np = mesh.num_points();
   auto stress = make_array("stress", 6, np);
   const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};

@@ -4,6 +4,7 @@
 #include "model/model.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -87,12 +88,12 @@ double largest_element_diameter(const NurbsPatch& p) {
 // Refines one coarse patch as the case asks: degree elevation to
 // [mesh] degree, then per direction the uniform or graded knots (with the
 // patch's own interior knots kept), subdivided `refine` times.
-NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const std::string& which) {
+NurbsPatch refine_patch(const CaseSpec& c, const BodySpec& spec, const NurbsPatch& coarse, const std::string& which) {
   for (int d = 0; d < coarse.param_dim(); ++d)
     if (coarse.degree(d) > spec.degree)
       throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}{}: igac "
                                    "raises the degree, never lowers it, so that the geometry stays exact",
-                                   spec.path, spec.degree, coarse.degree(d), "uvw"[d], which));
+                                   c.path, spec.degree, coarse.degree(d), "uvw"[d], which));
   NurbsPatch patch = elevate_to(coarse, spec.degree);
   for (int d = 0; d < patch.param_dim(); ++d) {
     const GradingSpec* g = nullptr;
@@ -109,12 +110,12 @@ NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const st
       if (!g) throw;
       throw InputError(fmt::format("{}: [mesh.grading] range_fraction = {:g}: the graded spans are too short to be "
                                    "told apart ({}); use a larger range_fraction or fewer elements",
-                                   spec.path, g->range_fraction, e.what()));
+                                   c.path, g->range_fraction, e.what()));
     }
     try {
       patch = refine_to(patch, d, target.united_with(patch.knots(d)));
     } catch (const SplineError& e) {
-      throw InputError(fmt::format("{}: [mesh] refining direction {}{}{}: {}", spec.path, "uvw"[d], which,
+      throw InputError(fmt::format("{}: [mesh] refining direction {}{}{}: {}", c.path, "uvw"[d], which,
                                    spec.geometry_file.empty() ? "" : " of " + spec.geometry_file, e.what()));
     }
   }
@@ -123,7 +124,7 @@ NurbsPatch refine_patch(const CaseSpec& spec, const NurbsPatch& coarse, const st
 
 // A geometry file's patch must map its parameter cube onto the body without
 // folding: det J > 0 at every Gauss point.  Names the patch and the place.
-void check_patch_map(const CaseSpec& spec, const NurbsPatch& patch, int k) {
+void check_patch_map(const CaseSpec& c, const BodySpec& spec, const NurbsPatch& patch, int k) {
   const PatchQuadrature quad(patch, gauss_points_for(spec.degree));
   ElementData ed;
   for (int e = 0; e < quad.num_elements(); ++e) {
@@ -133,7 +134,7 @@ void check_patch_map(const CaseSpec& spec, const NurbsPatch& patch, int k) {
       if (!(ed.JxW[q] > 0))
         throw InputError(fmt::format("{}: [geometry] file {}: patch {} folds: its Jacobian determinant is not positive "
                                      "at parameter ({:.4g}), point ({:.4g})",
-                                     spec.path, spec.geometry_file, k, fmt::join(ed.xi.row(q), ", "),
+                                     c.path, spec.geometry_file, k, fmt::join(ed.xi.row(q), ", "),
                                      fmt::join(ed.X.row(q), ", ")));
   }
 }
@@ -161,36 +162,50 @@ int orientation(const NurbsPatch& patch, int points) {
 // gives no <interfaces> (engine/geometry/topology.hpp).  A side the file
 // lists in its <boundary> stays a boundary (a slit the file asks for), with
 // a warning; so do sides that share only their corners.
-void join_coincident_sides(MultiPatch& coarse, Model& m) {
+void join_coincident_sides(MultiPatch& coarse, Model& m, const BodySpec& body, int offset) {
   const CaseSpec& spec = m.spec;
   auto listed = [](const auto& sides, const PatchSide& s) { return std::find(sides.begin(), sides.end(), s) != sides.end(); };
+  // A side of this body's patches as the file names it, in the model's
+  // patch numbers (the bodies' patches follow one another).
+  auto in_file = [&](PatchSide s) {
+    s.patch += offset;
+    return side_in_file(m, s);
+  };
   std::vector<PatchSide> in_interface, candidates;
   for (const PatchInterface& itf : coarse.interfaces) in_interface.insert(in_interface.end(), {itf.first, itf.second});
   for (int k = 0; k < int(coarse.patches.size()); ++k)
     for (int s = 1; s <= 2 * coarse.patches[k].param_dim(); ++s)
       if (const PatchSide side{k, face_of_gismo_side(s)}; !listed(in_interface, side)) candidates.push_back(side);
   // The faces of a contact between two bodies touch where the bodies do:
-  // they are never joined.
+  // they are never joined.  (Of several [[body]] tables, a face of this one
+  // is "NAME:PATCH:SIDE".)
+  const std::string prefix = body.body_name.empty() ? "" : body.body_name + ":";
   std::vector<PatchSide> contact_sides;
   for (const ContactSpec& cs : spec.contacts) {
     if (cs.master.empty()) continue;
     for (const std::string& name : {cs.face, cs.master}) {
       auto set = spec.face_sets.find(name);
-      for (const std::string& member : set != spec.face_sets.end() ? set->second : std::vector<std::string>{name})
-        if (auto side = parametric_side(member, int(coarse.patches.size()), coarse.patches[0].param_dim()))
-          contact_sides.push_back(side_in_file(m, *side));
+      for (const std::string& member : set != spec.face_sets.end() ? set->second : std::vector<std::string>{name}) {
+        if (!member.starts_with(prefix)) continue;
+        if (auto side = parametric_side(member.substr(prefix.size()), int(coarse.patches.size()),
+                                        coarse.patches[0].param_dim())) {
+          PatchSide local = in_file(*side);
+          local.patch -= offset;
+          contact_sides.push_back(local);
+        }
+      }
     }
   }
   std::erase_if(candidates, [&](const PatchSide& s) { return listed(contact_sides, s); });
   const CoincidentSides found = find_coincident_sides(coarse.patches, candidates);
   for (const PatchInterface& itf : found.coincide) {
-    PatchInterface named{side_in_file(m, itf.first), side_in_file(m, itf.second)};
+    PatchInterface named{in_file(itf.first), in_file(itf.second)};
     if (named.first.patch == named.second.patch && gismo_side_of(named.second.face) < gismo_side_of(named.first.face))
       std::swap(named.first, named.second);
     if (listed(coarse.boundary, itf.first) || listed(coarse.boundary, itf.second)) {
       m.warnings.push_back(fmt::format("{}: [geometry] file {}: sides {} and {} coincide, but the file's <boundary> "
                                        "lists them: they stay apart (a slit in the body)",
-                                       spec.path, spec.geometry_file, side_label(named.first), side_label(named.second)));
+                                       spec.path, body.geometry_file, side_label(named.first), side_label(named.second)));
       continue;
     }
     coarse.interfaces.push_back(itf);
@@ -199,8 +214,8 @@ void join_coincident_sides(MultiPatch& coarse, Model& m) {
   for (const PatchInterface& itf : found.corners_only)
     m.warnings.push_back(fmt::format("{}: [geometry] file {}: sides {} and {} share their corners but not the points "
                                      "between them: they stay apart (a slit in the body)",
-                                     spec.path, spec.geometry_file, side_label(side_in_file(m, itf.first)),
-                                     side_label(side_in_file(m, itf.second))));
+                                     spec.path, body.geometry_file, side_label(in_file(itf.first)),
+                                     side_label(in_file(itf.second))));
 }
 
 }  // namespace
@@ -209,55 +224,121 @@ std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::stri
   if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
   // (A reoriented patch runs its first direction backwards: the file's west
   // is its east, and side_in_file swaps them back.)
-  if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim()))
-    return std::vector<PatchSide>{side_in_file(m, *side)};
+  if (m.parts.size() <= 1) {
+    if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim()))
+      return std::vector<PatchSide>{side_in_file(m, *side)};
+    return std::nullopt;
+  }
+  // Several bodies: "NAME:PATCH:SIDE" (or "NAME:SIDE" of a one-patch body).
+  for (const Model::Part& part : m.parts)
+    if (name.starts_with(part.name + ":"))
+      if (auto side = parametric_side(name.substr(part.name.size() + 1), part.num_patches, m.body.param_dim())) {
+        side->patch += part.first_patch;
+        return std::vector<PatchSide>{side_in_file(m, *side)};
+      }
   return std::nullopt;
 }
 
 std::vector<std::string> face_names(const Model& m) {
   std::vector<std::string> out;
   for (const auto& [k, v] : m.faces) out.push_back(k);
-  for (auto& n : parametric_side_names(m.body.num_patches(), m.body.param_dim())) out.push_back(std::move(n));
+  if (m.parts.size() <= 1) {
+    for (auto& n : parametric_side_names(m.body.num_patches(), m.body.param_dim())) out.push_back(std::move(n));
+    return out;
+  }
+  for (const Model::Part& part : m.parts)
+    for (auto& n : parametric_side_names(part.num_patches, m.body.param_dim())) out.push_back(part.name + ":" + n);
   return out;
 }
 
-Model build_model(const CaseSpec& spec) {
-  Model m;
-  m.spec = spec;
+namespace {
+
+// The diagonal of the bounding box of the faces' control points.
+double face_extent(const Body& body, const std::vector<PatchSide>& faces) {
+  Eigen::VectorXd lo = Eigen::VectorXd::Constant(body.space_dim(), std::numeric_limits<double>::infinity());
+  Eigen::VectorXd hi = -lo;
+  for (const PatchSide& s : faces)
+    for (int i : body.side_control_points(s)) {
+      const Eigen::VectorXd X = body.points().row(i).head(body.space_dim()).transpose();
+      lo = lo.cwiseMin(X);
+      hi = hi.cwiseMax(X);
+    }
+  return (hi - lo).norm();
+}
+
+// One body's refined patches, appended to `patches` (its interfaces, in the
+// model's patch numbers, to `interfaces`), its named faces to m.faces.
+void add_body(Model& m, const BodySpec& b, std::vector<NurbsPatch>& patches, std::vector<PatchInterface>& interfaces) {
+  const CaseSpec& spec = m.spec;
+  const int offset = int(patches.size());
+  const std::string prefix = b.body_name.empty() ? "" : b.body_name + ":";
   // The coarse body: a built-in shape (one patch, with its face names) or
   // the patches of a geometry file.
   MultiPatch coarse;
-  if (spec.geometry_file.empty()) {
-    const Geometry g = case_geometry(spec);
+  if (b.geometry_file.empty()) {
+    const Geometry g = body_geometry(spec, b);
     coarse = MultiPatch{{g.patch}, {}, {}};
-    m.faces = g.faces;
+    for (const auto& [name, sides] : g.faces) {
+      std::vector<PatchSide> shifted = sides;
+      for (PatchSide& side : shifted) side.patch += offset;
+      m.faces[prefix + name] = shifted;
+    }
   } else {
-    coarse = case_body(spec);
+    coarse = body_patches(spec, b);
     for (auto& p : coarse.patches) p = normalised(p);  // knots on [0, 1], geometry unchanged
     // A left-handed patch is not folded: run its first direction backwards
     // (faces keep the names the file gives them: find_faces).
     for (size_t k = 0; k < coarse.patches.size(); ++k) {
-      if (orientation(coarse.patches[k], gauss_points_for(spec.degree)) >= 0) continue;
+      if (orientation(coarse.patches[k], gauss_points_for(b.degree)) >= 0) continue;
       coarse.patches[k] = reversed(coarse.patches[k], 0);
-      m.reoriented_patches.push_back(int(k));
+      m.reoriented_patches.push_back(offset + int(k));
       auto flip = [k](PatchSide& side) {
         if (side.patch == int(k) && side.face.direction == 0) side.face.at_end = !side.face.at_end;
       };
       for (PatchInterface& itf : coarse.interfaces) flip(itf.first), flip(itf.second);
       for (PatchSide& side : coarse.boundary) flip(side);
     }
-    join_coincident_sides(coarse, m);
+    join_coincident_sides(coarse, m, b, offset);
   }
   const bool several = coarse.patches.size() > 1;
-  std::vector<NurbsPatch> patches;
+  std::vector<NurbsPatch> own;
   for (size_t k = 0; k < coarse.patches.size(); ++k) {
-    patches.push_back(refine_patch(spec, coarse.patches[k], several ? fmt::format(" of patch {}", k) : ""));
-    if (!spec.geometry_file.empty()) check_patch_map(spec, patches.back(), int(k));
+    const std::string which = several ? fmt::format(" of patch {}", k) : "";
+    own.push_back(refine_patch(spec, b, coarse.patches[k], b.body_name.empty() ? which : which + " of body '" + b.body_name + "'"));
+    if (!b.geometry_file.empty()) check_patch_map(spec, b, own.back(), int(k));
   }
-  m.interface_knots = make_interfaces_conform(patches, coarse.interfaces);
+  for (InsertedKnots knots : make_interfaces_conform(own, coarse.interfaces)) {
+    knots.patch += offset;
+    m.interface_knots.push_back(knots);
+  }
+  for (const PatchInterface& itf : coarse.interfaces) {
+    PatchInterface shifted = itf;
+    shifted.first.patch += offset;
+    shifted.second.patch += offset;
+    interfaces.push_back(shifted);
+  }
+  for (auto& p : own) patches.push_back(std::move(p));
+  m.parts.push_back({b.body_name, offset, int(coarse.patches.size()), LinearElastic{1.0, 0.0}, nullptr});
+}
+
+}  // namespace
+
+Model build_model(const CaseSpec& spec) {
+  Model m;
+  m.spec = spec;
+  std::vector<NurbsPatch> patches;
+  std::vector<PatchInterface> interfaces;
+  const std::vector<BodySpec> bodies = spec.body_list();
+  for (const BodySpec& b : bodies) add_body(m, b, patches, interfaces);
+  for (const Model::Part& part : m.parts)  // (one body or several: each keeps its own degree in [mesh])
+    if (bodies.size() > 1 && patches[part.first_patch].degree(0) != patches.front().degree(0))
+      throw InputError(fmt::format("{}: [body.mesh] degree: body '{}' has degree {}, body '{}' degree {}: the bodies "
+                                   "of a case share one degree today", spec.path, part.name,
+                                   patches[part.first_patch].degree(0), m.parts.front().name,
+                                   patches.front().degree(0)));
   try {
-    m.body = several || !coarse.interfaces.empty() ? Body(std::move(patches), coarse.interfaces)
-                                                   : Body(std::move(patches.front()));
+    m.body = patches.size() > 1 || !interfaces.empty() ? Body(std::move(patches), interfaces)
+                                                       : Body(std::move(patches.front()));
   } catch (const BodyError& e) {
     throw InputError(fmt::format("{}: [geometry] file {}: {}", spec.path, spec.geometry_file, e.what()));
   }
@@ -287,26 +368,38 @@ Model build_model(const CaseSpec& spec) {
                                            "the last one applies", spec.path, fa, "xyz"[da.component], da.value,
                                            db.value));
     }
-  // Near nu = 0.5 the pure displacement formulation locks (too stiff a
-  // body): say so rather than let a result pass unremarked.
-  if (spec.nu >= 0.499)
-    m.warnings.push_back(fmt::format("{}: [material] nu = {}: nearly incompressible: igac's pure displacement "
-                                     "elements lock as nu nears 0.5 (the body turns too stiff; docs/benchmarks.md "
-                                     "measures by how much)",
-                                     spec.path, spec.nu));
   m.dofs = std::make_unique<DofMap>(m.body, dc);
   // The case's law: the Newton path's material, and the stress of the
   // ParaView output in both paths (small strain: the linear law's P is sigma).
-  // (A CaseSpec made in code may give only E and nu.)
-  const MaterialParameters& given = spec.material_parameters;
-  m.law = make_law(spec.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{spec.E, spec.nu, {}} : given);
-  // The small-deformation path assembles with the law's own elasticity at
-  // F = I (materials/hyperelastic.hpp): a law is written once.
-  try {
-    m.material = small_strain_material(*m.law, m.body.space_dim());
-  } catch (const MaterialError& e) {
-    throw InputError(fmt::format("{}: [material] {}", spec.path, e.what()));
+  // (A CaseSpec made in code may give only E and nu.)  Several bodies: each
+  // its own.
+  auto law_of = [&](const BodySpec& b) -> std::unique_ptr<HyperelasticLaw> {
+    const MaterialParameters& given = b.material_parameters;
+    return make_law(b.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{b.E, b.nu, {}} : given);
+  };
+  m.law = law_of(spec);
+  for (size_t i = 0; i < m.parts.size(); ++i) {
+    const BodySpec& b = bodies[i];
+    Model::Part& part = m.parts[i];
+    part.law = bodies.size() == 1 ? std::shared_ptr<const HyperelasticLaw>(m.law.get(), [](const HyperelasticLaw*) {})
+                                  : std::shared_ptr<const HyperelasticLaw>(law_of(b));
+    const std::string table = b.body_name.empty() ? "[material]" : fmt::format("[body.material] (body '{}')", b.body_name);
+    // The small-deformation path assembles with the law's own elasticity at
+    // F = I (materials/hyperelastic.hpp): a law is written once.
+    try {
+      part.material = small_strain_material(*part.law, m.body.space_dim());
+    } catch (const MaterialError& e) {
+      throw InputError(fmt::format("{}: {} {}", spec.path, table, e.what()));
+    }
+    // Near nu = 0.5 the pure displacement formulation locks (too stiff a
+    // body): say so rather than let a result pass unremarked.
+    if (b.nu >= 0.499)
+      m.warnings.push_back(fmt::format("{}: {} nu = {}: nearly incompressible: igac's pure displacement "
+                                       "elements lock as nu nears 0.5 (the body turns too stiff; docs/benchmarks.md "
+                                       "measures by how much)",
+                                       spec.path, table, b.nu));
   }
+  m.material = bodies.size() == 1 ? m.parts.front().material : small_strain_material(*m.law, m.body.space_dim());
 
   for (const ContactSpec& cs : spec.contacts) {
     const auto faces = find_faces(m, cs.face);
@@ -344,6 +437,17 @@ Model build_model(const CaseSpec& spec) {
       if (auto why = contact_cannot_happen(*c.face, *c.obstacle))
         throw InputError(fmt::format("{}: [contact] face '{}' and its master '{}': {}", spec.path, cs.face, cs.master,
                                      *why));
+      // Two bodies that start inside one another: a geometry placed wrong
+      // (a translate forgotten), not a load.  Touching to round-off, or a
+      // fit tighter than kOverlapTolerance of the face's size, is allowed.
+      constexpr double kOverlapTolerance = 1e-3;
+      const Penetration overlap = deepest_penetration(*c.face, *c.obstacle);
+      const double extent = face_extent(m.body, *faces);
+      if (overlap.depth > kOverlapTolerance * extent)
+        throw InputError(fmt::format("{}: [contact] face '{}' starts inside the body of its master '{}': {:.3g} deep at "
+                                     "({:.4g}), more than {:g} of the face's size {:.3g}; place the bodies apart "
+                                     "([body.geometry] translate)", spec.path, cs.face, cs.master, overlap.depth,
+                                     fmt::join(overlap.point, ", "), kOverlapTolerance, extent));
       m.contacts.push_back(std::move(c));
       continue;
     }

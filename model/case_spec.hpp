@@ -76,9 +76,12 @@ struct SolverSpec {
   int processes = 1;  // MPI processes of the run (set by the launcher, not by the case file)
 };
 
-struct CaseSpec {
-  std::string path, name, description;
-  // geometry: a built-in shape, or a G+Smo XML file (one patch today)
+// One deformable body: its geometry (a built-in shape or a geometry file,
+// one or several patches), its mesh and its material.  A case with one body
+// is the CaseSpec itself; a case of several lists them in CaseSpec::bodies.
+struct BodySpec {
+  std::string body_name;  // [[body]] name (empty: the case's one body)
+  // geometry: a built-in shape, or a G+Smo XML file
   std::string shape;
   std::map<std::string, std::vector<double>, std::less<>> shape_values;  // the shape's declared keys
   std::string geometry_file;  // as resolved (relative to the case file); then shape == "file"
@@ -86,9 +89,9 @@ struct CaseSpec {
   // refinement); null for a built-in shape.
   std::shared_ptr<const MultiPatch> file_body;
   int dimension = 0;          // the body's, from the shape's registry entry or the file (0: from the shape name)
-  std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
   double radius = 1, inner_radius = 1, outer_radius = 2;
   std::vector<double> size;
+  std::vector<double> translate;  // moves the shape or the file's patches (empty: where they stand)
   // mesh
   int degree = 2;
   std::vector<int> elements;
@@ -98,6 +101,24 @@ struct CaseSpec {
   std::string model = "linear_elastic";  // or a hyperelastic law: large deformation
   double E = 1, nu = 0.3;                  // the law's small-strain equivalent (Hertz, scales)
   MaterialParameters material_parameters;  // as the law declares them (E, nu or its own keys)
+
+  bool finite_strain() const { return model != "linear_elastic"; }
+  int dim() const {
+    if (dimension > 0) return dimension;
+    return shape == "box" || shape == "sphere_octant" ? 3 : 2;  // a CaseSpec made in code
+  }
+};
+
+// A case.  Its BodySpec part is its one body; with [[body]] tables (bodies
+// not empty) it holds what the bodies share: the dimension, the largest
+// degree, the model path (every body small or every body large
+// deformation), the largest E and its nu (the contact's scales), and in
+// `refine` the refinement added to every body's own (--refine r: every
+// body r times finer than its [mesh] says).
+struct CaseSpec : BodySpec {
+  std::string path, name, description;
+  std::vector<BodySpec> bodies;  // [[body]] tables; empty: the case is one body
+  std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
   LoadingSpec loading;
   // conditions and loads
   std::vector<DirichletSpec> dirichlet;
@@ -108,10 +129,13 @@ struct CaseSpec {
   bool write_vtk = true;
   SolverSpec solver;
 
-  bool finite_strain() const { return model != "linear_elastic"; }
-  int dim() const {
-    if (dimension > 0) return dimension;
-    return shape == "box" || shape == "sphere_octant" ? 3 : 2;  // a CaseSpec made in code
+  // Every body as build_model refines it: the case itself, or each [[body]]
+  // with the case's added refinement.
+  std::vector<BodySpec> body_list() const {
+    if (bodies.empty()) return {static_cast<const BodySpec&>(*this)};
+    std::vector<BodySpec> out = bodies;
+    for (BodySpec& b : out) b.refine += refine;
+    return out;
   }
 };
 

@@ -86,6 +86,38 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
   return out;
 }
 
+RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u) {
+  const Body& body = model.body;
+  if (model.parts.size() <= 1) {
+    BezierMesh mesh;
+    for (int k = 0; k < body.num_patches(); ++k) mesh.append(BezierMesh(body.patch(k), {body.patch_field(k, u)}));
+    return recover_stress(mesh, model_stress_law(model));
+  }
+  // Several bodies: each with its own law, stacked in the patches' order.
+  std::vector<RecoveredStress> each;
+  Eigen::Index rows = 0;
+  for (const Model::Part& part : model.parts) {
+    BezierMesh mesh;
+    for (int k = part.first_patch; k < part.first_patch + part.num_patches; ++k)
+      mesh.append(BezierMesh(body.patch(k), {body.patch_field(k, u)}));
+    each.push_back(recover_stress(mesh, cauchy_stress(part.law, !model.spec.finite_strain())));
+    rows += each.back().stress.rows();
+  }
+  RecoveredStress out;
+  out.stress.resize(rows, 6);
+  out.von_mises.resize(rows);
+  out.magnitude.resize(rows);
+  Eigen::Index at = 0;
+  for (const RecoveredStress& s : each) {
+    const Eigen::Index n = s.stress.rows();
+    out.stress.middleRows(at, n) = s.stress;
+    out.von_mises.segment(at, n) = s.von_mises;
+    out.magnitude.segment(at, n) = s.magnitude;
+    at += n;
+  }
+  return out;
+}
+
 StressLaw model_stress_law(const Model& model) {
   // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
   // (plane strain in 2D is the 3D law with F_33 = 1).

@@ -44,6 +44,10 @@ double von_mises(const Eigen::Matrix3d& sigma);
 // The stress law of a model's output: the case's law (sigma = P in small
 // strain, P F^T / J in large deformation).
 StressLaw model_stress_law(const Model& model);
+// recover_stress on the model's body with displacement u (one row per body
+// control point): every patch's elements one after the other, each body
+// with its own law.
+RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u);
 
 struct ContactPartFields {
   Eigen::VectorXd point_pressure;          // per Bezier point: the projection of -lambda_h

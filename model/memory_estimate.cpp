@@ -17,7 +17,7 @@ namespace {
 // times) united with the coarse patch's own, the patch's knots keeping
 // their multiplicity raised by the degree elevation.  Counted, not built:
 // a refinement far beyond the machine costs nothing here.
-void count_direction(const CaseSpec& c, const KnotVector* own, int d, double& spans, double& basis) {
+void count_direction(const BodySpec& c, const KnotVector* own, int d, double& spans, double& basis) {
   const int p = std::max(c.degree, own ? own->degree() : 0);
   const int e = c.elements[d];
   std::vector<double> coarse;  // the requested breakpoints before refine, on [0, 1]
@@ -53,26 +53,28 @@ void count_direction(const CaseSpec& c, const KnotVector* own, int d, double& sp
 
 }  // namespace
 
-MeshCount estimated_mesh(const CaseSpec& c) {
-  MultiPatch coarse;
-  try {
-    coarse = case_body(c);
-  } catch (const std::exception&) {
-    coarse = {};  // build_model says what is wrong; count the requested mesh alone
-  }
+MeshCount estimated_mesh(const CaseSpec& spec) {
   MeshCount n;
-  const size_t patches = std::max<size_t>(coarse.patches.size(), 1);
-  for (size_t k = 0; k < patches; ++k) {
-    double elements = 1, points = 1;
-    for (int d = 0; d < int(c.elements.size()); ++d) {
-      const bool own = k < coarse.patches.size() && d < coarse.patches[k].param_dim();
-      double spans = 0, basis = 0;
-      count_direction(c, own ? &coarse.patches[k].knots(d) : nullptr, d, spans, basis);
-      elements *= spans;
-      points *= basis;
+  for (const BodySpec& c : spec.body_list()) {
+    MultiPatch coarse;
+    try {
+      coarse = body_patches(spec, c);
+    } catch (const std::exception&) {
+      coarse = {};  // build_model says what is wrong; count the requested mesh alone
     }
-    n.elements += elements;
-    n.control_points += points;  // an interface's points counted on both sides
+    const size_t patches = std::max<size_t>(coarse.patches.size(), 1);
+    for (size_t k = 0; k < patches; ++k) {
+      double elements = 1, points = 1;
+      for (int d = 0; d < int(c.elements.size()); ++d) {
+        const bool own = k < coarse.patches.size() && d < coarse.patches[k].param_dim();
+        double spans = 0, basis = 0;
+        count_direction(c, own ? &coarse.patches[k].knots(d) : nullptr, d, spans, basis);
+        elements *= spans;
+        points *= basis;
+      }
+      n.elements += elements;
+      n.control_points += points;  // an interface's points counted on both sides
+    }
   }
   return n;
 }
@@ -89,7 +91,9 @@ double estimated_peak_bytes(const CaseSpec& c) {
   const double cps = estimated_mesh(c).control_points;
   const int dim = c.dim();
   const double dofs = cps * dim;
-  const double nnz = dofs * std::pow(2.0 * c.degree + 1, dim) * dim;
+  int degree = 0;  // (the highest of the bodies': an upper bound)
+  for (const BodySpec& b : c.body_list()) degree = std::max(degree, b.degree);
+  const double nnz = dofs * std::pow(2.0 * degree + 1, dim) * dim;
   // 2D: the fill of nested dissection grows slowly (measured: +10 % per doubling of the dofs beyond 33k).
   const double fill = dim == 2 ? 10.0 * (1 + 0.1 * std::max(0.0, std::log2(std::max(dofs, 1.0) / 33000.0)))
                                : 8.0 * std::cbrt(std::max(dofs, 1.0) / 18000.0);
@@ -118,6 +122,7 @@ void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> 
     if (*degree < 1 || *degree > 10) throw InputError(fmt::format("--degree {}: must lie in 1..10", *degree));
     if (!c.contacts.empty() && *degree < 2) throw InputError(fmt::format("--degree {}: contact needs degree >= 2", *degree));
     c.degree = *degree;
+    for (BodySpec& b : c.bodies) b.degree = *degree;
   }
   if (refine) {
     if (*refine < 0) throw InputError(fmt::format("--refine {}: must be >= 0", *refine));

@@ -33,6 +33,22 @@ struct Model {
   std::unique_ptr<DofMap> dofs;
   LinearElastic material{1.0, 0.0};
   std::unique_ptr<HyperelasticLaw> law;  // the case's law (small strain too: the ParaView stress)
+  // The case's bodies: its one body (name empty), or its [[body]] tables in
+  // their order, each with its patches of `body` and its own material.
+  struct Part {
+    std::string name;
+    int first_patch = 0, num_patches = 0;
+    LinearElastic material{1.0, 0.0};
+    std::shared_ptr<const HyperelasticLaw> law;
+  };
+  std::vector<Part> parts;
+  // The small-strain material of each patch of `body` (one entry: every patch's).
+  std::vector<LinearElastic> patch_materials() const {
+    if (parts.size() <= 1) return {material};
+    std::vector<LinearElastic> out;
+    for (const Part& p : parts) out.insert(out.end(), size_t(p.num_patches), p.material);
+    return out;
+  }
   // [contact] / [[contact]]: each face with its obstacle; the multipliers of
   // all of them are stacked in this order.
   struct Contact {

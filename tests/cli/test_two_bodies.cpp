@@ -87,4 +87,47 @@ INSTANTIATE_TEST_SUITE_P(
                   "master '1:north' is on the same body as the face '1:south'"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
+// [[body]] tables (cases/roller_on_block.toml): a case of several bodies
+// the reader or the model cannot use is one line and exit 2.
+class SeveralBodiesBadInput : public ::testing::TestWithParam<BadMaster> {};
+
+TEST_P(SeveralBodiesBadInput, OneLineErrorExitTwo) {
+  const BadMaster& b = GetParam();
+  igac_test::TempDir tmp("roller_on_block_bad");
+  std::string text = igac_test::read_file(kCases / "roller_on_block.toml");
+  ASSERT_NE(text.find(b.from), std::string::npos) << b.from;
+  text.replace(text.find(b.from), b.from.size(), b.to);
+  if (b.name == "block_in_3d") {  // the block a box: its shape, its place, the 3D mesh above
+    text.replace(text.find("shape = \"rectangle\"\nsize = [4.0, 4.0]"), 37, "shape = \"box\"\nsize = [4.0, 4.0, 4.0]");
+    text.replace(text.find("translate = [0.0, -5.0]"), 23, "translate = [0.0, -5.0, 0.0]");
+  }
+  std::ofstream(tmp.path() / "case.toml") << text;
+  const auto o = igac_test::run_igac("run case.toml --out result", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  EXPECT_NE(o.output.find(b.expected), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "result"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SeveralBodiesBadInput,
+    ::testing::Values(
+        BadMaster{"unknown_body", "master = \"block:top\"", "master = \"wheel:top\"", "unknown face 'wheel:top'"},
+        BadMaster{"face_without_body", "master = \"block:top\"", "master = \"1:north\"", "unknown face '1:north'"},
+        BadMaster{"same_name", "name = \"block\"", "name = \"roller\"", "[body] name: two bodies are named 'roller'"},
+        BadMaster{"name_with_colon", "name = \"block\"", "name = \"the:block\"", "is not a body name"},
+        BadMaster{"top_level_geometry", "[[dirichlet]]", "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 1.0]\n[[dirichlet]]",
+                  "gives each body its own [body.geometry]"},
+        BadMaster{"key_of_a_body", "name = \"block\"", "name = \"block\"\ncolour = \"red\"", "[body] colour: unknown key"},
+        BadMaster{"bodies_overlap", "translate = [0.0, -5.0]", "translate = [0.0, -4.9]",
+                  "starts inside the body of its master 'block:top': 0.1 deep at (0, -1)"},
+        BadMaster{"different_degrees", "degree = 2\nelements = [48, 24]", "degree = 3\nelements = [48, 24]",
+                  "body 'block' has degree 3, body 'roller' degree 2"},
+        BadMaster{"large_deformation", "model = \"linear_elastic\"\nE = 3.0", "model = \"neo_hookean\"\nE = 3.0",
+                  "several bodies run in small deformation"},
+        BadMaster{"block_in_3d", "elements = [48, 24]", "elements = [48, 24, 2]",
+                  "body 'block' is 3D, body 'roller' 2D"},
+        BadMaster{"bad_translate", "translate = [0.0, -5.0]", "translate = [0.0]", "translate: must have 2 entries"}),
+    [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
+
 }  // namespace
