@@ -91,16 +91,17 @@ Body::Body(std::vector<NurbsPatch> patches, const std::vector<PatchInterface>& i
     : patches_(std::move(patches)), interfaces_(interfaces) {
   if (patches_.empty()) throw BodyError("a body needs at least one patch");
   const int sd = patches_[0].space_dim(), pd = patches_[0].param_dim();
-  degree_ = largest_degree(patches_[0]);
+  // Patches of different degrees may form a body as long as no interface
+  // joins two of them (two bodies of a case, each of its own degree): the
+  // interface check below compares the sides' degrees.
+  degree_ = 0;
+  for (const NurbsPatch& p : patches_) degree_ = std::max(degree_, largest_degree(p));
   std::vector<int> offset{0};
   for (size_t k = 0; k < patches_.size(); ++k) {
     const NurbsPatch& p = patches_[k];
     if (p.space_dim() != sd || p.param_dim() != pd)
       throw BodyError(fmt::format("patch {} has {} parametric directions in {}D, patch 0 {} in {}D", k, p.param_dim(),
                                   p.space_dim(), pd, sd));
-    if (largest_degree(p) != degree_)
-      throw BodyError(fmt::format("patch {} has degree {}, patch 0 degree {}: elevate them to one degree", k,
-                                  largest_degree(p), degree_));
     offset.push_back(offset.back() + p.num_control_points());
   }
   const double tol = coincidence_tolerance(patches_);

@@ -44,8 +44,8 @@ class Body {
   Body(NurbsPatch patch);  // NOLINT(google-explicit-constructor)
   // Patches joined across `interfaces` (an interface may join two sides of
   // one patch: the seam of a closed ring or tube).  Throws BodyError when the patches
-  // differ in dimension or degree, or an interface is not conforming (naming
-  // both patches and sides and where they differ).
+  // differ in dimension, or an interface is not conforming (its sides differ
+  // in degree, knots or points: naming both patches and sides and where).
   Body(std::vector<NurbsPatch> patches, const std::vector<PatchInterface>& interfaces);
 
   int num_patches() const { return int(patches_.size()); }
@@ -59,7 +59,7 @@ class Body {
   const Eigen::MatrixXd& points() const { return points_; }
   int space_dim() const { return patches_.empty() ? 0 : patches_[0].space_dim(); }
   int param_dim() const { return patches_.empty() ? 0 : patches_[0].param_dim(); }
-  int degree() const { return degree_; }  // the largest degree of any direction
+  int degree() const { return degree_; }  // the largest degree of any direction of any patch
   int num_elements() const;
   // One patch with no side joined to another: body numbers are patch numbers.
   bool numbered_as_patch() const { return patches_.size() == 1 && interfaces_.empty(); }

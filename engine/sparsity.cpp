@@ -22,7 +22,10 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
   std::vector<int> cp_start(n_cp + 1, 0);
   for (int e = 0; e < n_el; ++e) {
     quad.control_points(e_begin + e, cps);
-    if (int(cps.size()) != nl) throw std::logic_error("coupling pattern: elements of different sizes");
+    if (int(cps.size()) > nl || cps.empty()) throw std::logic_error("coupling pattern: an element larger than num_local");
+    // A patch of a lower degree (a second body): its elements padded with
+    // their first control point, which couples nothing new.
+    cps.resize(size_t(nl), cps.front());
     std::copy(cps.begin(), cps.end(), el_cps.begin() + size_t(e) * nl);
     for (int a : cps) ++cp_start[a + 1];
   }

@@ -147,8 +147,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   if (r.u.rows() != body.num_control_points() || r.u.cols() != body.space_dim())
     throw std::runtime_error(fmt::format("VTK output: displacement is {} x {} for {} control points in {}D", r.u.rows(),
                                          r.u.cols(), body.num_control_points(), body.space_dim()));
-  BezierMesh mesh;  // every patch's elements, one after the other
-  for (int k = 0; k < body.num_patches(); ++k) mesh.append(BezierMesh(body.patch(k), {body.patch_field(k, r.u)}));
+  const BezierMesh mesh = body_bezier_mesh(body, r.u);  // every patch's elements, one after the other
   auto grid = bezier_grid(mesh);
   // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
   // (plane strain in 2D is the 3D law with F_33 = 1).

@@ -330,12 +330,6 @@ Model build_model(const CaseSpec& spec) {
   std::vector<PatchInterface> interfaces;
   const std::vector<BodySpec> bodies = spec.body_list();
   for (const BodySpec& b : bodies) add_body(m, b, patches, interfaces);
-  for (const Model::Part& part : m.parts)  // (one body or several: each keeps its own degree in [mesh])
-    if (bodies.size() > 1 && patches[part.first_patch].degree(0) != patches.front().degree(0))
-      throw InputError(fmt::format("{}: [body.mesh] degree: body '{}' has degree {}, body '{}' degree {}: the bodies "
-                                   "of a case share one degree today", spec.path, part.name,
-                                   patches[part.first_patch].degree(0), m.parts.front().name,
-                                   patches.front().degree(0)));
   try {
     m.body = patches.size() > 1 || !interfaces.empty() ? Body(std::move(patches), interfaces)
                                                        : Body(std::move(patches.front()));

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "engine/quadrature.hpp"
+#include "engine/spline/refinement.hpp"
 
 namespace igac {
 
@@ -86,20 +87,41 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
   return out;
 }
 
+BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch, int num_patches) {
+  if (num_patches < 0) num_patches = body.num_patches() - first_patch;
+  BezierMesh mesh;
+  for (int k = first_patch; k < first_patch + num_patches; ++k) {
+    const NurbsPatch& patch = body.patch(k);
+    const Eigen::MatrixXd field = body.patch_field(k, u);
+    bool elevate = false;
+    for (int d = 0; d < patch.param_dim(); ++d) elevate = elevate || patch.degree(d) < body.degree();
+    if (!elevate) {
+      mesh.append(BezierMesh(patch, {field}));
+      continue;
+    }
+    // The field rides along as more coordinates of the same rational map:
+    // elevating [X u] keeps both exactly.
+    std::vector<KnotVector> knots;
+    for (int d = 0; d < patch.param_dim(); ++d) knots.push_back(patch.knots(d));
+    Eigen::MatrixXd both(patch.num_control_points(), patch.space_dim() + field.cols());
+    both << patch.points(), field;
+    const NurbsPatch high = elevate_to(NurbsPatch(std::move(knots), both, patch.weights()), body.degree());
+    std::vector<KnotVector> high_knots;
+    for (int d = 0; d < high.param_dim(); ++d) high_knots.push_back(high.knots(d));
+    const NurbsPatch geometry(std::move(high_knots), high.points().leftCols(patch.space_dim()), high.weights());
+    mesh.append(BezierMesh(geometry, {high.points().rightCols(field.cols())}));
+  }
+  return mesh;
+}
+
 RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u) {
   const Body& body = model.body;
-  if (model.parts.size() <= 1) {
-    BezierMesh mesh;
-    for (int k = 0; k < body.num_patches(); ++k) mesh.append(BezierMesh(body.patch(k), {body.patch_field(k, u)}));
-    return recover_stress(mesh, model_stress_law(model));
-  }
+  if (model.parts.size() <= 1) return recover_stress(body_bezier_mesh(body, u), model_stress_law(model));
   // Several bodies: each with its own law, stacked in the patches' order.
   std::vector<RecoveredStress> each;
   Eigen::Index rows = 0;
   for (const Model::Part& part : model.parts) {
-    BezierMesh mesh;
-    for (int k = part.first_patch; k < part.first_patch + part.num_patches; ++k)
-      mesh.append(BezierMesh(body.patch(k), {body.patch_field(k, u)}));
+    const BezierMesh mesh = body_bezier_mesh(body, u, part.first_patch, part.num_patches);
     each.push_back(recover_stress(mesh, cauchy_stress(part.law, !model.spec.finite_strain())));
     rows += each.back().stress.rows();
   }

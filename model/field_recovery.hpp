@@ -44,6 +44,12 @@ double von_mises(const Eigen::Matrix3d& sigma);
 // The stress law of a model's output: the case's law (sigma = P in small
 // strain, P F^T / J in large deformation).
 StressLaw model_stress_law(const Model& model);
+// The Bezier elements of patches first_patch ... first_patch + num_patches - 1
+// of the body (num_patches < 0: to the last), one patch after another,
+// with the displacement u (one row per body control point) as field 0;
+// patches of a lower degree than the body's (bodies of different degrees)
+// elevated to it, geometry and field exactly.
+BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch = 0, int num_patches = -1);
 // recover_stress on the model's body with displacement u (one row per body
 // control point): every patch's elements one after the other, each body
 // with its own law.

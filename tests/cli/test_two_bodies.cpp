@@ -121,8 +121,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadMaster{"key_of_a_body", "name = \"block\"", "name = \"block\"\ncolour = \"red\"", "[body] colour: unknown key"},
         BadMaster{"bodies_overlap", "translate = [0.0, -5.0]", "translate = [0.0, -4.9]",
                   "starts inside the body of its master 'block:top': 0.1 deep at (0, -1)"},
-        BadMaster{"different_degrees", "degree = 2\nelements = [48, 24]", "degree = 3\nelements = [48, 24]",
-                  "body 'block' has degree 3, body 'roller' degree 2"},
         BadMaster{"large_deformation", "model = \"linear_elastic\"\nE = 3.0", "model = \"neo_hookean\"\nE = 3.0",
                   "several bodies run in small deformation"},
         BadMaster{"block_in_3d", "elements = [48, 24]", "elements = [48, 24, 2]",

@@ -13,6 +13,7 @@
 
 #include "contact/pressure.hpp"
 #include "io/case_file.hpp"
+#include "model/field_recovery.hpp"
 #include "model/model.hpp"
 #include "model/references.hpp"
 #include "model/solve.hpp"
@@ -89,6 +90,35 @@ TEST(SeveralBodies, AStiffBlockApproachesTheRigidPlane) {
   const HertzSolution rigid = hertz_cylinder(R, P, 1.0, nu);
   EXPECT_NEAR(p.report.max_pressure / rigid.p0, 1.0, kPeakTolerance);
   EXPECT_NEAR(p.report.half_width, rigid.a, spacing_at(p.report, rigid.a));
+}
+
+TEST(SeveralBodies, BodiesOfDifferentDegreesAreOneModel) {
+  // The block cubic, the roller quadratic: one body of both degrees; the
+  // roller's multipliers stay N2/S0 (its own degree), the block's
+  // elements have their own size in the assembly, and the output mesh is
+  // the block's at its degree and the roller's elevated to it, exactly.
+  CaseSpec spec = roller_on_block("1.0", "3.0", "igac_roller_on_cubic_block");
+  spec.bodies[1].degree = 3;
+  const Model m = build_model(spec);
+  EXPECT_EQ(m.body.patch(0).degree(0), 2);
+  EXPECT_EQ(m.body.patch(1).degree(0), 3);
+  EXPECT_EQ(m.contacts.at(0).face->num_multipliers(), 64);
+  const RunResult r = solve_model(m);
+  ASSERT_EQ(r.status, "converged");
+  const PressureReport& rep = r.contacts.at(0).report;
+  const HertzSolution pair = hertz_cylinder(R, P, 0.75, nu);
+  EXPECT_NEAR(rep.max_pressure / pair.p0, 1.0, kPeakTolerance);
+  EXPECT_NEAR(rep.half_width, pair.a, spacing_at(rep, pair.a));
+  const BezierMesh mesh = body_bezier_mesh(m.body, r.u);
+  ASSERT_EQ(mesh.num_elements(), m.body.num_elements());
+  EXPECT_EQ(mesh.degree(0), 3);
+  // The roller's lowest point, on its elevated first element, moved as the
+  // quadratic roller does.
+  const BezierElement& first = mesh.element(0);
+  Eigen::VectorXd R0, at{{0.0, 0.0}};
+  mesh.basis(first, at, R0, nullptr);
+  const Eigen::RowVectorXd u_elevated = R0.transpose() * first.fields[0];
+  EXPECT_NEAR((u_elevated - r.u.row(0)).norm(), 0.0, 1e-14);
 }
 
 TEST(SeveralBodies, FacesAreNamedByBodyAndRefineAddsToEveryBodysMesh) {
