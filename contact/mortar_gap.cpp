@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/mortar_gap.hpp"
 
+#include <algorithm>
 #include <stdexcept>
+
+#include "engine/quadrature.hpp"
 #include <string>
 
 namespace igac {
@@ -19,7 +22,141 @@ ObstacleProbe MasterAsObstacle::probe(const Eigen::VectorXd& x, bool with_deriva
 
 std::string MasterAsObstacle::describe() const { return "the deformable face '" + name_ + "'"; }
 
-WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master) {
+namespace {
+
+// One slave quadrature point of the mortar integral: where it is, its
+// weight (Jacobian included), the slave's control points (body numbers)
+// with their basis values, and the multipliers with theirs.
+struct SlavePoint {
+  Eigen::VectorXd X;
+  double JxW = 0;
+  std::vector<int> cps;
+  Eigen::VectorXd N;
+  std::vector<int> K;
+  std::vector<double> B;
+};
+
+// The slave side's element [a, b] (2D: a curve) cut where the master
+// point nearest to it crosses a master element edge, so that the master's
+// basis is smooth on every piece.  The projected master parameter is
+// monotone along the slave curve; each crossing of a master breakpoint is
+// found by the Illinois (regula falsi) iteration on it; a change of master
+// side by bisection.
+std::vector<double> segment_cuts(const ContactSide& side, const MasterSurface& master, double a, double b) {
+  constexpr double kParameterTolerance = 1e-13;
+  auto project = [&](double t) {
+    const std::optional<MasterPoint> mp = master.project(side.face_patch.point(Eigen::VectorXd::Constant(1, t)));
+    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    return *mp;
+  };
+  std::vector<double> cuts{a, b};
+  std::vector<std::pair<double, double>> todo{{a, b}};
+  while (!todo.empty()) {
+    const auto [t0, t1] = todo.back();
+    todo.pop_back();
+    const MasterPoint p0 = project(t0), p1 = project(t1);
+    if (p0.side == p1.side && p0.element == p1.element) continue;
+    if (t1 - t0 < kParameterTolerance * (b - a)) continue;
+    if (p0.side != p1.side) {  // two master sides: halve until each piece has one
+      const double tm = 0.5 * (t0 + t1);
+      cuts.push_back(tm);
+      todo.push_back({t0, tm});
+      todo.push_back({tm, t1});
+      continue;
+    }
+    // One master side: every breakpoint strictly between the two master
+    // parameters is a cut.
+    const double x0 = p0.xi[0], x1 = p1.xi[0];
+    for (double beta : master.side_patch(p0.side).knots(0).breakpoints()) {
+      if (!(beta > std::min(x0, x1) && beta < std::max(x0, x1))) continue;
+      double lo = t0, hi = t1, f_lo = x0 - beta, f_hi = x1 - beta, t = 0.5 * (t0 + t1);
+      int side_kept = 0;
+      for (int it = 0; it < 100 && hi - lo > kParameterTolerance * (b - a); ++it) {
+        t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+        if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+        const double f = project(t).xi[0] - beta;
+        if (f == 0.0) break;
+        if ((f < 0) == (f_lo < 0)) {
+          lo = t, f_lo = f;
+          if (side_kept == -1) f_hi *= 0.5;  // Illinois: the stale end's value halved
+          side_kept = -1;
+        } else {
+          hi = t, f_hi = f;
+          if (side_kept == 1) f_lo *= 0.5;
+          side_kept = 1;
+        }
+      }
+      cuts.push_back(t);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end(), [&](double x, double y) { return y - x < kParameterTolerance * (b - a); }),
+             cuts.end());
+  cuts.back() = b;
+  return cuts;
+}
+
+// Every slave quadrature point of the mortar integral, element-based
+// (the face's own Gauss points) or segmented (2D: Gauss points on each
+// piece of segment_cuts).
+template <class Visit>
+void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
+                           Visit&& visit) {
+  SlavePoint sp;
+  if (integration == MortarIntegration::element) {
+    ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
+                                                const std::vector<double>& B) {
+      sp.X = ev.X[q];
+      sp.JxW = ev.JxW[q];
+      sp.cps.assign(ev.cps.begin(), ev.cps.begin() + ev.n_loc);
+      sp.N.resize(ev.n_loc);
+      for (int a = 0; a < ev.n_loc; ++a) sp.N[a] = ev.N(q, a);
+      sp.K = K;
+      sp.B = B;
+      visit(sp);
+    });
+    return;
+  }
+  if (slave.sides.empty() || slave.sides.front().face_patch.param_dim() != 1)
+    throw std::invalid_argument("segmented mortar integration is for 2D bodies (curves); in 3D it is element-based");
+  const GaussRule rule = gauss_legendre(slave.quadrature_points());
+  std::vector<int> local;
+  Eigen::VectorXd values;
+  Eigen::MatrixXd derivs;
+  for (const ContactSide& side : slave.sides) {
+    const std::vector<double> breaks = side.face_patch.knots(0).breakpoints();
+    for (size_t e = 0; e + 1 < breaks.size(); ++e) {
+      const std::vector<double> cuts = segment_cuts(side, master, breaks[e], breaks[e + 1]);
+      for (size_t c = 0; c + 1 < cuts.size(); ++c)
+        for (size_t q = 0; q < rule.points.size(); ++q) {
+          const Eigen::VectorXd t = Eigen::VectorXd::Constant(1, cuts[c] + rule.points[q] * (cuts[c + 1] - cuts[c]));
+          side.face_patch.rational_basis(t, local, values, derivs);
+          sp.X = Eigen::VectorXd::Zero(side.face_patch.space_dim());
+          Eigen::VectorXd tangent = sp.X;
+          sp.cps.resize(local.size());
+          for (size_t a = 0; a < local.size(); ++a) {
+            sp.X += values[Eigen::Index(a)] * side.face_patch.points().row(local[a]).transpose();
+            tangent += derivs(Eigen::Index(a), 0) * side.face_patch.points().row(local[a]).transpose();
+            sp.cps[a] = side.face_cps[local[a]];
+          }
+          sp.N = values;
+          sp.JxW = rule.weights[q] * (cuts[c + 1] - cuts[c]) * tangent.norm();
+          side.space.basis(t, sp.K, sp.B);
+          for (int& K : sp.K) K += side.first_multiplier;
+          visit(sp);
+        }
+    }
+  }
+}
+
+}  // namespace
+
+MortarIntegration default_mortar_integration(int dim) {
+  return dim == 2 ? MortarIntegration::segmented : MortarIntegration::element;
+}
+
+WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
+                                         MortarIntegration integration) {
   const int m = slave.num_multipliers();
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
@@ -28,21 +165,21 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
   Eigen::MatrixXd master_derivs;
-  ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
-                                              const std::vector<double>& B) {
-    const Eigen::VectorXd X = ev.X[q];
-    const std::optional<MasterPoint> mp = master.project(X);
+  for_each_mortar_point(slave, master, integration, [&](const SlavePoint& sp) {
+    const std::optional<MasterPoint> mp = master.project(sp.X);
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     master.side_patch(mp->side).rational_basis(mp->xi, master_local, master_values, master_derivs);
     const std::vector<int>& master_cps = master.side_control_points(mp->side);
-    for (size_t k = 0; k < K.size(); ++k) {
-      const double bw = B[k] * ev.JxW[q];
+    for (size_t k = 0; k < sp.K.size(); ++k) {
+      const double bw = sp.B[k] * sp.JxW;
       if (bw == 0.0) continue;
-      op.weights[K[k]] += bw;
-      op.g0[K[k]] += mp->gap * bw;
-      for (int a = 0; a < ev.n_loc; ++a) add_gap_coupling(dofs, K[k], ev.cps[a], bw * ev.N(q, a), mp->normal, trip, op.g0);
+      op.weights[sp.K[k]] += bw;
+      op.g0[sp.K[k]] += mp->gap * bw;
+      for (size_t a = 0; a < sp.cps.size(); ++a)
+        add_gap_coupling(dofs, sp.K[k], sp.cps[a], bw * sp.N[Eigen::Index(a)], mp->normal, trip, op.g0);
       for (size_t a = 0; a < master_local.size(); ++a)
-        add_gap_coupling(dofs, K[k], master_cps[master_local[a]], -bw * master_values[a], mp->normal, trip, op.g0);
+        add_gap_coupling(dofs, sp.K[k], master_cps[master_local[a]], -bw * master_values[Eigen::Index(a)], mp->normal,
+                         trip, op.g0);
     }
   });
   op.G.resize(m, dofs.num_free());
@@ -51,19 +188,28 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
   return op;
 }
 
-Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& slave, MasterSurface& master) {
-  master.update(u);
+Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& slave, MasterSurface& master,
+                                  MortarIntegration integration) {
+  // The slave points at the reference position (where the integral is
+  // taken), each moved by u; the master moved by u.
+  master.update(Eigen::MatrixXd::Zero(u.rows(), u.cols()));  // the cuts of the reference surface
   const int m = slave.num_multipliers();
   Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
-  ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
-                                              const std::vector<double>& B) {
-    const std::optional<MasterPoint> mp = master.project(ev.displaced(q, u));
-    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
-    for (size_t k = 0; k < K.size(); ++k) {
-      num[K[k]] += mp->gap * B[k] * ev.JxW[q];
-      den[K[k]] += B[k] * ev.JxW[q];
-    }
+  std::vector<std::pair<Eigen::VectorXd, SlavePoint>> points;
+  for_each_mortar_point(slave, master, integration, [&](const SlavePoint& sp) {
+    Eigen::VectorXd x = sp.X;
+    for (size_t a = 0; a < sp.cps.size(); ++a) x += sp.N[Eigen::Index(a)] * u.row(sp.cps[a]).transpose();
+    points.emplace_back(x, sp);
   });
+  master.update(u);
+  for (const auto& [x, sp] : points) {
+    const std::optional<MasterPoint> mp = master.project(x);
+    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    for (size_t k = 0; k < sp.K.size(); ++k) {
+      num[sp.K[k]] += mp->gap * sp.B[k] * sp.JxW;
+      den[sp.K[k]] += sp.B[k] * sp.JxW;
+    }
+  }
   return num.cwiseQuotient(den);
 }
 

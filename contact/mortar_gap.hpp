@@ -9,12 +9,13 @@
 //   g_n = (X - X') . n + (u_s(X) - u_m(X')) . n,
 //   K_K (Pi g)_K = g0_K + (G u)_K,
 //   G_{K,(A,i)} = int B_K N_A n_i  (slave A),  - int B_K N_A(X') n_i  (master A).
-// The integration is element-based on the slave mesh ((p+2) Gauss points
-// per slave element direction, as for an obstacle): not segmented at the
-// master's element edges, so a contact patch test between non-matching
-// meshes is passed to the quadrature error of the master's kinks, not to
-// round-off (measured in tests/unit/contact/test_mortar_gap.cpp).  The
-// multipliers act on both bodies with opposite signs, and the B_K and N_A
+// The integration (MortarIntegration below) is segmented in 2D: each slave
+// element cut where its points' master projections cross a master element
+// edge, so the contact patch test between non-matching meshes (and degrees)
+// is passed to round-off; element-based in 3D, where it is passed to the
+// quadrature error of the master's kinks (measured in
+// tests/unit/contact/test_mortar_gap.cpp).  The multipliers act on both
+// bodies with opposite signs, and the B_K and N_A
 // are partitions of unity: the force on the slave is minus the force on the
 // master to round-off.
 #pragma once
@@ -40,11 +41,25 @@ class MasterAsObstacle final : public Obstacle {
   std::string name_;
 };
 
-WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master);
+// How the slave integral is taken.  element: (p+2) Gauss points per slave
+// element direction, as for an obstacle; the master's basis has kinks
+// inside a slave element where their meshes do not match, so the contact
+// patch test is passed to that quadrature error (about 1e-3 at degree 2).
+// segmented (2D): each slave element cut where its points' master
+// projections cross a master element edge, the same Gauss rule on each
+// piece: the integrand is smooth on every piece and the patch test is
+// passed to round-off.  In 3D the cut pieces are polygons; not there yet.
+enum class MortarIntegration { element, segmented };
+// segmented in 2D, element in 3D.
+MortarIntegration default_mortar_integration(int dim);
+
+WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
+                                         MortarIntegration integration);
 
 // Weighted gaps of the exact gap in the displaced configuration, u per body
 // control point (n_cp x dim): each slave point X + u(X) projected on the
 // master moved by u (`master` is updated to it).  What G linearises.
-Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& slave, MasterSurface& master);
+Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& slave, MasterSurface& master,
+                                  MortarIntegration integration);
 
 }  // namespace igac

@@ -40,7 +40,7 @@ double pressure_resultant(const Model& m) {
 WeightedGapOperator assemble_contact_operator(const Model& m) {
   std::vector<WeightedGapOperator> ops;
   for (const auto& c : m.contacts)
-    ops.push_back(c.master ? assemble_mortar_gaps(*m.dofs, *c.face, *c.master)
+    ops.push_back(c.master ? assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim()))
                            : assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
   return stack(ops);
 }
