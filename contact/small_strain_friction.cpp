@@ -1,0 +1,228 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "contact/small_strain_friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <set>
+
+#include "contact/active_schur.hpp"
+
+namespace igac {
+
+struct SmallStrainFriction::Impl {
+  int n = 0, m = 0, nt = 0, k = 0;
+  double cn = 1;
+  int max_iterations = 100;
+  const RigidModes& modes;
+  SparseCholesky& chol;
+  RowSparse Gs, Gsp;    // [G; T], and without the pinned columns
+  Eigen::VectorXd fp, Gvf, Rf;
+  Eigen::MatrixXd GR;   // [G; T] R
+  ContactSolution counters;  // the Schur columns computed over all steps
+  std::unique_ptr<ActiveSchur> schur;
+  // History: the weighted tangential position T u + t0 where the last step
+  // ended, the accumulated slip, and the state and slip direction of each
+  // multiplier (the next step starts from them).
+  Eigen::VectorXd tau_prev, slip_total;
+  std::vector<char> state;
+  Eigen::MatrixXd dir;  // m x nt
+
+  Impl(const RigidModes& md, SparseCholesky& c) : modes(md), chol(c) {}
+  int trow(int K, int j) const { return m + K * nt + j; }
+};
+
+SmallStrainFriction::~SmallStrainFriction() = default;
+
+SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
+                                         const WeightedGapOperator& op, const RigidModes& modes, SparseCholesky& chol,
+                                         const ContactSolverOptions& opt)
+    : impl_(std::make_unique<Impl>(modes, chol)) {
+  Impl& s = *impl_;
+  s.n = int(K.rows());
+  s.m = int(op.weights.size());
+  s.nt = s.m ? int(op.T.rows() / s.m) : 0;
+  s.k = int(modes.modes.cols());
+  s.cn = opt.complementarity_scale;
+  s.max_iterations = std::max(opt.max_iterations, 100);
+  s.Gs.resize(s.m * (1 + s.nt), s.n);
+  {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int r = 0; r < op.G.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(op.G, r); it; ++it) t.emplace_back(r, int(it.col()), it.value());
+    for (int r = 0; r < op.T.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(op.T, r); it; ++it) t.emplace_back(s.m + r, int(it.col()), it.value());
+    s.Gs.setFromTriplets(t.begin(), t.end());
+  }
+  std::vector<char> pinned(s.n, 0);
+  for (int p : modes.pinned) pinned[p] = 1;
+  std::vector<int> face_eqs;
+  {
+    std::vector<char> on_face(s.n, 0);
+    for (int r = 0; r < s.Gs.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(s.Gs, r); it; ++it) on_face[it.col()] = !pinned[it.col()];
+    for (int i = 0; i < s.n; ++i)
+      if (on_face[i]) face_eqs.push_back(i);
+  }
+  const Eigen::SparseMatrix<double> Kp = pin_equations(K, modes.pinned);
+  chol.analyze(Kp, opt.face_last ? face_eqs : std::vector<int>{});
+  chol.factorize(Kp);
+  s.Gsp = s.Gs;
+  for (int r = 0; r < s.Gsp.outerSize(); ++r)
+    for (RowSparse::InnerIterator it(s.Gsp, r); it; ++it)
+      if (pinned[it.col()]) it.valueRef() = 0.0;
+  s.Gsp.prune(0.0);
+  s.fp = f;
+  for (int p : modes.pinned) s.fp[p] = 0.0;
+  s.schur = std::make_unique<ActiveSchur>(chol, s.Gsp, s.fp, s.counters);
+  s.Gvf = s.schur->G_solve_f();
+  s.GR = s.Gs * modes.modes;
+  s.Rf = modes.modes.transpose() * f;
+  s.tau_prev = Eigen::VectorXd::Zero(s.m * s.nt);  // u = 0, the obstacle where the first step has it
+  s.slip_total = Eigen::VectorXd::Zero(s.m * s.nt);
+  const std::vector<char> active = initial_active_set(op, s.k, opt);
+  s.state.assign(s.m, kOpen);
+  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? kStick : kOpen;
+  s.dir = Eigen::MatrixXd::Zero(s.m, s.nt);
+  if (s.nt > 0) s.dir.col(0).setOnes();
+}
+
+ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
+  Impl& s = *impl_;
+  const int m = s.m, nt = s.nt, k = s.k, rows_all = m * (1 + nt);
+  const Eigen::VectorXd& fr = op.friction;
+  ContactSolution sol;
+  Eigen::VectorXd r0(rows_all);
+  r0.head(m) = op.g0;
+  r0.tail(m * nt) = op.t0 - s.tau_prev;
+
+  std::set<std::vector<char>> seen;
+  Eigen::VectorXd lam = Eigen::VectorXd::Zero(rows_all), c = Eigen::VectorXd::Zero(k), Gu(rows_all);
+  Eigen::VectorXd gap(m), slip(m * nt);
+  for (int it = 0; it < s.max_iterations; ++it) {
+    // Unknowns and constraint rows: active normal rows, stick tangential rows;
+    // Schur columns: every tangential row of an active multiplier too.
+    std::vector<int> rows, cols;
+    for (int K = 0; K < m; ++K)
+      if (s.state[K] != kOpen) {
+        rows.push_back(K);
+        cols.push_back(K);
+      }
+    for (int K = 0; K < m; ++K)
+      if (s.state[K] != kOpen)
+        for (int j = 0; j < nt; ++j) {
+          cols.push_back(s.trow(K, j));
+          if (s.state[K] == kStick) rows.push_back(s.trow(K, j));
+        }
+    sol.active_set_sizes.push_back(int(rows.size()));
+    const Eigen::MatrixXd S = s.schur->S_active(cols);
+    std::vector<int> loc(rows_all, -1);
+    for (size_t i = 0; i < cols.size(); ++i) loc[cols[i]] = int(i);
+    const int nc = int(rows.size());
+    // Column j of the system: the force direction H_j of unknown j (G_K - f d . T_K for a slip multiplier).
+    auto column = [&](int rj, auto&& of_row) {
+      if (rj < m && s.state[rj] == kSlip) {
+        auto v = of_row(rj);
+        for (int l = 0; l < nt; ++l) v -= fr[rj] * s.dir(rj, l) * of_row(s.trow(rj, l));
+        return v;
+      }
+      return of_row(rj);
+    };
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nc + k, nc + k);
+    Eigen::VectorXd rhs(nc + k);
+    for (int j = 0; j < nc; ++j) {
+      Eigen::VectorXd sc = column(rows[j], [&](int r) -> Eigen::VectorXd { return S.col(loc[r]); });
+      for (int i = 0; i < nc; ++i) M(i, j) = sc[loc[rows[i]]];
+      const Eigen::VectorXd hr = column(rows[j], [&](int r) -> Eigen::VectorXd { return s.GR.row(r).transpose(); });
+      M.block(nc, j, k, 1) = -hr;
+    }
+    for (int i = 0; i < nc; ++i) {
+      M.block(i, nc, 1, k) = -s.GR.row(rows[i]);
+      rhs[i] = r0[rows[i]] + s.Gvf[rows[i]];
+    }
+    rhs.tail(k) = -s.Rf;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+    if (lu.rank() < nc + k) {
+      sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions";
+      break;
+    }
+    const Eigen::VectorXd x = lu.solve(rhs);
+    lam.setZero();
+    for (int i = 0; i < nc; ++i) lam[rows[i]] = x[i];
+    for (int K = 0; K < m; ++K)
+      if (s.state[K] == kSlip)
+        for (int l = 0; l < nt; ++l) lam[s.trow(K, l)] = -fr[K] * s.dir(K, l) * lam[K];
+    c = x.tail(k);
+    Gu = s.Gvf + s.GR * c - s.schur->G_solve_Gt(cols, lam);
+    gap = (op.g0 + Gu.head(m)).cwiseQuotient(op.weights);
+    for (int K = 0; K < m; ++K)
+      for (int l = 0; l < nt; ++l) slip[K * nt + l] = (Gu[s.trow(K, l)] + r0[s.trow(K, l)]) / op.weights[K];
+    // The next states.
+    const Eigen::VectorXd lam_n = lam.head(m), lam_t = lam.tail(m * nt);
+    std::vector<char> active(m);
+    for (int K = 0; K < m; ++K) active[K] = s.state[K] != kOpen;
+    const std::vector<char> next_active = next_active_set(lam_n, gap, active, k, s.cn);
+    const double scale = std::max({lam.cwiseAbs().maxCoeff(), s.cn * gap.cwiseAbs().maxCoeff(),
+                                   nt ? s.cn * slip.cwiseAbs().maxCoeff() : 0.0});
+    const double tol = 1e-12 * scale;
+    std::vector<char> next(m, kOpen);
+    Eigen::MatrixXd next_dir = s.dir;
+    bool directions_settled = true;
+    for (int K = 0; K < m; ++K) {
+      if (!next_active[K]) continue;
+      if (fr[K] <= 0) {  // a frictionless contact among frictional ones: always sliding, no force
+        next[K] = kSlip;
+        continue;
+      }
+      const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + s.cn * slip.segment(K * nt, nt);
+      const double b = std::max(0.0, -fr[K] * (lam_n[K] + s.cn * gap[K]));
+      const double norm = xi.norm();
+      if (std::abs(norm - b) <= tol && s.state[K] != kOpen) next[K] = s.state[K];  // on the cone to round-off
+      else next[K] = norm <= b ? kStick : kSlip;
+      if (next[K] == kSlip && norm > tol) {
+        next_dir.row(K) = (xi / norm).transpose();
+        if ((next_dir.row(K) - s.dir.row(K)).norm() > 1e-10 && s.state[K] == kSlip) directions_settled = false;
+      }
+    }
+    sol.weighted_gap = gap;
+    if (next == s.state && directions_settled) {
+      sol.converged = true;
+      sol.status = "converged";
+      break;
+    }
+    // A repeated state (with the signs of a 2D slip) is a cycle.
+    std::vector<char> key = s.state;
+    if (nt == 1)
+      for (int K = 0; K < m; ++K) key[K] += s.state[K] == kSlip && s.dir(K, 0) < 0 ? 1 : 0;
+    if (nt == 1 || directions_settled) {
+      if (seen.count(key)) {
+        sol.status = fmt::format("active set cycling after {} iterations", it + 1);
+        break;
+      }
+      seen.insert(key);
+    }
+    s.state = next;
+    s.dir = next_dir;
+  }
+  if (!sol.converged && sol.status.empty())
+    sol.status = fmt::format("active set not settled in {} iterations", s.max_iterations);
+
+  Eigen::VectorXd u = s.chol.solve(Eigen::VectorXd(s.fp - s.Gsp.transpose() * lam));
+  if (k > 0) u += s.modes.modes * c;
+  sol.u = u;
+  sol.lambda = lam.head(m);
+  sol.lambda_t = lam.tail(m * nt);
+  sol.active.assign(m, 0);
+  for (int K = 0; K < m; ++K) sol.active[K] = s.state[K] != kOpen;
+  if (sol.converged) {
+    s.tau_prev = Gu.tail(m * nt) + op.t0;
+    s.slip_total += slip;
+  }
+  sol.slip = s.slip_total;
+  sol.friction_state = s.state;
+  sol.schur_columns = s.counters.schur_columns;
+  sol.reach_rows = s.counters.reach_rows;
+  return sol;
+}
+
+}  // namespace igac
