@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Small-deformation Coulomb friction against a rigid plane
+// (contact/small_strain_friction.hpp):
+//  - friction = 0 is the frictionless solve, bit for bit;
+//  - a sliding block: a block pressed on a plane (nu = 0: no Poisson
+//    expansion, so no friction while it is pressed), its top held in x,
+//    the plane then moved along x: while everything slides the tangential
+//    force is f times the normal force to round-off; a motion far below the
+//    elastic shear of the block leaves the pressed multipliers stuck, their
+//    slip zero to round-off, and the force below f N;
+//  - Cattaneo-Mindlin (cases/cattaneo_mindlin.toml): a half cylinder clamped
+//    at its top, pressed on the plane, the plane then moved: the stick zone's
+//    half width is c = a sqrt(1 - Q / (f N)) within one multiplier spacing,
+//    with N, Q the computed forces and a Hertz's half width for N.
+//  - bad friction values: one line naming the key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "contact/small_strain_friction.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
+
+namespace igac {
+namespace {
+namespace fs = std::filesystem;
+
+const std::string kSourceDir = IGAC_SOURCE_DIR;
+constexpr double kF = 0.3;
+// Round-off of the solve relative to the force or the motion.
+constexpr double kRoundOff = 1e-11;
+
+struct FrictionRun {
+  Model model;
+  RunResult result;
+};
+
+FrictionRun run_spec(CaseSpec spec) {
+  FrictionRun run{build_model(spec), {}};
+  run.model.quiet = true;
+  run.result = solve_model(run.model);
+  return run;
+}
+
+fs::path write_case(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / "igac_friction";
+  fs::create_directories(dir);
+  std::ofstream(dir / (name + ".toml")) << text;
+  return dir / (name + ".toml");
+}
+
+std::string block_case(double friction, double motion, int steps) {
+  return "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n"
+         "[mesh]\ndegree = 2\nelements = [16, 4]\n"
+         "[material]\nE = 1.0\nnu = 0.0\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
+         "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n"
+         "[contact]\nface = \"bottom\"\nfriction = " +
+         std::to_string(friction) +
+         "\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nmotion = [" +
+         std::to_string(motion) + ", 0.0]\n" + (friction > 0 ? "[loading]\nsteps = " + std::to_string(steps) + "\n" : "");
+}
+
+TEST(Friction, ZeroIsTheFrictionlessSolveBitForBit) {
+  CaseSpec plain = read_case(kSourceDir + "/cases/hertz2d.toml");
+  CaseSpec zero = plain;
+  zero.contacts[0].friction = 0.0;
+  const FrictionRun a = run_spec(plain), b = run_spec(zero);
+  ASSERT_EQ(a.result.status, "converged");
+  EXPECT_EQ(a.result.contact->solution.lambda, b.result.contact->solution.lambda);
+  EXPECT_EQ(a.result.u, b.result.u);
+  EXPECT_EQ(b.result.contact->solution.lambda_t.size(), 0);
+}
+
+TEST(Friction, SlidingBlockForceIsFTimesNormalForce) {
+  const FrictionRun run = run_spec(read_case(write_case("slide", block_case(kF, 0.05, 4)).string()));
+  ASSERT_EQ(run.result.status, "converged");
+  const ContactSolution& s = run.result.contact->solution;
+  int sliding = 0;
+  for (size_t K = 0; K < s.friction_state.size(); ++K) {
+    EXPECT_NE(s.friction_state[K], kStick) << "multiplier " << K;
+    sliding += s.friction_state[K] == kSlip;
+  }
+  EXPECT_EQ(sliding, int(s.friction_state.size()));  // the whole face is pressed, and slides
+  const ObstacleReaction& r = run.result.reactions.at(0);
+  ASSERT_EQ(r.tangential_force.size(), 1);
+  EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);  // P x width 1
+  // The plane drags the block along +x.
+  EXPECT_NEAR(r.tangential_force[0], kF * r.normal_force, kRoundOff * r.normal_force);
+}
+
+TEST(Friction, BlockBelowSlidingSticks) {
+  const double motion = 1e-6;  // the shear of the block at f N is 0.3 * 0.01 * 0.25 / G = 1.5e-3
+  const FrictionRun run = run_spec(read_case(write_case("stick", block_case(kF, motion, 2)).string()));
+  ASSERT_EQ(run.result.status, "converged");
+  const ContactSolution& s = run.result.contact->solution;
+  const int m = int(s.friction_state.size());
+  int stuck = 0;
+  for (int K = 0; K < m; ++K)
+    if (s.friction_state[K] == kStick) {
+      ++stuck;
+      EXPECT_LE(std::abs(s.slip[K]), kRoundOff * run.result.u.cwiseAbs().maxCoeff()) << "multiplier " << K;
+    }
+  EXPECT_GE(stuck, m - 2);  // the corners may slip
+  const ObstacleReaction& r = run.result.reactions.at(0);
+  EXPECT_GT(r.tangential_force[0], 0.0);
+  EXPECT_LT(r.tangential_force[0], kF * r.normal_force);
+}
+
+// The stick zone's half width: half the extent in x of the stuck
+// multipliers' anchors, plus half a spacing (degree 2: each multiplier is
+// constant on its element, its anchor the element's middle); the spacing:
+// the largest distance between the anchors of neighbouring multipliers of
+// the zone.
+TEST(Friction, CattaneoMindlinStickZone) {
+  const FrictionRun run = run_spec(read_case(kSourceDir + "/cases/cattaneo_mindlin.toml"));
+  ASSERT_EQ(run.result.status, "converged");
+  const ContactSolution& s = run.result.contact->solution;
+  const ContactFace& face = *run.model.contacts[0].face;
+  std::vector<double> stick_x, zone_x;
+  for (const ContactSide& side : face.sides)
+    for (int k = 0; k < side.space.size(); ++k) {
+      const int K = side.first_multiplier + k;
+      const double x = side.face_patch.point(side.space.anchor(k))[0];
+      if (s.friction_state[K] != kOpen) zone_x.push_back(x);
+      if (s.friction_state[K] == kStick) stick_x.push_back(x);
+      if (s.friction_state[K] == kSlip)  // on the cone
+        EXPECT_NEAR(std::abs(s.lambda_t[K]), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
+    }
+  ASSERT_GE(stick_x.size(), 3u);
+  std::sort(zone_x.begin(), zone_x.end());
+  double spacing = 0;
+  for (size_t i = 1; i < zone_x.size(); ++i) spacing = std::max(spacing, zone_x[i] - zone_x[i - 1]);
+  const auto [lo, hi] = std::minmax_element(stick_x.begin(), stick_x.end());
+  const double c_h = 0.5 * (*hi - *lo) + 0.5 * spacing;
+  const ObstacleReaction& r = run.result.reactions.at(0);
+  const double N = r.normal_force, Q = r.tangential_force[0];
+  const double E = run.model.spec.E, nu = run.model.spec.nu, R = 1.0;
+  const double a = std::sqrt(4 * N * R * (1 - nu * nu) / (std::numbers::pi * E));
+  ASSERT_GT(Q, 0.0);
+  ASSERT_LT(Q, kF * N);
+  const double c = a * std::sqrt(1 - Q / (kF * N));
+  std::printf("Cattaneo-Mindlin: N = %.6g, Q = %.6g (Q/fN = %.4f), a = %.5f, c = %.5f, c_h = %.5f, spacing = %.5f, "
+              "zone half width %.5f\n",
+              N, Q, Q / (kF * N), a, c, c_h, spacing, 0.5 * (zone_x.back() - zone_x.front()));
+  EXPECT_NEAR(c_h, c, spacing);
+}
+
+TEST(Friction, BadCoefficientIsOneLine) {
+  const std::string base = block_case(kF, 0.05, 2);
+  for (const std::string& bad : {std::string("-0.1"), std::string("nan"), std::string("10.5")}) {
+    std::string text = base;
+    text.replace(text.find("friction = ") + 11, std::to_string(kF).size(), bad);
+    try {
+      read_case(write_case("bad", text).string());
+      ADD_FAILURE() << "friction = " << bad << " accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("friction"), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace igac
