@@ -112,6 +112,42 @@ TEST(Friction, BlockBelowSlidingSticks) {
   EXPECT_LT(r.tangential_force[0], kF * r.normal_force);
 }
 
+// 3D: the cone is a disc.  The plane dragged along (3, 4, 0) under a block
+// pressed on it: every multiplier slides, on the disc, and the tangential
+// force is f N along (0.6, 0.8) (a square cone would give f N on each axis,
+// along (0.71, 0.71)).
+TEST(Friction, SlidingBlock3DForceIsOnTheDisc) {
+  const std::string text =
+      "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 0.25]\n"
+      "[mesh]\ndegree = 2\nelements = [6, 6, 2]\n"
+      "[material]\nE = 1.0\nnu = 0.0\n"
+      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
+      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"y\"\n"
+      "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n"
+      "[contact]\nface = \"bottom\"\nfriction = 0.3\n"
+      "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n"
+      "motion = [0.03, 0.04, 0.0]\n[loading]\nsteps = 2\n";
+  const FrictionRun run = run_spec(read_case(write_case("slide3d", text).string()));
+  ASSERT_EQ(run.result.status, "converged");
+  const ContactSolution& s = run.result.contact->solution;
+  for (size_t K = 0; K < s.friction_state.size(); ++K) EXPECT_EQ(s.friction_state[K], kSlip) << "multiplier " << K;
+  // Every multiplier on the disc |lambda_t| = -f lambda_n, to round-off.
+  for (size_t K = 0; K < s.friction_state.size(); ++K)
+    EXPECT_NEAR(s.lambda_t.segment(2 * K, 2).norm(), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
+  const ObstacleReaction& r = run.result.reactions.at(0);
+  ASSERT_EQ(r.tangential_force.size(), 2);
+  EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);
+  // Each multiplier slides along its own slip, the plane's motion less the
+  // block's elastic shear, which varies over the face (the corners): the
+  // force's direction is the motion's to kDirection, and its size f N to
+  // kSize relative, from below (measured: 3.4e-5 and 9.4e-8).
+  constexpr double kDirection = 1e-4, kSize = 1e-6;
+  EXPECT_LE(r.tangential_force.norm(), kF * r.normal_force * (1 + kRoundOff));
+  EXPECT_GE(r.tangential_force.norm(), kF * r.normal_force * (1 - kSize));
+  EXPECT_NEAR(r.tangential_force[0] / r.tangential_force.norm(), 0.6, kDirection);
+  EXPECT_NEAR(r.tangential_force[1] / r.tangential_force.norm(), 0.8, kDirection);
+}
+
 // The stick zone's half width: half the extent in x of the stuck
 // multipliers' anchors, plus half a spacing (degree 2: each multiplier is
 // constant on its element, its anchor the element's middle); the spacing:
