@@ -143,7 +143,8 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     rhs.tail(k) = -s.Rf;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
     if (lu.rank() < nc + k) {
-      sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions";
+      sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions (with "
+                   "friction: a load along the obstacle above f times the normal force slides the body away)";
       break;
     }
     const Eigen::VectorXd x = lu.solve(rhs);

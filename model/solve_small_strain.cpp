@@ -89,7 +89,14 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   // the weighted gaps: H = G * modes must have full column rank.
   std::optional<WeightedGapOperator> assembled;
   const WeightedGapOperator& op = given ? *given : assembled.emplace(assemble_contact_operator(m));
-  const Eigen::MatrixXd H = op.G * modes.modes;
+  // With friction a motion along the obstacle is held too (by the
+  // tangential rows T) as long as the load does not exceed f N.
+  Eigen::MatrixXd H = op.G * modes.modes;
+  if (op.frictional()) {
+    const Eigen::MatrixXd HT = op.T * modes.modes;
+    H.conservativeResize(H.rows() + HT.rows(), Eigen::NoChange);
+    H.bottomRows(HT.rows()) = HT;
+  }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(H, Eigen::ComputeFullV);
   const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
   int held = 0;
@@ -104,8 +111,9 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   // toward the obstacle, closing some gap, or nothing balances it.
   if (k == 1) {
     const double push = modes.modes.col(0).dot(f);
-    const double scale = H.col(0).cwiseAbs().maxCoeff();
-    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * H.col(0);  // gap change along the load's motion
+    const Eigen::VectorXd gaps = H.col(0).head(op.G.rows());  // the gaps' change (not the tangential rows)
+    const double scale = gaps.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * gaps;  // gap change along the load's motion
     if (std::abs(push) > 1e-12 * f.norm() && opening.minCoeff() >= -1e-12 * scale && opening.maxCoeff() > 1e-12 * scale)
       throw InputError(fmt::format(
           "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "

@@ -112,6 +112,45 @@ TEST(Friction, BlockBelowSlidingSticks) {
   EXPECT_LT(r.tangential_force[0], kF * r.normal_force);
 }
 
+// Force-driven: the block free of Dirichlet conditions, pressed by P on
+// its top and pushed along x by a pressure q on its left side, held along x
+// by friction only.  Below f N it does not slide: the friction force is the
+// push to round-off (the rigid motions' balance rows) and the stuck
+// multipliers do not slip; above f N nothing holds it and the run says so.
+std::string pushed_block_case(double push) {
+  return "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n"
+         "[mesh]\ndegree = 2\nelements = [16, 4]\n"
+         "[material]\nE = 1.0\nnu = 0.0\n"
+         "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n"
+         "[[pressure]]\nfaces = [\"left\"]\nvalue = " + std::to_string(push) + "\n"
+         "[contact]\nface = \"bottom\"\nfriction = 0.3\n"
+         "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\n";
+}
+
+TEST(Friction, PushedBlockBelowFNDoesNotSlide) {
+  const double Q = 0.5 * kF * 0.01, q = Q / 0.25;  // half of f N, over the side's height 0.25
+  const FrictionRun run = run_spec(read_case(write_case("pushed", pushed_block_case(q)).string()));
+  ASSERT_EQ(run.result.status, "converged");
+  const ContactSolution& s = run.result.contact->solution;
+  const int m = int(s.friction_state.size());
+  int stuck = 0;
+  for (int K = 0; K < m; ++K)
+    if (s.friction_state[K] == kStick) {
+      ++stuck;
+      EXPECT_LE(std::abs(s.slip[K]), kRoundOff * run.result.u.cwiseAbs().maxCoeff()) << "multiplier " << K;
+    }
+  EXPECT_GE(stuck, m / 2);
+  const ObstacleReaction& r = run.result.reactions.at(0);
+  EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);
+  EXPECT_NEAR(r.tangential_force[0], -Q, kRoundOff * Q);  // along -x: it holds the push
+}
+
+TEST(Friction, PushedBlockAboveFNIsNotHeld) {
+  const double q = 1.5 * kF * 0.01 / 0.25;
+  const FrictionRun run = run_spec(read_case(write_case("pushed_off", pushed_block_case(q)).string()));
+  EXPECT_NE(run.result.status, "converged");
+}
+
 // 3D: the cone is a disc.  The plane dragged along (3, 4, 0) under a block
 // pressed on it: every multiplier slides, on the disc, and the tangential
 // force is f N along (0.6, 0.8) (a square cone would give f N on each axis,
