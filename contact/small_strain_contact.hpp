@@ -69,6 +69,7 @@ struct ContactSolution {
   // and the state of each multiplier (FrictionState: open, stick, slip).
   Eigen::VectorXd lambda_t, slip;
   std::vector<char> friction_state;
+  std::vector<int> step_iterations;  // active-set iterations of each load step (active_set_sizes: all of them)
   bool converged = false;
   std::string status;
   double factorize_s = 0, schur_s = 0, iterations_s = 0;

@@ -171,6 +171,8 @@ Json run_summary(const Model& m, const RunResult& r) {
     Json c = several ? Json::object() : contact_numbers(r, r.contacts.front());
     c["applied_force"] = finite_or_null(r.applied_force);
     if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
+    if (!r.contact->solution.step_iterations.empty())  // friction: per load step (the press, then each drag)
+      c["friction_step_iterations"] = r.contact->solution.step_iterations;
     if (const auto part = modelled_part(m)) c["model_part"] = *part;
     if (!several) c["obstacle"] = m.contacts.front().obstacle->describe();
     j["contact"] = c;

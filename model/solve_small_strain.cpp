@@ -170,10 +170,15 @@ ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, con
   SmallStrainFriction friction(sys.K, sys.f, moving ? first : op, modes, chol, opt);
   const double factorize_s = clock.seconds();
   ContactSolution s = friction.step(moving ? first : op);
+  std::vector<int> sizes = s.active_set_sizes, per_step{int(s.active_set_sizes.size())};
   for (int i = 1; i <= steps && s.converged; ++i) {
     s = friction.step(i == steps ? op : assemble_contact_operator(m, double(i) / steps));
     if (!s.converged) s.status = fmt::format("{} (load step {} of {})", s.status, i, steps);
+    sizes.insert(sizes.end(), s.active_set_sizes.begin(), s.active_set_sizes.end());
+    per_step.push_back(int(s.active_set_sizes.size()));
   }
+  s.active_set_sizes = std::move(sizes);
+  s.step_iterations = std::move(per_step);
   s.factorize_s = factorize_s;
   return s;
 }
