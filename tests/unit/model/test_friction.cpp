@@ -22,6 +22,8 @@
 #include <string>
 
 #include "contact/small_strain_friction.hpp"
+#include "engine/assembly.hpp"
+#include "engine/linear_static.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
@@ -110,6 +112,41 @@ TEST(Friction, BlockBelowSlidingSticks) {
   const ObstacleReaction& r = run.result.reactions.at(0);
   EXPECT_GT(r.tangential_force[0], 0.0);
   EXPECT_LT(r.tangential_force[0], kF * r.normal_force);
+}
+
+// Path dependence: the sliding block's plane moved to +delta, back to 0,
+// on to -delta and back to 0 (SmallStrainFriction stepped by hand through
+// the obstacle's positions, the slip history carried from step to step).
+// Far enough to slide each way: the force is +f N at +delta and -f N at
+// -delta; back at 0 it is what the way there left, -f N after sliding
+// back, where the start had none: the loop friction implies.
+TEST(Friction, BlockDraggedThereAndBackIsAHysteresisLoop) {
+  const FrictionRun run = run_spec(read_case(write_case("loop", block_case(kF, 0.01, 1)).string()));
+  const Model& m = run.model;
+  LinearSystem sys = assemble_linear_elasticity(m.body, *m.dofs, m.material, Eigen::VectorXd::Zero(2));
+  add_pressure_load(m.body, *m.dofs, resolve_faces(m, {"top"}, "pressure"), 0.01, sys.f);
+  const RigidModes modes = free_rigid_modes(m.body, *m.dofs);
+  ContactSolverOptions opt;
+  opt.complementarity_scale = m.spec.E / m.mesh_size;
+  SparseCholesky chol;
+  const WeightedGapOperator start = assemble_contact_operator(m, 0.0);
+  SmallStrainFriction friction(sys.K, sys.f, start, modes, chol, opt);
+  const std::vector<double> path = {0, 0.5, 1, 0.5, 0, -0.5, -1, -0.5, 0};
+  std::vector<double> force;
+  for (double t : path) {
+    const WeightedGapOperator op = assemble_contact_operator(m, t);
+    const ContactSolution s = friction.step(op);
+    ASSERT_TRUE(s.converged) << s.status << " at t = " << t;
+    force.push_back(-(s.lambda_t.array() * op.weights.array()).sum());
+  }
+  const double fN = kF * 0.01;
+  EXPECT_NEAR(force[0], 0.0, kRoundOff * fN);
+  EXPECT_NEAR(force[2], fN, kRoundOff * fN);
+  EXPECT_NEAR(force[6], -fN, kRoundOff * fN);
+  EXPECT_NEAR(force[4], -fN, kRoundOff * fN);  // back at 0 from +delta: sliding back
+  EXPECT_NEAR(force[8], fN, kRoundOff * fN);   // back at 0 from -delta
+  EXPECT_GT(force[1] - force[3], fN);          // at +delta/2 on the way there and back
+  for (double F : force) EXPECT_LE(std::abs(F), fN * (1 + kRoundOff));
 }
 
 // Force-driven: the block free of Dirichlet conditions, pressed by P on
