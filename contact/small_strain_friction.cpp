@@ -27,12 +27,31 @@ struct SmallStrainFriction::Impl {
   Eigen::VectorXd tau_prev, slip_total;
   std::vector<char> state;
   Eigen::MatrixXd dir;  // m x nt
+  Eigen::VectorXd alpha;  // b / |xi| where the slip direction was last taken (3D: the linearised slip law)
 
   Impl(const RigidModes& md, SparseCholesky& c) : modes(md), chol(c) {}
   int trow(int K, int j) const { return m + K * nt + j; }
 };
 
 SmallStrainFriction::~SmallStrainFriction() = default;
+
+double slip_compliance(double alpha, double ct) {
+  const double a = std::clamp(alpha, kMinAlpha, 1.0);
+  return (1 - a) / (a * ct);
+}
+
+SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::VectorXd& s, double b, double ct) {
+  const Eigen::VectorXd xi = lambda_t + ct * s;
+  const double norm = xi.norm();
+  SlipLinearisation out;
+  out.v = xi / norm;
+  const double alpha = b / norm;
+  const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(xi.size(), xi.size()) - out.v * out.v.transpose();
+  out.d_lambda_t = Eigen::MatrixXd::Identity(xi.size(), xi.size()) - alpha * P;
+  out.d_s = -alpha * ct * P;
+  out.d_b = -out.v;
+  return out;
+}
 
 SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                          const WeightedGapOperator& op, const RigidModes& modes, SparseCholesky& chol,
@@ -85,6 +104,7 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? kStick : kOpen;
   s.dir = Eigen::MatrixXd::Zero(s.m, s.nt);
   if (s.nt > 0) s.dir.col(0).setOnes();
+  s.alpha = Eigen::VectorXd::Ones(s.m);
 }
 
 ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
@@ -100,46 +120,68 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   Eigen::VectorXd lam = Eigen::VectorXd::Zero(rows_all), c = Eigen::VectorXd::Zero(k), Gu(rows_all);
   Eigen::VectorXd gap(m), slip(m * nt);
   for (int it = 0; it < s.max_iterations; ++it) {
-    // Unknowns and constraint rows: active normal rows, stick tangential rows;
-    // Schur columns: every tangential row of an active multiplier too.
-    std::vector<int> rows, cols;
+    // The unknowns, each a combination of the stacked rows [G; T]: its force
+    // direction H_j and its constraint row C_j (the same but for a slip
+    // multiplier's normal unknown, whose force is G_K - f v . T_K).  In 3D a
+    // slip multiplier also has the tangential unknown across its slip
+    // direction, w = v rotated in the tangent plane, with the linearised
+    // slip law (docs/design.md, "Friction"): w . s_K = beta_K w . lambda_t,K.
+    // Schur columns: every row of an active multiplier.
+    struct Unknown {
+      std::vector<std::pair<int, double>> H, C;
+      double diagonal = 0;  // + diagonal * x_j in its own constraint row
+    };
+    std::vector<Unknown> unknowns;
+    std::vector<int> cols;
     for (int K = 0; K < m; ++K)
       if (s.state[K] != kOpen) {
-        rows.push_back(K);
+        Unknown u;
+        u.C = {{K, 1.0}};
+        u.H = u.C;
+        if (s.state[K] == kSlip)
+          for (int l = 0; l < nt; ++l) u.H.emplace_back(s.trow(K, l), -fr[K] * s.dir(K, l));
+        unknowns.push_back(std::move(u));
         cols.push_back(K);
       }
     for (int K = 0; K < m; ++K)
       if (s.state[K] != kOpen)
         for (int j = 0; j < nt; ++j) {
           cols.push_back(s.trow(K, j));
-          if (s.state[K] == kStick) rows.push_back(s.trow(K, j));
+          if (s.state[K] == kStick) unknowns.push_back({{{s.trow(K, j), 1.0}}, {{s.trow(K, j), 1.0}}});
         }
-    sol.active_set_sizes.push_back(int(rows.size()));
+    if (nt == 2)
+      for (int K = 0; K < m; ++K)
+        if (s.state[K] == kSlip && fr[K] > 0) {
+          const double w0 = -s.dir(K, 1), w1 = s.dir(K, 0);
+          Unknown u;
+          u.C = {{s.trow(K, 0), w0}, {s.trow(K, 1), w1}};
+          u.H = u.C;
+          u.diagonal = op.weights[K] * slip_compliance(s.alpha[K], s.cn);
+          unknowns.push_back(std::move(u));
+        }
+    sol.active_set_sizes.push_back(int(unknowns.size()));
     const Eigen::MatrixXd S = s.schur->S_active(cols);
     std::vector<int> loc(rows_all, -1);
     for (size_t i = 0; i < cols.size(); ++i) loc[cols[i]] = int(i);
-    const int nc = int(rows.size());
-    // Column j of the system: the force direction H_j of unknown j (G_K - f d . T_K for a slip multiplier).
-    auto column = [&](int rj, auto&& of_row) {
-      if (rj < m && s.state[rj] == kSlip) {
-        auto v = of_row(rj);
-        for (int l = 0; l < nt; ++l) v -= fr[rj] * s.dir(rj, l) * of_row(s.trow(rj, l));
-        return v;
-      }
-      return of_row(rj);
-    };
+    const int nc = int(unknowns.size());
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nc + k, nc + k);
-    Eigen::VectorXd rhs(nc + k);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nc + k);
     for (int j = 0; j < nc; ++j) {
-      Eigen::VectorXd sc = column(rows[j], [&](int r) -> Eigen::VectorXd { return S.col(loc[r]); });
-      for (int i = 0; i < nc; ++i) M(i, j) = sc[loc[rows[i]]];
-      const Eigen::VectorXd hr = column(rows[j], [&](int r) -> Eigen::VectorXd { return s.GR.row(r).transpose(); });
+      Eigen::VectorXd sc = Eigen::VectorXd::Zero(S.rows()), hr = Eigen::VectorXd::Zero(k);
+      for (const auto& [q, b] : unknowns[j].H) {
+        sc += b * S.col(loc[q]);
+        hr += b * s.GR.row(q).transpose();
+      }
+      for (int i = 0; i < nc; ++i)
+        for (const auto& [r, a] : unknowns[i].C) M(i, j) += a * sc[loc[r]];
+      M(j, j) += unknowns[j].diagonal;
       M.block(nc, j, k, 1) = -hr;
     }
-    for (int i = 0; i < nc; ++i) {
-      M.block(i, nc, 1, k) = -s.GR.row(rows[i]);
-      rhs[i] = r0[rows[i]] + s.Gvf[rows[i]];
-    }
+    for (int i = 0; i < nc; ++i)
+      for (const auto& [r, a] : unknowns[i].C) {
+        M.block(i, nc, 1, k) -= a * s.GR.row(r);
+        rhs[i] += a * (r0[r] + s.Gvf[r]);
+      }
     rhs.tail(k) = -s.Rf;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
     if (lu.rank() < nc + k) {
@@ -149,10 +191,8 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     }
     const Eigen::VectorXd x = lu.solve(rhs);
     lam.setZero();
-    for (int i = 0; i < nc; ++i) lam[rows[i]] = x[i];
-    for (int K = 0; K < m; ++K)
-      if (s.state[K] == kSlip)
-        for (int l = 0; l < nt; ++l) lam[s.trow(K, l)] = -fr[K] * s.dir(K, l) * lam[K];
+    for (int j = 0; j < nc; ++j)
+      for (const auto& [q, b] : unknowns[j].H) lam[q] += b * x[j];
     c = x.tail(k);
     Gu = s.Gvf + s.GR * c - s.schur->G_solve_Gt(cols, lam);
     gap = (op.g0 + Gu.head(m)).cwiseQuotient(op.weights);
@@ -168,6 +208,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     const double tol = 1e-12 * scale;
     std::vector<char> next(m, kOpen);
     Eigen::MatrixXd next_dir = s.dir;
+    Eigen::VectorXd next_alpha = s.alpha;
     bool directions_settled = true;
     for (int K = 0; K < m; ++K) {
       if (!next_active[K]) continue;
@@ -182,6 +223,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
       else next[K] = norm <= b ? kStick : kSlip;
       if (next[K] == kSlip && norm > tol) {
         next_dir.row(K) = (xi / norm).transpose();
+        next_alpha[K] = b / norm;
         if ((next_dir.row(K) - s.dir.row(K)).norm() > 1e-10 && s.state[K] == kSlip) directions_settled = false;
       }
     }
@@ -204,6 +246,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     }
     s.state = next;
     s.dir = next_dir;
+    s.alpha = next_alpha;
   }
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", s.max_iterations);

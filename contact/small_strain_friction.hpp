@@ -23,7 +23,9 @@
 // LU, bordered by the rigid motions the contact holds.  In 2D d = +-1 and
 // each iteration solves the piecewise-linear problem exactly (nothing to
 // linearise: the iteration ends when the states repeat); in 3D the cone is a
-// disc and d is updated by fixed point until it moves less than 1e-10.
+// disc, d = xi / |xi| of the last iterate, and the slip law is linearised
+// across d (linearise_slip below: a semismooth Newton step), until d moves
+// less than 1e-10.
 #pragma once
 
 #include <memory>
@@ -31,6 +33,24 @@
 #include "contact/small_strain_contact.hpp"
 
 namespace igac {
+
+// The slip law of one multiplier, Phi = lambda_t - b xi / |xi| = 0 with
+// xi = lambda_t + c_t s, and its derivatives at a slipping state
+// (|xi| > b): with v = xi / |xi|, alpha = b / |xi|, P = I - v v^T,
+//   dPhi/dlambda_t = I - alpha P,  dPhi/ds = -alpha c_t P,  dPhi/db = -v.
+// Along v this says v . lambda_t = b; across it (3D), for w orthogonal to v,
+// (1 - alpha) w . lambda_t = alpha c_t w . s: the slip across the direction
+// is the traction across it times slip_compliance(alpha, c_t)
+// = (1 - alpha) / (alpha c_t), the row the solve adds per slip multiplier
+// (alpha clamped to [kMinAlpha, 1]).  Checked against finite differences.
+struct SlipLinearisation {
+  Eigen::VectorXd v;
+  Eigen::MatrixXd d_lambda_t, d_s;
+  Eigen::VectorXd d_b;
+};
+SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::VectorXd& s, double b, double ct);
+inline constexpr double kMinAlpha = 1e-12;
+double slip_compliance(double alpha, double ct);
 
 // Per multiplier: 0 open, 1 stick, 2 slip.
 enum FrictionState : char { kOpen = 0, kStick = 1, kSlip = 2 };
