@@ -68,6 +68,19 @@ std::string block_case(double friction, double motion, int steps) {
          std::to_string(motion) + ", 0.0]\n" + (friction > 0 ? "[loading]\nsteps = " + std::to_string(steps) + "\n" : "");
 }
 
+// How many multipliers stick; each of them has not slipped (to round-off
+// of the displacements).
+int stuck_without_slip(const FrictionRun& run) {
+  const ContactSolution& s = run.result.contact->solution;
+  int stuck = 0;
+  for (size_t K = 0; K < s.friction_state.size(); ++K)
+    if (s.friction_state[K] == kStick) {
+      ++stuck;
+      EXPECT_LE(std::abs(s.slip[K]), kRoundOff * run.result.u.cwiseAbs().maxCoeff()) << "multiplier " << K;
+    }
+  return stuck;
+}
+
 TEST(Friction, ZeroIsTheFrictionlessSolveBitForBit) {
   CaseSpec plain = read_case(kSourceDir + "/cases/hertz2d.toml");
   CaseSpec zero = plain;
@@ -100,14 +113,8 @@ TEST(Friction, BlockBelowSlidingSticks) {
   const double motion = 1e-6;  // the shear of the block at f N is 0.3 * 0.01 * 0.25 / G = 1.5e-3
   const FrictionRun run = run_spec(read_case(write_case("stick", block_case(kF, motion, 2)).string()));
   ASSERT_EQ(run.result.status, "converged");
-  const ContactSolution& s = run.result.contact->solution;
-  const int m = int(s.friction_state.size());
-  int stuck = 0;
-  for (int K = 0; K < m; ++K)
-    if (s.friction_state[K] == kStick) {
-      ++stuck;
-      EXPECT_LE(std::abs(s.slip[K]), kRoundOff * run.result.u.cwiseAbs().maxCoeff()) << "multiplier " << K;
-    }
+  const int m = int(run.result.contact->solution.friction_state.size());
+  const int stuck = stuck_without_slip(run);
   EXPECT_GE(stuck, m - 2);  // the corners may slip
   const ObstacleReaction& r = run.result.reactions.at(0);
   EXPECT_GT(r.tangential_force[0], 0.0);
@@ -168,14 +175,8 @@ TEST(Friction, PushedBlockBelowFNDoesNotSlide) {
   const double Q = 0.5 * kF * 0.01, q = Q / 0.25;  // half of f N, over the side's height 0.25
   const FrictionRun run = run_spec(read_case(write_case("pushed", pushed_block_case(q)).string()));
   ASSERT_EQ(run.result.status, "converged");
-  const ContactSolution& s = run.result.contact->solution;
-  const int m = int(s.friction_state.size());
-  int stuck = 0;
-  for (int K = 0; K < m; ++K)
-    if (s.friction_state[K] == kStick) {
-      ++stuck;
-      EXPECT_LE(std::abs(s.slip[K]), kRoundOff * run.result.u.cwiseAbs().maxCoeff()) << "multiplier " << K;
-    }
+  const int m = int(run.result.contact->solution.friction_state.size());
+  const int stuck = stuck_without_slip(run);
   EXPECT_GE(stuck, m / 2);
   const ObstacleReaction& r = run.result.reactions.at(0);
   EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);
@@ -188,21 +189,25 @@ TEST(Friction, PushedBlockAboveFNIsNotHeld) {
   EXPECT_NE(run.result.status, "converged");
 }
 
+// A block [0, 1]^2 x [0, 0.25] pressed by 0.01 on a plane z = 0, its top
+// held in x and y, the plane dragged by (motion, 0) in `steps` steps.
+std::string box_case(const std::string& elements, double nu, const std::string& motion, int steps) {
+  return "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 0.25]\n[mesh]\ndegree = 2\nelements = " + elements +
+         "\n[material]\nE = 1.0\nnu = " + std::to_string(nu) +
+         "\n[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"y\"\n"
+         "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n"
+         "[contact]\nface = \"bottom\"\nfriction = 0.3\n"
+         "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmotion = [" +
+         motion + ", 0.0]\n[loading]\nsteps = " + std::to_string(steps) + "\n";
+}
+
 // 3D: the cone is a disc.  The plane dragged along (3, 4, 0) under a block
 // pressed on it: every multiplier slides, on the disc, and the tangential
 // force is f N along (0.6, 0.8) (a square cone would give f N on each axis,
 // along (0.71, 0.71)).
 TEST(Friction, SlidingBlock3DForceIsOnTheDisc) {
-  const std::string text =
-      "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 0.25]\n"
-      "[mesh]\ndegree = 2\nelements = [6, 6, 2]\n"
-      "[material]\nE = 1.0\nnu = 0.0\n"
-      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
-      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"y\"\n"
-      "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n"
-      "[contact]\nface = \"bottom\"\nfriction = 0.3\n"
-      "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n"
-      "motion = [0.03, 0.04, 0.0]\n[loading]\nsteps = 2\n";
+  const std::string text = box_case("[6, 6, 2]", 0.0, "0.03, 0.04", 2);
   const FrictionRun run = run_spec(read_case(write_case("slide3d", text).string()));
   ASSERT_EQ(run.result.status, "converged");
   const ContactSolution& s = run.result.contact->solution;
@@ -229,16 +234,7 @@ TEST(Friction, SlidingBlock3DForceIsOnTheDisc) {
 // the slip direction settles each step in a few iterations (measured: 5, 5,
 // 4, 4, 4; the direction's fixed point alone did not settle in 100).
 TEST(Friction, Block3DPartialSlipSettles) {
-  const std::string text =
-      "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 0.25]\n"
-      "[mesh]\ndegree = 2\nelements = [12, 12, 3]\n"
-      "[material]\nE = 1.0\nnu = 0.3\n"
-      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
-      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"y\"\n"
-      "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n"
-      "[contact]\nface = \"bottom\"\nfriction = 0.3\n"
-      "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n"
-      "motion = [0.0003, 0.0004, 0.0]\n[loading]\nsteps = 4\n";
+  const std::string text = box_case("[12, 12, 3]", 0.3, "0.0003, 0.0004", 4);
   const FrictionRun run = run_spec(read_case(write_case("partial3d", text).string()));
   ASSERT_EQ(run.result.status, "converged");
   const ContactSolution& s = run.result.contact->solution;
