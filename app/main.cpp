@@ -8,6 +8,7 @@
 // Exit codes: 0 converged, 1 the solve failed (summary.json says why),
 // 2 bad input (one line on stderr naming file, key and reason).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "contact/small_strain_friction.hpp"
 #include "app/launcher.hpp"
 #include "engine/stopwatch.hpp"
 #include "io/gismo_xml.hpp"
@@ -162,6 +164,13 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
                  r.applied_force, std::abs(rep.total_force - r.applied_force) / r.applied_force);
     else
       fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
+    if (i < r.reactions.size() && r.reactions[i].tangential_force.size() && m.contacts[i].friction > 0) {
+      const std::vector<char>& st = r.contact->solution.friction_state;
+      const auto first = st.begin() + c.first_multiplier, last = first + c.num_multipliers;
+      fmt::print("  {}friction      tangential force {:.10g} (f N = {:.10g}); {} multipliers stick, {} slip\n", in,
+                 r.reactions[i].tangential_force.norm(), m.contacts[i].friction * r.reactions[i].normal_force,
+                 std::count(first, last, char(kStick)), std::count(first, last, char(kSlip)));
+    }
   }
   if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
   if (r.pressure_error && r.pressure_error->second > 0)

@@ -63,6 +63,13 @@ struct ContactSolution {
   std::vector<char> active;
   Eigen::VectorXd weighted_gap;      // (Pi g)_K at the solution
   std::vector<int> active_set_sizes; // per iteration (the set each solve used)
+  // Friction (contact/small_strain_friction.hpp), empty without: dim-1 per
+  // multiplier (row K (dim-1) + j along tangent t_j), the tangential
+  // multipliers, the slip accumulated over the load steps (weighted, / K_K)
+  // and the state of each multiplier (FrictionState: open, stick, slip).
+  Eigen::VectorXd lambda_t, slip;
+  std::vector<char> friction_state;
+  std::vector<int> step_iterations;  // active-set iterations of each load step (active_set_sizes: all of them)
   bool converged = false;
   std::string status;
   double factorize_s = 0, schur_s = 0, iterations_s = 0;

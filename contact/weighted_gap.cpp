@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/weighted_gap.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace igac {
@@ -47,26 +48,54 @@ void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::R
   }
 }
 
-WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle) {
-  const int m = cf.num_multipliers();
+Eigen::MatrixXd tangent_basis(const Eigen::VectorXd& n) {
+  if (n.size() == 2) return Eigen::Vector2d(n[1], -n[0]);
+  int axis = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(n[i]) < std::abs(n[axis])) axis = i;
+  const Eigen::Vector3d nn = n, t1 = (Eigen::Vector3d::Unit(axis) - nn[axis] * nn).normalized();
+  Eigen::MatrixXd t(3, 2);
+  t.col(0) = t1;
+  t.col(1) = nn.cross(t1);
+  return t;
+}
+
+WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle,
+                                           double friction, const Eigen::VectorXd& shift) {
+  const int m = cf.num_multipliers(), nt = dofs.dim() - 1;
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
-  std::vector<Eigen::Triplet<double>> trip;
+  if (friction > 0) {
+    op.t0 = Eigen::VectorXd::Zero(m * nt);
+    op.friction = Eigen::VectorXd::Constant(m, friction);
+  }
+  std::vector<Eigen::Triplet<double>> trip, ttrip;
   ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
     const ObstacleProbe pr = obstacle.probe(ev.X[q]);
+    const Eigen::MatrixXd t = friction > 0 ? tangent_basis(pr.normal) : Eigen::MatrixXd();
     for (size_t k = 0; k < K.size(); ++k) {
       const double bw = B[k] * ev.JxW[q];
       if (bw == 0.0) continue;
       op.weights[K[k]] += bw;
       op.g0[K[k]] += pr.gap * bw;
       for (int a = 0; a < ev.n_loc; ++a) add_gap_coupling(dofs, K[k], ev.cps[a], bw * ev.N(q, a), pr.normal, trip, op.g0);
+      for (int j = 0; j < t.cols(); ++j) {
+        const int row = K[k] * nt + j;
+        if (shift.size()) op.t0[row] -= bw * shift.dot(t.col(j));
+        for (int a = 0; a < ev.n_loc; ++a) add_gap_coupling(dofs, row, ev.cps[a], bw * ev.N(q, a), t.col(j), ttrip, op.t0);
+      }
     }
   });
   op.G.resize(m, dofs.num_free());
   op.G.setFromTriplets(trip.begin(), trip.end());
   op.G.prune(0.0);
+  if (friction > 0) {
+    op.T.resize(m * nt, dofs.num_free());
+    op.T.setFromTriplets(ttrip.begin(), ttrip.end());
+    op.T.prune(0.0);
+  }
   return op;
 }
 
@@ -103,6 +132,28 @@ WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops) {
   }
   out.G.resize(rows, cols);
   out.G.setFromTriplets(trip.begin(), trip.end());
+  // Friction: every contact gets its tangential rows (zero, f = 0, for a
+  // frictionless one) once one contact has them.
+  int nt = 0;
+  for (const auto& op : ops)
+    if (op.G.rows() > 0 && op.T.rows() > 0) nt = int(op.T.rows() / op.G.rows());
+  if (nt == 0) return out;
+  out.t0 = Eigen::VectorXd::Zero(rows * nt);
+  out.friction = Eigen::VectorXd::Zero(rows);
+  std::vector<Eigen::Triplet<double>> ttrip;
+  r0 = 0;
+  for (const auto& op : ops) {
+    if (op.T.rows() > 0) {
+      for (int r = 0; r < op.T.outerSize(); ++r)
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(op.T, r); it; ++it)
+          ttrip.emplace_back(int(r0 * nt + r), int(it.col()), it.value());
+      out.t0.segment(r0 * nt, op.T.rows()) = op.t0;
+      out.friction.segment(r0, op.G.rows()) = op.friction;
+    }
+    r0 += op.G.rows();
+  }
+  out.T.resize(rows * nt, cols);
+  out.T.setFromTriplets(ttrip.begin(), ttrip.end());
   return out;
 }
 

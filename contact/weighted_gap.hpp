@@ -82,6 +82,16 @@ struct WeightedGapOperator {
   Eigen::SparseMatrix<double, Eigen::RowMajor> G;  // m x n_free
   Eigen::VectorXd weights;                         // K_K
   Eigen::VectorXd g0;                              // int g_n(X) B_K (+ prescribed part)
+  // Coulomb friction (contact/small_strain_friction.hpp), empty when every
+  // contact is frictionless: dim-1 tangential rows per multiplier, row
+  // K (dim-1) + j along the obstacle's tangent t_j at the point,
+  //   T_{(K,j),(a,i)} = int B_K N_a (t_j)_i,  t0_(K,j) = -int B_K (shift . t_j) (+ prescribed part),
+  // so that T u + t0 is the weighted tangential displacement of the body
+  // relative to the obstacle moved by `shift`; and the coefficient f per multiplier.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> T;
+  Eigen::VectorXd t0;
+  Eigen::VectorXd friction;
+  bool frictional() const { return friction.size() > 0 && friction.maxCoeff() > 0; }
   // Weighted gaps (Pi g)_K for free displacements u.
   Eigen::VectorXd weighted_gaps(const Eigen::VectorXd& u_free) const {
     return (g0 + G * u_free).cwiseQuotient(weights);
@@ -96,7 +106,14 @@ void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::R
 
 // Several operators (one per contact) as one: rows stacked in order.
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);
-WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle);
+// With friction > 0 also the tangential rows T, t0 (the obstacle translated
+// by `shift` from where its tangential displacement counts; empty: none).
+WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle,
+                                           double friction = 0, const Eigen::VectorXd& shift = {});
+// The obstacle's tangents at a point of normal n: t (2D, n rotated by -90
+// degrees: (n_y, -n_x)) or t1, t2 (3D, t1 the coordinate axis least aligned
+// with n projected on the tangent plane, t2 = n x t1), as columns.
+Eigen::MatrixXd tangent_basis(const Eigen::VectorXd& n);
 
 // Weighted gaps of the exact (not linearised) gap at the displaced position
 // X + u(X), u given per control point (n_cp x dim): what G linearises.

@@ -39,7 +39,7 @@ const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
 const std::set<std::string> kPressureKeys{"faces", "value"};
 const std::set<std::string> kBodyForceKeys{"value"};
-const std::set<std::string> kContactKeys{"face", "obstacle", "master"};
+const std::set<std::string> kContactKeys{"face", "obstacle", "master", "friction"};
 const std::set<std::string> kObstacleKeys{"type", "motion"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -295,6 +295,15 @@ CaseSpec read_case(const std::string& path) {
       }
       if (o.has("motion")) cs.obstacle.motion = o.loads("motion", dim);
     }
+    if (s.has("friction")) {  // Coulomb (contact/small_strain_friction.hpp)
+      cs.friction = s.number("friction");  // finite
+      if (!(cs.friction >= 0 && cs.friction <= 10)) s.fail("friction", "must lie in [0, 10] (a Coulomb coefficient)");
+      if (cs.friction > 0 && s.has("master"))
+        s.fail("friction", "friction between two deformable bodies is not implemented (rigid obstacles only)");
+      if (cs.friction > 0 && c.finite_strain())
+        s.fail("friction", fmt::format("friction runs in small deformation only (model \"linear_elastic\"), not with "
+                                       "model \"{}\"", c.model));
+    }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system
       if (o.face == cs.face && o.master == cs.master && o.obstacle.type == cs.obstacle.type &&
@@ -313,8 +322,10 @@ CaseSpec read_case(const std::string& path) {
   }
   if (root.contains("loading")) {
     const Section s(path, "loading", top.sub("loading"), kLoadingKeys);
-    if (!c.finite_strain())
-      s.fail("steps", "[loading] drives the large-deformation models; linear_elastic is solved in one linear step");
+    const bool friction = std::any_of(c.contacts.begin(), c.contacts.end(), [](const auto& x) { return x.friction > 0; });
+    if (!c.finite_strain() && !friction)
+      s.fail("steps", "[loading] drives the large-deformation models and friction; linear_elastic without friction is "
+                      "solved in one linear step");
     LoadingSpec& l = c.loading;
     l.steps = s.integer("steps", 10);
     if (l.steps < 1 || l.steps > 100000) s.fail("steps", "must lie in 1..100000");
@@ -355,6 +366,8 @@ CaseSpec read_case(const std::string& path) {
     if (const std::string why = check_preconditioner(c.solver); !why.empty()) s.fail("preconditioner", why);
     if (c.solver.type == "petsc" && c.finite_strain())
       s.fail("type", "the PETSc solver runs the small-deformation (linear_elastic) contact solve only");
+    for (const ContactSpec& cs : c.contacts)
+      if (c.solver.type == "petsc" && cs.friction > 0) s.fail("type", "friction runs with the direct solver only");
   }
   apply_overrides(c, {}, {});
   return c;

@@ -3,6 +3,7 @@
 #include "model/memory_estimate.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -190,6 +191,8 @@ Json run_summary(const Model& m, const RunResult& r) {
     Json c = several ? Json::object() : contact_numbers(r, r.contacts.front());
     c["applied_force"] = finite_or_null(r.applied_force);
     if (!r.load_steps) c["active_set_iterations"] = r.contact->solution.active_set_sizes.size();
+    if (!r.contact->solution.step_iterations.empty())  // friction: per load step (the press, then each drag)
+      c["friction_step_iterations"] = r.contact->solution.step_iterations;
     if (const auto part = modelled_part(m)) c["model_part"] = *part;
     if (!several) c["obstacle"] = m.contacts.front().obstacle->describe();
     j["contact"] = c;
@@ -205,8 +208,14 @@ Json run_summary(const Model& m, const RunResult& r) {
     }
     Json obstacles = Json::array();  // every contact: the force its obstacle exerts
     for (const auto& rr : r.reactions)
-      obstacles.push_back({{"face", rr.face}, {"obstacle", rr.obstacle}, {"normal_force", finite_or_null(rr.normal_force)},
-                           {"active", rr.active}});
+    {
+      Json o = {{"face", rr.face}, {"obstacle", rr.obstacle}, {"normal_force", finite_or_null(rr.normal_force)},
+                {"active", rr.active}};
+      if (rr.tangential_force.size())  // friction: along the obstacle's tangents, and its size
+        o["tangential_force"] = {{"components", std::vector<double>(rr.tangential_force.begin(), rr.tangential_force.end())},
+                                 {"magnitude", finite_or_null(rr.tangential_force.norm())}};
+      obstacles.push_back(o);
+    }
     j["obstacles"] = obstacles;
   }
   if (r.hertz) j["analytic"] = {{"half_width", r.hertz->a}, {"max_pressure", r.hertz->p0}};
@@ -274,18 +283,34 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
 }
 
 std::string pressure_csv(const RunResult& r, size_t contact) {
-  std::string s = "kind,r,pressure,r_over_a,p_over_p0,hertz_p_over_p0\n";
+  std::string s = "kind,r,pressure,r_over_a,p_over_p0,hertz_p_over_p0";
   const auto& rep = r.contacts.at(contact).report;
-  auto row = [&](const char* kind, PressureSample p) {
+  // Friction: per multiplier its state, the tangential traction -lambda_t
+  // and the slip accumulated over the steps, per obstacle tangent.
+  const ContactSolution* fr = r.contact && r.contact->solution.lambda_t.size() ? &r.contact->solution : nullptr;
+  const int nt = fr ? int(fr->lambda_t.size() / fr->lambda.size()) : 0;
+  for (const char* col : {",tangential_traction", ",slip"})
+    for (int j = 0; j < nt; ++j) s += nt == 1 ? std::string(col) : fmt::format("{}_{}", col, j + 1);
+  s += fr ? ",state\n" : "\n";
+  auto row = [&](const char* kind, PressureSample p, int K) {
     p.pressure += 0.0;  // an inactive multiplier's -0 prints as 0
     if (has_hertz_scale(r))
-      s += fmt::format("{},{},{},{},{},{}\n", kind, csv_number(p.r), csv_number(p.pressure), csv_number(p.r / r.hertz->a),
+      s += fmt::format("{},{},{},{},{},{}", kind, csv_number(p.r), csv_number(p.pressure), csv_number(p.r / r.hertz->a),
                        csv_number(p.pressure / r.hertz->p0), csv_number(r.hertz->pressure(p.r) / r.hertz->p0));
     else
-      s += fmt::format("{},{},{},,,\n", kind, csv_number(p.r), csv_number(p.pressure));
+      s += fmt::format("{},{},{},,,", kind, csv_number(p.r), csv_number(p.pressure));
+    if (fr && K >= 0) {
+      for (int j = 0; j < nt; ++j) s += "," + csv_number(-fr->lambda_t[K * nt + j] + 0.0);
+      for (int j = 0; j < nt; ++j) s += "," + csv_number(fr->slip[K * nt + j]);
+      s += std::string(",") + std::array{"open", "stick", "slip"}[fr->friction_state[K]];
+    } else if (fr) {
+      s += std::string(2 * nt + 1, ',');
+    }
+    s += "\n";
   };
-  for (const auto& p : rep.multipliers) row("multiplier", p);
-  for (const auto& p : rep.p1) row("p1", p);
+  const int first = r.contacts.at(contact).first_multiplier;
+  for (size_t i = 0; i < rep.multipliers.size(); ++i) row("multiplier", rep.multipliers[i], first + int(i));
+  for (const auto& p : rep.p1) row("p1", p, -1);
   return s;
 }
 

@@ -217,6 +217,26 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
   return grid;
 }
 
+// Friction: per multiplier its state (0 open, 1 stick, 2 slip), the
+// tangential traction -lambda_t and the accumulated slip along the
+// obstacle's tangents (one component in 2D, two in 3D).
+void add_friction_fields(const RunResult& r, int first, int m, vtkUnstructuredGrid& grid) {
+  const ContactSolution& s = r.contact->solution;
+  if (s.lambda_t.size() == 0) return;
+  const int nt = int(s.lambda_t.size() / s.lambda.size());
+  auto state = make_array("friction_state", 1, m);
+  auto traction = make_array("tangential_traction", nt, m);
+  auto slip = make_array("slip", nt, m);
+  for (int K = 0; K < m; ++K) {
+    state->SetValue(K, s.friction_state[first + K]);
+    for (int j = 0; j < nt; ++j) {
+      traction->SetComponent(K, j, -s.lambda_t[(first + K) * nt + j]);
+      slip->SetComponent(K, j, s.slip[(first + K) * nt + j]);
+    }
+  }
+  for (auto* a : {state.Get(), traction.Get(), slip.Get()}) grid.GetPointData()->AddArray(a);
+}
+
 // One vertex per multiplier at its anchor on the reference face.
 vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r, size_t i) {
   const ContactFace& cf = *model.contacts[i].face;
@@ -259,6 +279,7 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
     grid->GetPointData()->AddArray(a);
   grid->GetPointData()->SetActiveScalars("pressure");
   grid->GetPointData()->SetActiveVectors("displacement");
+  add_friction_fields(r, r.contacts[i].first_multiplier, m, *grid);
   return grid;
 }
 

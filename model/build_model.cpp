@@ -446,6 +446,7 @@ Model build_model(const CaseSpec& spec) {
       continue;
     }
     const auto& o = cs.obstacle;
+    c.friction = cs.friction;
     try {
       c.obstacle = find_obstacle_type(o.type)->make(o.values);
     } catch (const std::exception& e) {

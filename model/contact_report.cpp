@@ -4,14 +4,18 @@
 namespace igac {
 
 std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::VectorXd& lambda,
-                                                const Eigen::VectorXd& weights, const std::vector<char>& active) {
+                                                const Eigen::VectorXd& weights, const std::vector<char>& active,
+                                                const Eigen::VectorXd& lambda_t) {
   std::vector<ObstacleReaction> out;
   int offset = 0;
+  const int nt = lambda.size() ? int(lambda_t.size() / lambda.size()) : 0;
   for (const auto& c : m.contacts) {
     ObstacleReaction rr{c.face_name, c.obstacle->describe(), 0.0, 0};
+    if (nt > 0) rr.tangential_force = Eigen::VectorXd::Zero(nt);
     for (int K = offset; K < offset + c.face->num_multipliers(); ++K) {
       rr.normal_force -= lambda[K] * weights[K];
       rr.active += active[K] ? 1 : 0;
+      if (nt > 0) rr.tangential_force -= lambda_t.segment(K * nt, nt) * weights[K];
     }
     rr.normal_force += 0.0;  // no -0
     offset += c.face->num_multipliers();

@@ -58,6 +58,7 @@ struct Model {
     std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (obstacle null)
     std::string master_name;
     Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
+    double friction = 0;                 // Coulomb coefficient (small deformation, rigid obstacle)
   };
   std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter

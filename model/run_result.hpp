@@ -50,6 +50,9 @@ struct ObstacleReaction {
   std::string face, obstacle;
   double normal_force = 0;
   int active = 0;
+  // Friction: -sum_K lambda_t,K K_K along the obstacle's tangents (one in
+  // 2D, two in 3D: docs/design.md, "Friction"); empty without.
+  Eigen::VectorXd tangential_force;
 };
 
 struct Timing {

@@ -33,11 +33,15 @@ RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 // and only when some rigid motion is free).
 void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen::VectorXd& f,
                         const WeightedGapOperator* op = nullptr);
-// The stacked weighted-gap operator of every contact (small deformation).
-WeightedGapOperator assemble_contact_operator(const Model& model);
+// The stacked weighted-gap operator of every contact (small deformation),
+// with the tangential rows of the frictional ones; `motion_factor` t puts
+// each moving obstacle at t * motion (1: where the case has it).
+WeightedGapOperator assemble_contact_operator(const Model& model, double motion_factor = 1.0);
 // Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
+// With friction (lambda_t not empty) also the tangential force -sum lambda_t,K K_K along the obstacle's tangents.
 std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
-                                                const Eigen::VectorXd& weights, const std::vector<char>& active);
+                                                const Eigen::VectorXd& weights, const std::vector<char>& active,
+                                                const Eigen::VectorXd& lambda_t = {});
 // Every contact's pressure and report (RunResult::contacts, case order:
 // the pressure files, the reports, ParaView), from the stacked s.solution
 // and s.op.weights.

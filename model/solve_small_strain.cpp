@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 
 #include "contact/coarse_start.hpp"
+#include "contact/small_strain_friction.hpp"
 #include "engine/stopwatch.hpp"
 #include "engine/face_quadrature.hpp"
 #include "engine/prolongation.hpp"
@@ -37,11 +38,20 @@ double pressure_resultant(const Model& m) {
   return total;
 }
 
-WeightedGapOperator assemble_contact_operator(const Model& m) {
+WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
   std::vector<WeightedGapOperator> ops;
-  for (const auto& c : m.contacts)
-    ops.push_back(c.master ? assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim()))
-                           : assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle));
+  for (const auto& c : m.contacts) {
+    if (c.master) {
+      ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim())));
+      continue;
+    }
+    const bool moved = t != 1.0 && c.motion.size() > 0;
+    const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
+    std::optional<TranslatedObstacle> at;  // the obstacle at t * motion (c.obstacle stands at 1 * motion)
+    if (moved) at.emplace(*c.obstacle, (t - 1.0) * c.motion);
+    ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, at ? static_cast<const Obstacle&>(*at) : *c.obstacle,
+                                         c.friction, shift));
+  }
   return stack(ops);
 }
 
@@ -79,7 +89,14 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   // the weighted gaps: H = G * modes must have full column rank.
   std::optional<WeightedGapOperator> assembled;
   const WeightedGapOperator& op = given ? *given : assembled.emplace(assemble_contact_operator(m));
-  const Eigen::MatrixXd H = op.G * modes.modes;
+  // With friction a motion along the obstacle is held too (by the
+  // tangential rows T) as long as the load does not exceed f N.
+  Eigen::MatrixXd H = op.G * modes.modes;
+  if (op.frictional()) {
+    const Eigen::MatrixXd HT = op.T * modes.modes;
+    H.conservativeResize(H.rows() + HT.rows(), Eigen::NoChange);
+    H.bottomRows(HT.rows()) = HT;
+  }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(H, Eigen::ComputeFullV);
   const double s_max = svd.singularValues().size() ? svd.singularValues()[0] : 0.0;
   int held = 0;
@@ -94,8 +111,9 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   // toward the obstacle, closing some gap, or nothing balances it.
   if (k == 1) {
     const double push = modes.modes.col(0).dot(f);
-    const double scale = H.col(0).cwiseAbs().maxCoeff();
-    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * H.col(0);  // gap change along the load's motion
+    const Eigen::VectorXd gaps = H.col(0).head(op.G.rows());  // the gaps' change (not the tangential rows)
+    const double scale = gaps.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * gaps;  // gap change along the load's motion
     if (std::abs(push) > 1e-12 * f.norm() && opening.minCoeff() >= -1e-12 * scale && opening.maxCoeff() > 1e-12 * scale)
       throw InputError(fmt::format(
           "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
@@ -136,6 +154,33 @@ void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedG
   opt.initial_active = std::move(start.active);
   opt.initial_u = std::move(start.u);
   opt.initial_lambda = std::move(start.lambda);
+}
+
+// Friction is path dependent: the loads are applied whole with every
+// obstacle where it starts, then a moving obstacle is moved in
+// [loading] steps increments (none: one step), each step a frictional
+// active-set solve on the same factor of K from the slip history of the last.
+ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, const WeightedGapOperator& op,
+                                    const RigidModes& modes, SparseCholesky& chol, const ContactSolverOptions& opt) {
+  bool moving = false;
+  for (const auto& c : m.contacts) moving = moving || (c.motion.size() > 0 && c.motion.norm() > 0);
+  const int steps = moving ? m.spec.loading.steps : 0;
+  const WeightedGapOperator first = moving ? assemble_contact_operator(m, 0.0) : WeightedGapOperator{};
+  Stopwatch clock;
+  SmallStrainFriction friction(sys.K, sys.f, moving ? first : op, modes, chol, opt);
+  const double factorize_s = clock.seconds();
+  ContactSolution s = friction.step(moving ? first : op);
+  std::vector<int> sizes = s.active_set_sizes, per_step{int(s.active_set_sizes.size())};
+  for (int i = 1; i <= steps && s.converged; ++i) {
+    s = friction.step(i == steps ? op : assemble_contact_operator(m, double(i) / steps));
+    if (!s.converged) s.status = fmt::format("{} (load step {} of {})", s.status, i, steps);
+    sizes.insert(sizes.end(), s.active_set_sizes.begin(), s.active_set_sizes.end());
+    per_step.push_back(int(s.active_set_sizes.size()));
+  }
+  s.active_set_sizes = std::move(sizes);
+  s.step_iterations = std::move(per_step);
+  s.factorize_s = factorize_s;
+  return s;
 }
 }  // namespace
 
@@ -199,7 +244,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     if (m.spec.refine > 0 && (petsc || coarser.result))
       start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
-                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
+                  : c->op.frictional() ? solve_with_friction(m, sys, c->op, modes, chol, opt)
+                                       : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;
     r.timing.contact = t0.seconds() - c->solution.factorize_s;
     r.status = c->solution.status;
@@ -207,7 +253,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
       throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
     r.u = m.dofs->expand(c->solution.u);
     t0.restart();
-    r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active);
+    r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active, c->solution.lambda_t);
     r.contacts = report_contacts(m, *c);
     // A rigid obstacle can only push: a net pull on the body (tensile
     // multipliers) is a wrong result, never a converged one.

@@ -260,7 +260,8 @@ void compare_csv(const json& g, const fs::path& file, Tally& t) {
 // hertz3d_high_load 18 s, the 4-level Neo-Hookean study 12 s) for 28 s of
 // CPU, which is about their time on an idle core.  The slow ones carry the
 // CTest label "slow" (tests/CMakeLists.txt).
-const std::vector<std::string> kFast = {"hertz2d", "hertz2d_from_file", "hertz2d_high_load", "hertz2d_two_patches", "two_blocks", "roller_on_block",
+const std::vector<std::string> kFast = {"hertz2d", "hertz2d_from_file", "hertz2d_high_load", "hertz2d_two_patches", "two_blocks",
+                                        "roller_on_block", "cattaneo_mindlin",
                                         "hertz2d_neohookean_pressure_study", "hertz3d_study", "lame_cylinder",
                                         "study_lame_cylinder"};
 const std::vector<std::string> kSlow = {"hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement",

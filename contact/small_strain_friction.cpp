@@ -1,0 +1,272 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "contact/small_strain_friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <set>
+
+#include "contact/active_schur.hpp"
+
+namespace igac {
+
+struct SmallStrainFriction::Impl {
+  int n = 0, m = 0, nt = 0, k = 0;
+  double cn = 1;
+  int max_iterations = 100;
+  const RigidModes& modes;
+  SparseCholesky& chol;
+  RowSparse Gs, Gsp;    // [G; T], and without the pinned columns
+  Eigen::VectorXd fp, Gvf, Rf;
+  Eigen::MatrixXd GR;   // [G; T] R
+  ContactSolution counters;  // the Schur columns computed over all steps
+  std::unique_ptr<ActiveSchur> schur;
+  // History: the weighted tangential position T u + t0 where the last step
+  // ended, the accumulated slip, and the state and slip direction of each
+  // multiplier (the next step starts from them).
+  Eigen::VectorXd tau_prev, slip_total;
+  std::vector<char> state;
+  Eigen::MatrixXd dir;  // m x nt
+  Eigen::VectorXd alpha;  // b / |xi| where the slip direction was last taken (3D: the linearised slip law)
+
+  Impl(const RigidModes& md, SparseCholesky& c) : modes(md), chol(c) {}
+  int trow(int K, int j) const { return m + K * nt + j; }
+};
+
+SmallStrainFriction::~SmallStrainFriction() = default;
+
+double slip_compliance(double alpha, double ct) {
+  const double a = std::clamp(alpha, kMinAlpha, 1.0);
+  return (1 - a) / (a * ct);
+}
+
+SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::VectorXd& s, double b, double ct) {
+  const Eigen::VectorXd xi = lambda_t + ct * s;
+  const double norm = xi.norm();
+  SlipLinearisation out;
+  out.v = xi / norm;
+  const double alpha = b / norm;
+  const Eigen::MatrixXd P = Eigen::MatrixXd::Identity(xi.size(), xi.size()) - out.v * out.v.transpose();
+  out.d_lambda_t = Eigen::MatrixXd::Identity(xi.size(), xi.size()) - alpha * P;
+  out.d_s = -alpha * ct * P;
+  out.d_b = -out.v;
+  return out;
+}
+
+SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
+                                         const WeightedGapOperator& op, const RigidModes& modes, SparseCholesky& chol,
+                                         const ContactSolverOptions& opt)
+    : impl_(std::make_unique<Impl>(modes, chol)) {
+  Impl& s = *impl_;
+  s.n = int(K.rows());
+  s.m = int(op.weights.size());
+  s.nt = s.m ? int(op.T.rows() / s.m) : 0;
+  s.k = int(modes.modes.cols());
+  s.cn = opt.complementarity_scale;
+  s.max_iterations = std::max(opt.max_iterations, 100);
+  s.Gs.resize(s.m * (1 + s.nt), s.n);
+  {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int r = 0; r < op.G.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(op.G, r); it; ++it) t.emplace_back(r, int(it.col()), it.value());
+    for (int r = 0; r < op.T.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(op.T, r); it; ++it) t.emplace_back(s.m + r, int(it.col()), it.value());
+    s.Gs.setFromTriplets(t.begin(), t.end());
+  }
+  std::vector<char> pinned(s.n, 0);
+  for (int p : modes.pinned) pinned[p] = 1;
+  std::vector<int> face_eqs;
+  {
+    std::vector<char> on_face(s.n, 0);
+    for (int r = 0; r < s.Gs.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(s.Gs, r); it; ++it) on_face[it.col()] = !pinned[it.col()];
+    for (int i = 0; i < s.n; ++i)
+      if (on_face[i]) face_eqs.push_back(i);
+  }
+  const Eigen::SparseMatrix<double> Kp = pin_equations(K, modes.pinned);
+  chol.analyze(Kp, opt.face_last ? face_eqs : std::vector<int>{});
+  chol.factorize(Kp);
+  s.Gsp = s.Gs;
+  for (int r = 0; r < s.Gsp.outerSize(); ++r)
+    for (RowSparse::InnerIterator it(s.Gsp, r); it; ++it)
+      if (pinned[it.col()]) it.valueRef() = 0.0;
+  s.Gsp.prune(0.0);
+  s.fp = f;
+  for (int p : modes.pinned) s.fp[p] = 0.0;
+  s.schur = std::make_unique<ActiveSchur>(chol, s.Gsp, s.fp, s.counters);
+  s.Gvf = s.schur->G_solve_f();
+  s.GR = s.Gs * modes.modes;
+  s.Rf = modes.modes.transpose() * f;
+  s.tau_prev = Eigen::VectorXd::Zero(s.m * s.nt);  // u = 0, the obstacle where the first step has it
+  s.slip_total = Eigen::VectorXd::Zero(s.m * s.nt);
+  const std::vector<char> active = initial_active_set(op, s.k, opt);
+  s.state.assign(s.m, kOpen);
+  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? kStick : kOpen;
+  s.dir = Eigen::MatrixXd::Zero(s.m, s.nt);
+  if (s.nt > 0) s.dir.col(0).setOnes();
+  s.alpha = Eigen::VectorXd::Ones(s.m);
+}
+
+ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
+  Impl& s = *impl_;
+  const int m = s.m, nt = s.nt, k = s.k, rows_all = m * (1 + nt);
+  const Eigen::VectorXd& fr = op.friction;
+  ContactSolution sol;
+  Eigen::VectorXd r0(rows_all);
+  r0.head(m) = op.g0;
+  r0.tail(m * nt) = op.t0 - s.tau_prev;
+
+  std::set<std::vector<char>> seen;
+  Eigen::VectorXd lam = Eigen::VectorXd::Zero(rows_all), c = Eigen::VectorXd::Zero(k), Gu(rows_all);
+  Eigen::VectorXd gap(m), slip(m * nt);
+  for (int it = 0; it < s.max_iterations; ++it) {
+    // The unknowns, each a combination of the stacked rows [G; T]: its force
+    // direction H_j and its constraint row C_j (the same but for a slip
+    // multiplier's normal unknown, whose force is G_K - f v . T_K).  In 3D a
+    // slip multiplier also has the tangential unknown across its slip
+    // direction, w = v rotated in the tangent plane, with the linearised
+    // slip law (docs/design.md, "Friction"): w . s_K = beta_K w . lambda_t,K.
+    // Schur columns: every row of an active multiplier.
+    struct Unknown {
+      std::vector<std::pair<int, double>> H, C;
+      double diagonal = 0;  // + diagonal * x_j in its own constraint row
+    };
+    std::vector<Unknown> unknowns;
+    std::vector<int> cols;
+    for (int K = 0; K < m; ++K)
+      if (s.state[K] != kOpen) {
+        Unknown u;
+        u.C = {{K, 1.0}};
+        u.H = u.C;
+        if (s.state[K] == kSlip)
+          for (int l = 0; l < nt; ++l) u.H.emplace_back(s.trow(K, l), -fr[K] * s.dir(K, l));
+        unknowns.push_back(std::move(u));
+        cols.push_back(K);
+      }
+    for (int K = 0; K < m; ++K)
+      if (s.state[K] != kOpen)
+        for (int j = 0; j < nt; ++j) {
+          cols.push_back(s.trow(K, j));
+          if (s.state[K] == kStick) unknowns.push_back({{{s.trow(K, j), 1.0}}, {{s.trow(K, j), 1.0}}});
+        }
+    if (nt == 2)
+      for (int K = 0; K < m; ++K)
+        if (s.state[K] == kSlip && fr[K] > 0) {
+          const double w0 = -s.dir(K, 1), w1 = s.dir(K, 0);
+          Unknown u;
+          u.C = {{s.trow(K, 0), w0}, {s.trow(K, 1), w1}};
+          u.H = u.C;
+          u.diagonal = op.weights[K] * slip_compliance(s.alpha[K], s.cn);
+          unknowns.push_back(std::move(u));
+        }
+    sol.active_set_sizes.push_back(int(unknowns.size()));
+    const Eigen::MatrixXd S = s.schur->S_active(cols);
+    std::vector<int> loc(rows_all, -1);
+    for (size_t i = 0; i < cols.size(); ++i) loc[cols[i]] = int(i);
+    const int nc = int(unknowns.size());
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nc + k, nc + k);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nc + k);
+    for (int j = 0; j < nc; ++j) {
+      Eigen::VectorXd sc = Eigen::VectorXd::Zero(S.rows()), hr = Eigen::VectorXd::Zero(k);
+      for (const auto& [q, b] : unknowns[j].H) {
+        sc += b * S.col(loc[q]);
+        hr += b * s.GR.row(q).transpose();
+      }
+      for (int i = 0; i < nc; ++i)
+        for (const auto& [r, a] : unknowns[i].C) M(i, j) += a * sc[loc[r]];
+      M(j, j) += unknowns[j].diagonal;
+      M.block(nc, j, k, 1) = -hr;
+    }
+    for (int i = 0; i < nc; ++i)
+      for (const auto& [r, a] : unknowns[i].C) {
+        M.block(i, nc, 1, k) -= a * s.GR.row(r);
+        rhs[i] += a * (r0[r] + s.Gvf[r]);
+      }
+    rhs.tail(k) = -s.Rf;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+    if (lu.rank() < nc + k) {
+      sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions (with "
+                   "friction: a load along the obstacle above f times the normal force slides the body away)";
+      break;
+    }
+    const Eigen::VectorXd x = lu.solve(rhs);
+    lam.setZero();
+    for (int j = 0; j < nc; ++j)
+      for (const auto& [q, b] : unknowns[j].H) lam[q] += b * x[j];
+    c = x.tail(k);
+    Gu = s.Gvf + s.GR * c - s.schur->G_solve_Gt(cols, lam);
+    gap = (op.g0 + Gu.head(m)).cwiseQuotient(op.weights);
+    for (int K = 0; K < m; ++K)
+      for (int l = 0; l < nt; ++l) slip[K * nt + l] = (Gu[s.trow(K, l)] + r0[s.trow(K, l)]) / op.weights[K];
+    // The next states.
+    const Eigen::VectorXd lam_n = lam.head(m), lam_t = lam.tail(m * nt);
+    std::vector<char> active(m);
+    for (int K = 0; K < m; ++K) active[K] = s.state[K] != kOpen;
+    const std::vector<char> next_active = next_active_set(lam_n, gap, active, k, s.cn);
+    const double scale = std::max({lam.cwiseAbs().maxCoeff(), s.cn * gap.cwiseAbs().maxCoeff(),
+                                   nt ? s.cn * slip.cwiseAbs().maxCoeff() : 0.0});
+    const double tol = 1e-12 * scale;
+    std::vector<char> next(m, kOpen);
+    Eigen::MatrixXd next_dir = s.dir;
+    Eigen::VectorXd next_alpha = s.alpha;
+    bool directions_settled = true;
+    for (int K = 0; K < m; ++K) {
+      if (!next_active[K]) continue;
+      if (fr[K] <= 0) {  // a frictionless contact among frictional ones: always sliding, no force
+        next[K] = kSlip;
+        continue;
+      }
+      const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + s.cn * slip.segment(K * nt, nt);
+      const double b = std::max(0.0, -fr[K] * (lam_n[K] + s.cn * gap[K]));
+      const double norm = xi.norm();
+      if (std::abs(norm - b) <= tol && s.state[K] != kOpen) next[K] = s.state[K];  // on the cone to round-off
+      else next[K] = norm <= b ? kStick : kSlip;
+      if (next[K] == kSlip && norm > tol) {
+        next_dir.row(K) = (xi / norm).transpose();
+        next_alpha[K] = b / norm;
+        if ((next_dir.row(K) - s.dir.row(K)).norm() > 1e-10 && s.state[K] == kSlip) directions_settled = false;
+      }
+    }
+    sol.weighted_gap = gap;
+    if (next == s.state && directions_settled) {
+      sol.converged = true;
+      sol.status = "converged";
+      break;
+    }
+    // A repeated state (with the signs of a 2D slip) is a cycle.
+    std::vector<char> key = s.state;
+    if (nt == 1)
+      for (int K = 0; K < m; ++K) key[K] += s.state[K] == kSlip && s.dir(K, 0) < 0 ? 1 : 0;
+    if (nt == 1 || directions_settled) {
+      if (seen.count(key)) {
+        sol.status = fmt::format("active set cycling after {} iterations", it + 1);
+        break;
+      }
+      seen.insert(key);
+    }
+    s.state = next;
+    s.dir = next_dir;
+    s.alpha = next_alpha;
+  }
+  if (!sol.converged && sol.status.empty())
+    sol.status = fmt::format("active set not settled in {} iterations", s.max_iterations);
+
+  Eigen::VectorXd u = s.chol.solve(Eigen::VectorXd(s.fp - s.Gsp.transpose() * lam));
+  if (k > 0) u += s.modes.modes * c;
+  sol.u = u;
+  sol.lambda = lam.head(m);
+  sol.lambda_t = lam.tail(m * nt);
+  sol.active.assign(m, 0);
+  for (int K = 0; K < m; ++K) sol.active[K] = s.state[K] != kOpen;
+  if (sol.converged) {
+    s.tau_prev = Gu.tail(m * nt) + op.t0;
+    s.slip_total += slip;
+  }
+  sol.slip = s.slip_total;
+  sol.friction_state = s.state;
+  sol.schur_columns = s.counters.schur_columns;
+  sol.reach_rows = s.counters.reach_rows;
+  return sol;
+}
+
+}  // namespace igac

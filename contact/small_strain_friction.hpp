@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Small-deformation Coulomb friction against rigid obstacles: the
+// frictionless active-set solve (contact/small_strain_contact.hpp) with, per
+// multiplier K, dim-1 tangential multipliers lambda_t,K in the same space
+// S^{p-2} and the weighted tangential slip increment over the load step
+//     s_K = (T (u - u_prev))_K + t0_K - t0_prev,K      (T: contact/weighted_gap.hpp)
+// (the body's tangential displacement relative to the obstacle's, weighted
+// by B_K).  Coulomb per multiplier, lambda_n <= 0 the normal one:
+//     |lambda_t| <= -f lambda_n,  s = 0 where |lambda_t| < -f lambda_n,
+//     s = a lambda_t (a >= 0) where |lambda_t| = -f lambda_n.
+// Primal-dual active set (Hueber, Stadler & Wohlmuth 2008): with
+// xi = lambda_t + c_t s/K_K and the bound b = -f (lambda_n + c_n g_K),
+// K is open when lambda_n + c_n g_K >= 0 (the frictionless rule), stick
+// when |xi| <= b, slip with direction d = xi / |xi| otherwise.
+//
+// One linear system per iteration on the factor of K computed once for all
+// load steps: the constraint rows are the active normal rows and the stick
+// tangential rows (equalities, like the frictionless active rows); a slip
+// multiplier's tangential part is not an unknown but tied to its normal one,
+// lambda_t = -f d lambda_n, so its normal column becomes G_K - f d . T_K.
+// The dense system (Schur complement of the stacked rows [G; T], columns
+// computed once, contact/active_schur.hpp) is then not symmetric: solved by
+// LU, bordered by the rigid motions the contact holds.  In 2D d = +-1 and
+// each iteration solves the piecewise-linear problem exactly (nothing to
+// linearise: the iteration ends when the states repeat); in 3D the cone is a
+// disc, d = xi / |xi| of the last iterate, and the slip law is linearised
+// across d (linearise_slip below: a semismooth Newton step), until d moves
+// less than 1e-10.
+#pragma once
+
+#include <memory>
+
+#include "contact/small_strain_contact.hpp"
+
+namespace igac {
+
+// The slip law of one multiplier, Phi = lambda_t - b xi / |xi| = 0 with
+// xi = lambda_t + c_t s, and its derivatives at a slipping state
+// (|xi| > b): with v = xi / |xi|, alpha = b / |xi|, P = I - v v^T,
+//   dPhi/dlambda_t = I - alpha P,  dPhi/ds = -alpha c_t P,  dPhi/db = -v.
+// Along v this says v . lambda_t = b; across it (3D), for w orthogonal to v,
+// (1 - alpha) w . lambda_t = alpha c_t w . s: the slip across the direction
+// is the traction across it times slip_compliance(alpha, c_t)
+// = (1 - alpha) / (alpha c_t), the row the solve adds per slip multiplier
+// (alpha clamped to [kMinAlpha, 1]).  Checked against finite differences.
+struct SlipLinearisation {
+  Eigen::VectorXd v;
+  Eigen::MatrixXd d_lambda_t, d_s;
+  Eigen::VectorXd d_b;
+};
+SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::VectorXd& s, double b, double ct);
+inline constexpr double kMinAlpha = 1e-12;
+double slip_compliance(double alpha, double ct);
+
+// Per multiplier: 0 open, 1 stick, 2 slip.
+enum FrictionState : char { kOpen = 0, kStick = 1, kSlip = 2 };
+
+class SmallStrainFriction {
+ public:
+  // Factorises K (pinned rigid motions as the frictionless solve) for the
+  // operator's sparsity; `op` must have its tangential rows.
+  SmallStrainFriction(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f, const WeightedGapOperator& op,
+                      const RigidModes& modes, SparseCholesky& chol, const ContactSolverOptions& options);
+  ~SmallStrainFriction();
+  // One load step with the same K, f, G, T and the step's g0, t0 (the
+  // obstacle where the step leaves it).  Updates the slip history; the
+  // solution carries lambda_t, the state and the accumulated slip.
+  ContactSolution step(const WeightedGapOperator& op);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace igac
