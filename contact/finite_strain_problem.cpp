@@ -15,7 +15,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   offsets_.assign(1, 0);
   for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->num_multipliers());
   m_ = offsets_.back();
-  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law);
+  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law, s_.formulation);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {

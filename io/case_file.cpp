@@ -439,15 +439,21 @@ CaseSpec read_case(const std::string& path) {
     const toml::table& mt = top.sub("material");
     const auto laws = law_names();
     const std::string model = mt["model"].value_or(std::string("linear_elastic"));
-    std::set<std::string> keys{"model"};
+    std::set<std::string> keys{"model", "formulation"};
     const bool known = std::find(laws.begin(), laws.end(), model) != laws.end();
     if (known)
       for (const LawParameter& p : law_parameters(model)) keys.insert(std::string(p.key));
-    const Section mat(path, "material", mt, known ? keys : std::set<std::string>{"model", "E", "nu"});
+    const Section mat(path, "material", mt, known ? keys : std::set<std::string>{"model", "formulation", "E", "nu"});
     c.model = mat.string("model", "linear_elastic");
     if (!known)
       mat.fail("model", fmt::format("unknown material model '{}' (available: {}; linear_elastic is small deformation)",
                                     c.model, fmt::join(laws, ", ")));
+    {  // engine/volumetric_projection.hpp
+      const std::string f = mat.string("formulation", "displacement");
+      const auto parsed = parse_formulation(f);
+      if (!parsed) mat.fail("formulation", fmt::format("unknown formulation '{}' (available: displacement, mixed)", f));
+      c.formulation = *parsed;
+    }
     MaterialParameters given;
     for (const LawParameter& p : law_parameters(model)) {
       const bool modulus = p.lower == 0 && std::isinf(p.upper);  // a stiffness: within the computable range
@@ -462,6 +468,11 @@ CaseSpec read_case(const std::string& path) {
     try {
       const MaterialParameters linear = small_strain_equivalent(model, given);
       const auto law = make_law(model, given);  // the law's own cross-checks (e.g. C10 + C01 > 0)
+      // mixed: the small-strain path needs only K and mu; large deformation the law's split
+      if (c.formulation == Formulation::mixed && c.finite_strain() && !law->has_volumetric_split())
+        mat.fail("formulation", fmt::format("formulation = \"mixed\" needs a law with an isochoric/volumetric split "
+                                            "(neo_hookean, mooney_rivlin, or linear_elastic in small deformation); "
+                                            "'{}' declares none", model));
       try {  // its stiffness at F = I, as both paths use it: blamed on the keys the user gave
         static_cast<void>(small_strain_material(*law, dim));
       } catch (const MaterialParameterError&) {
@@ -632,6 +643,7 @@ std::vector<std::string> declared_case_keys() {
   add("mesh", kMeshKeys);
   add("mesh.grading", kGradingKeys);
   out.insert("material.model");
+  out.insert("material.formulation");
   for (const std::string& law : law_names())
     for (const LawParameter& p : law_parameters(law)) out.insert("material." + std::string(p.key));
   out.insert("faces.*");  // names of one's own
