@@ -174,7 +174,9 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
   for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
-  return scale > 0 ? scale : 1.0;
+  // At rest with no load the forces are zero, or round-off (the mixed
+  // formulation's isochoric stress at F = I is 1e-17, not 0): no scale then.
+  return scale > 1e-12 * s_.complementarity_scale ? scale : 1.0;
 }
 
 Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::VectorXd& x) const {

@@ -52,9 +52,14 @@ bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, Worksp
   const int nq = geo.n_q;
   ws.projection.build(geo.xi, geo.JxW, pressure_degree);
   const Eigen::MatrixXd& Pi = ws.projection.matrix();
+  // theta = 1 + Pi_e (J - 1): at rest theta is 1 exactly (Pi_e 1 is 1 only
+  // to round-off), so p = 0 and f_int = 0 exactly, as in the displacement
+  // formulation (a round-off residual at rest stalls Newton at load factor 0)
   ws.J.resize(nq);
-  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant();
+  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant() - 1;
   ws.theta.noalias() = Pi * ws.J;
+  ws.theta.array() += 1;
+  ws.J.array() += 1;
   ws.dU.resize(nq);
   ws.d2U.resize(nq);
   VolumetricValues v;
