@@ -174,19 +174,17 @@ concept DimensionTemplatedLaw =
 //   template <int dim> void isochoric_stress(const DimMatrix<dim>& F, DimMatrix<dim>& P) const;
 //   template <int dim> void isochoric_tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const;
 //   VolumetricValues volumetric(double J) const;     U, U', U'' (J > 0 given)
+template <class Law, int dim>
+concept HasIsochoricPart = requires(const Law& law, const DimMatrix<dim>& F, DimMatrix<dim>& P, TangentMatrix<dim>& A) {
+  { law.template isochoric_energy<dim>(F) } -> std::same_as<double>;
+  law.template isochoric_stress<dim>(F, P);
+  law.template isochoric_tangent<dim>(F, A);
+};
 template <class Law>
-concept VolumetricSplitLaw =
-    DimensionTemplatedLaw<Law> &&
-    requires(const Law& law, const DimMatrix<2>& F2, DimMatrix<2>& P2, TangentMatrix<2>& A2, const DimMatrix<3>& F3,
-             DimMatrix<3>& P3, TangentMatrix<3>& A3, double J) {
-      { law.template isochoric_energy<2>(F2) } -> std::same_as<double>;
-      { law.template isochoric_energy<3>(F3) } -> std::same_as<double>;
-      law.template isochoric_stress<2>(F2, P2);
-      law.template isochoric_stress<3>(F3, P3);
-      law.template isochoric_tangent<2>(F2, A2);
-      law.template isochoric_tangent<3>(F3, A3);
-      { law.volumetric(J) } -> std::same_as<VolumetricValues>;
-    };
+concept VolumetricSplitLaw = DimensionTemplatedLaw<Law> && HasIsochoricPart<Law, 2> && HasIsochoricPart<Law, 3> &&
+                             requires(const Law& law, double J) {
+                               { law.volumetric(J) } -> std::same_as<VolumetricValues>;
+                             };
 
 // Turns a DimensionTemplatedLaw into a HyperelasticLaw: admissibility checks
 // and the no-garbage guarantee live here once, not in every law.
