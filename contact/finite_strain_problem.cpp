@@ -15,7 +15,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   offsets_.assign(1, 0);
   for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->num_multipliers());
   m_ = offsets_.back();
-  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law);
+  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law, s_.formulation);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
@@ -174,7 +174,9 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
   for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
-  return scale > 0 ? scale : 1.0;
+  // At rest with no load the forces are zero, or round-off (the mixed
+  // formulation's isochoric stress at F = I is 1e-17, not 0): no scale then.
+  return scale > 1e-12 * s_.complementarity_scale ? scale : 1.0;
 }
 
 Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::VectorXd& x) const {

@@ -37,6 +37,7 @@ struct FiniteStrainSetup {
   const Body* body = nullptr;
   const DofMap* dofs = nullptr;               // prescribed values at full load (ramped with t)
   const HyperelasticLaw* law = nullptr;
+  Formulation formulation = Formulation::displacement;  // engine/volumetric_projection.hpp
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
   // One face pressed on one rigid obstacle; several are stacked, each with its

@@ -115,19 +115,24 @@ PatchQuadrature face_quadrature(const Body& body, const PatchSide& side, int poi
 
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& mat, const Eigen::VectorXd& body_force,
-                                        ElementRange elements) {
-  return assemble_linear_elasticity(body, dofs, std::vector<LinearElastic>{mat}, body_force, elements);
+                                        ElementRange elements, Formulation formulation) {
+  return assemble_linear_elasticity(body, dofs, std::vector<LinearElastic>{mat}, body_force, elements,
+                                    std::vector<Formulation>{formulation});
 }
 
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const std::vector<LinearElastic>& materials,
-                                        const Eigen::VectorXd& body_force, ElementRange elements) {
+                                        const Eigen::VectorXd& body_force, ElementRange elements,
+                                        const std::vector<Formulation>& formulations) {
   const int dim = body.space_dim();
   const BodyQuadrature quad(body, gauss_points_for(body.degree()));
   const int e_end = elements.end < 0 ? quad.num_elements() : std::min(elements.end, quad.num_elements());
   const int e_begin = std::clamp(elements.begin, 0, e_end);
   if (materials.size() != 1 && int(materials.size()) != body.num_patches())
     throw std::invalid_argument(fmt::format("{} materials for {} patches", materials.size(), body.num_patches()));
+  if (formulations.size() > 1 && int(formulations.size()) != body.num_patches())
+    throw std::invalid_argument(fmt::format("{} formulations for {} patches", formulations.size(), body.num_patches()));
+  const int k_pressure = pressure_degree(body.degree());
   const int n_free = dofs.num_free();
   const bool has_body_force = body_force.size() == dim && body_force.norm() > 0;
 
@@ -160,10 +165,18 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     std::array<Eigen::MatrixXd, 3> Gd;  // per direction: n_loc x n_q gradients
     std::array<std::array<Eigen::MatrixXd, 3>, 3> M;
     std::vector<int> eq;
+    ElementProjection projection;
+    Eigen::MatrixXd B, Bbar;
     auto assemble_element = [&](int e, auto& ed) {
       quad.evaluate(e, ed, true);
-      const LinearElastic& mat = materials[materials.size() == 1 ? 0 : quad.patch_of(e)];
-      const double lambda = mat.lambda(), mu = mat.mu();
+      const int patch = materials.size() > 1 || formulations.size() > 1 ? quad.patch_of(e) : 0;
+      const LinearElastic& mat = materials[materials.size() == 1 ? 0 : patch];
+      // mixed: the deviatoric part with lambda - K = -2 mu / 3, the volumetric
+      // part K Bbar^T W Bbar added per element (volumetric_projection.hpp)
+      const bool mixed = !formulations.empty() &&
+                         formulations[formulations.size() == 1 ? 0 : patch] == Formulation::mixed;
+      const double bulk = mat.lambda() + 2 * mat.mu() / 3;
+      const double lambda = mixed ? -2 * mat.mu() / 3 : mat.lambda(), mu = mat.mu();
       min_det = std::min(min_det, ed.min_det_J);
       const int nl = ed.n_loc, nq = ed.n_q, nd = nl * dim;
       // M_ij = sum_q JxW dN/dX_i dN/dX_j^T, then
@@ -190,6 +203,14 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
               Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
             }
         }
+      if (mixed) {  // + K Bbar^T W Bbar, B(q, a dim + i) = dN_a/dX_i: the projected divergence
+        projection.build(ed.xi, ed.JxW, k_pressure);
+        B.resize(nq, nd);
+        for (int q = 0; q < nq; ++q)
+          for (int c = 0; c < nd; ++c) B(q, c) = ed.gradients(q)[c];
+        Bbar.noalias() = projection.matrix() * B;
+        Ke.noalias() += bulk * Bbar.transpose() * Eigen::Map<const Eigen::VectorXd>(ed.JxW.data(), nq).asDiagonal() * Bbar;
+      }
       dofs.element_equations(ed.cps, eq);
       for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
         if (eq[c] >= 0) continue;

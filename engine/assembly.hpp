@@ -21,6 +21,7 @@
 
 #include "engine/body.hpp"
 #include "engine/discretisation.hpp"
+#include "engine/volumetric_projection.hpp"
 #include "materials/linear_elastic.hpp"
 
 namespace igac {
@@ -76,15 +77,20 @@ struct ElementRange {
 
 // Throws std::runtime_error when the geometry map folds (det J <= 0 at a
 // Gauss point).  With `elements`, only those elements are assembled (K keeps
-// its full size, the other entries are structurally absent).
+// its full size, the other entries are structurally absent).  `mixed`: the
+// B-bar element matrix of engine/volumetric_projection.hpp (the volumetric
+// strain projected element by element; same pattern).
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
-                                        const Eigen::VectorXd& body_force, ElementRange elements = {});
-// Patch k of the body of material patch_materials[k] (bodies of several
-// materials); one entry: every patch's.
+                                        const Eigen::VectorXd& body_force, ElementRange elements = {},
+                                        Formulation formulation = Formulation::displacement);
+// Patch k of the body of material patch_materials[k] and formulation
+// patch_formulations[k] (bodies of several materials); one entry: every
+// patch's; no formulations: displacement everywhere.
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const std::vector<LinearElastic>& patch_materials,
-                                        const Eigen::VectorXd& body_force, ElementRange elements = {});
+                                        const Eigen::VectorXd& body_force, ElementRange elements = {},
+                                        const std::vector<Formulation>& patch_formulations = {});
 // Adds the work of a pressure P on the faces to f (free numbering): the dead
 // pressure of follower_pressure.hpp (one face loop for both).
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,

@@ -34,14 +34,65 @@ struct Workspace {
   Eigen::MatrixXd Ke;                                 // element tangent
   Eigen::Matrix<double, Eigen::Dynamic, dim * dim> G; // (a*dim+i, k*dim+L): w sum_J dN_aJ A_iJkL
   std::vector<int> eq;                                // free equation per local dof, or -1
+  std::vector<DimMatrix<dim>> F;                      // per point
+  // mixed formulation (volumetric_projection.hpp): per point J, theta, p, U''
+  ElementProjection projection;
+  Eigen::VectorXd J, theta, dU, pressure, d2U;
+  Eigen::MatrixXd B, Bbar;                            // n_q x nd: dJ/du per point, projected
 };
 
 // Element internal force and (when `tangent`) the tangent at the Gauss
 // points of ws.geo; false when F is inadmissible at a point.
+// Mixed formulation, before the point loop: theta = Pi_e J and
+// p = Pi_e U'(theta) at the points (volumetric_projection.hpp); false when
+// the projected dilatation leaves U's domain.
 template <int dim>
-bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
+bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, Workspace<dim>& ws) {
+  const ElementValues<dim, dim>& geo = ws.geo;
+  const int nq = geo.n_q;
+  ws.projection.build(geo.xi, geo.JxW, pressure_degree);
+  const Eigen::MatrixXd& Pi = ws.projection.matrix();
+  // theta = 1 + Pi_e (J - 1): at rest theta is 1 exactly (Pi_e 1 is 1 only
+  // to round-off), so p = 0 and f_int = 0 exactly, as in the displacement
+  // formulation (a round-off residual at rest stalls Newton at load factor 0)
+  ws.J.resize(nq);
+  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant() - 1;
+  ws.theta.noalias() = Pi * ws.J;
+  ws.theta.array() += 1;
+  ws.J.array() += 1;
+  ws.dU.resize(nq);
+  ws.d2U.resize(nq);
+  VolumetricValues v;
+  for (int q = 0; q < nq; ++q) {
+    if (!law.volumetric(ws.theta[q], v)) return false;
+    ws.dU[q] = v.dU;
+    ws.d2U[q] = v.d2U;
+  }
+  ws.pressure.noalias() = Pi * ws.dU;
+  return true;
+}
+
+// P += p J F^{-T} and A += p d(J F^{-T})/dF, d(J F^{-T})_iJ/dF_kL =
+// J (F^{-1}_Lk F^{-1}_Ji - F^{-1}_Jk F^{-1}_Li): the pressure's stress.
+template <int dim>
+void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, TangentMatrix<dim>* A) {
+  const double J = F.determinant();
+  const DimMatrix<dim> Fi = F.inverse();
+  P += p * J * Fi.transpose();
+  if (!A) return;
+  for (int i = 0; i < dim; ++i)
+    for (int Jd = 0; Jd < dim; ++Jd)
+      for (int k = 0; k < dim; ++k)
+        for (int L = 0; L < dim; ++L)
+          (*A)(i * dim + Jd, k * dim + L) += p * J * (Fi(L, k) * Fi(Jd, i) - Fi(Jd, k) * Fi(L, i));
+}
+
+template <int dim>
+bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree,
+                    const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
+  const bool mixed = formulation == Formulation::mixed;
   ws.ue.resize(nl, dim);
   for (int a = 0; a < nl; ++a) ws.ue.row(a) = u.row(geo.cps[a]);
   ws.fe.setZero(nd);
@@ -49,16 +100,38 @@ bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool t
     ws.Ke.setZero(nd, nd);
     ws.G.resize(nd, dim * dim);
   }
-  DimMatrix<dim> F, P;
-  TangentMatrix<dim> A;
+  ws.F.resize(nq);
   for (int q = 0; q < nq; ++q) {
     const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
+    DimMatrix<dim>& F = ws.F[q];
     F.setIdentity();
     for (int a = 0; a < nl; ++a)
       for (int J = 0; J < dim; ++J)
         for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
     if (!F.allFinite() || !(F.determinant() > 0)) return false;
-    if (!law.evaluate(F, P, tangent ? &A : nullptr)) return false;
+  }
+  if (mixed && !condense_volumetric<dim>(law, pressure_degree, ws)) return false;
+  if (mixed && tangent) ws.B.resize(nq, nd);
+  DimMatrix<dim> P;
+  TangentMatrix<dim> A;
+  for (int q = 0; q < nq; ++q) {
+    const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
+    const DimMatrix<dim>& F = ws.F[q];
+    if (!mixed) {
+      if (!law.evaluate(F, P, tangent ? &A : nullptr)) return false;
+    } else {
+      if (!law.evaluate_isochoric(F, P, tangent ? &A : nullptr)) return false;
+      add_pressure_stress<dim>(F, ws.pressure[q], P, tangent ? &A : nullptr);
+      if (tangent) {  // B(q, a dim + i) = dJ/du_ai = J F^{-T}_iJ dN_a/dX_J
+        const DimMatrix<dim> JFiT = ws.J[q] * F.inverse().transpose();
+        for (int a = 0; a < nl; ++a)
+          for (int i = 0; i < dim; ++i) {
+            double s = 0;
+            for (int J = 0; J < dim; ++J) s += JFiT(i, J) * dN[a * dim + J];
+            ws.B(q, a * dim + i) = s;
+          }
+      }
+    }
     const double w = geo.JxW[q];
     const DimMatrix<dim> Pw = w * P;
     for (int a = 0; a < nl; ++a)
@@ -98,13 +171,20 @@ bool element_kernel(const HyperelasticLaw& law, const Eigen::MatrixXd& u, bool t
   if (tangent)
     for (int c = 0; c < nd; ++c)
       for (int r = (c / dim + 1) * dim; r < nd; ++r) ws.Ke(r, c) = ws.Ke(c, r);
+  if (mixed && tangent) {  // + Bbar^T diag(w U''(theta)) Bbar, Bbar = Pi_e B
+    ws.Bbar.noalias() = ws.projection.matrix() * ws.B;
+    const Eigen::VectorXd wd2U =
+        Eigen::Map<const Eigen::VectorXd>(geo.JxW.data(), nq).cwiseProduct(ws.d2U);
+    ws.Ke.noalias() += ws.Bbar.transpose() * wd2U.asDiagonal() * ws.Bbar;
+  }
   return true;
 }
 
 constexpr int kElementsPerColourForThreads = 64;
 
 template <int dim>
-bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const HyperelasticLaw& law,
+bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const HyperelasticLaw& law, Formulation formulation,
+                  int pressure_degree,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
                   const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
   const bool tangent = K != nullptr;
@@ -136,7 +216,7 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const Hyperela
       for (int j = 0; j < n; ++j) {
         if (failed.load(std::memory_order_relaxed)) continue;
         quad.evaluate(colour[j], ws.geo, true);
-        if (!element_kernel<dim>(law, u, tangent, ws)) {
+        if (!element_kernel<dim>(law, formulation, pressure_degree, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
         }
@@ -153,9 +233,13 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const Hyperela
 }  // namespace
 
 TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
-                                                   const HyperelasticLaw& law)
-    : body_(body), quad_(body_, gauss_points_for(body_.degree())), dofs_(dofs), law_(&law) {
+                                                   const HyperelasticLaw& law, Formulation formulation)
+    : body_(body), quad_(body_, gauss_points_for(body_.degree())), dofs_(dofs), law_(&law),
+      formulation_(formulation), pressure_degree_(pressure_degree(body_.degree())) {
   const int dim = body_.space_dim();
+  if (formulation_ == Formulation::mixed && !law.has_volumetric_split())
+    throw std::invalid_argument(fmt::format("the mixed formulation needs a law with an isochoric/volumetric split; "
+                                            "'{}' declares none", law.name()));
   if ((dim != 2 && dim != 3) || body_.param_dim() != dim)
     throw std::invalid_argument(fmt::format(
         "total-Lagrangian assembly needs a 2D or 3D volume body, got {} parametric directions in R^{}",
@@ -192,8 +276,8 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
   if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
     throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
                                             dofs_.num_dofs() / dim, dim));
-  return dim == 2 ? assemble_dim<2>(quad_, dofs_, *law_, colours_, pattern_, u, f_int, K)
-                  : assemble_dim<3>(quad_, dofs_, *law_, colours_, pattern_, u, f_int, K);
+  return dim == 2 ? assemble_dim<2>(quad_, dofs_, *law_, formulation_, pressure_degree_, colours_, pattern_, u, f_int, K)
+                  : assemble_dim<3>(quad_, dofs_, *law_, formulation_, pressure_degree_, colours_, pattern_, u, f_int, K);
 }
 
 }  // namespace igac

@@ -52,7 +52,10 @@ class TotalLagrangianAssembler {
   // scratch, so it may be shared).  Throws std::invalid_argument unless the
   // patch is a 2D or 3D volume patch matching the dof map, and
   // std::runtime_error when the geometry map folds.
-  TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law);
+  // `mixed` (engine/volumetric_projection.hpp) needs a law with a volumetric
+  // split (std::invalid_argument otherwise); the pattern is the same.
+  TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law,
+                           Formulation formulation = Formulation::displacement);
 
   // u: displacement per control point (n_cp x dim), prescribed values
   // included (e.g. DofMap::expand of the free values).  Fills f_int (free
@@ -71,6 +74,7 @@ class TotalLagrangianAssembler {
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
   const DofMap& dofs() const { return dofs_; }
   int dim() const { return dofs_.dim(); }
+  Formulation formulation() const { return formulation_; }
   // Smallest det J of the geometry map met at a Gauss point.
   double min_det_J() const { return min_det_J_; }
 
@@ -79,6 +83,8 @@ class TotalLagrangianAssembler {
   BodyQuadrature quad_;  // the elements, their tabulated basis and control points
   DofMap dofs_;
   const HyperelasticLaw* law_;
+  Formulation formulation_;
+  int pressure_degree_;
   Eigen::SparseMatrix<double> pattern_;
   std::vector<std::vector<int>> colours_;  // elements by colour: one colour shares no equation
   double min_det_J_ = 0;

@@ -134,15 +134,21 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
     const toml::table& mt = owner.sub("material");
     const auto laws = law_names();
     const std::string model = mt["model"].value_or(std::string("linear_elastic"));
-    std::set<std::string> keys{"model"};
+    std::set<std::string> keys{"model", "formulation"};
     const bool known = std::find(laws.begin(), laws.end(), model) != laws.end();
     if (known)
       for (const LawParameter& p : law_parameters(model)) keys.insert(std::string(p.key));
-    const Section mat(path, where + "material", mt, known ? keys : std::set<std::string>{"model", "E", "nu"});
+    const Section mat(path, where + "material", mt, known ? keys : std::set<std::string>{"model", "formulation", "E", "nu"});
     c.model = mat.string("model", "linear_elastic");
     if (!known)
       mat.fail("model", fmt::format("unknown material model '{}' (available: {}; linear_elastic is small deformation)",
                                     c.model, fmt::join(laws, ", ")));
+    {  // engine/volumetric_projection.hpp
+      const std::string f = mat.string("formulation", "displacement");
+      const auto parsed = parse_formulation(f);
+      if (!parsed) mat.fail("formulation", fmt::format("unknown formulation '{}' (available: displacement, mixed)", f));
+      c.formulation = *parsed;
+    }
     MaterialParameters given;
     for (const LawParameter& p : law_parameters(model)) {
       const bool modulus = p.lower == 0 && std::isinf(p.upper);  // a stiffness: within the computable range
@@ -157,6 +163,11 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
     try {
       const MaterialParameters linear = small_strain_equivalent(model, given);
       const auto law = make_law(model, given);  // the law's own cross-checks (e.g. C10 + C01 > 0)
+      // mixed: the small-strain path needs only K and mu; large deformation the law's split
+      if (c.formulation == Formulation::mixed && c.finite_strain() && !law->has_volumetric_split())
+        mat.fail("formulation", fmt::format("formulation = \"mixed\" needs a law with an isochoric/volumetric split "
+                                            "(neo_hookean, mooney_rivlin, or linear_elastic in small deformation); "
+                                            "'{}' declares none", model));
       try {  // its stiffness at F = I, as both paths use it: blamed on the keys the user gave
         static_cast<void>(small_strain_material(*law, dim));
       } catch (const MaterialParameterError&) {

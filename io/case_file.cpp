@@ -387,6 +387,7 @@ std::vector<std::string> declared_case_keys() {
   add("mesh", kMeshKeys);
   add("mesh.grading", kGradingKeys);
   out.insert("material.model");
+  out.insert("material.formulation");
   for (const std::string& law : law_names())
     for (const LawParameter& p : law_parameters(law)) out.insert("material." + std::string(p.key));
   out.insert("faces.*");  // names of one's own

@@ -166,6 +166,16 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   grid->GetPointData()->AddArray(stress);
   grid->GetPointData()->AddArray(vm);
   grid->GetPointData()->AddArray(mag);
+  // J = det F and the hydrostatic pressure (model/field_recovery.hpp)
+  const RecoveredVolume v = recover_volume(mesh, model);
+  auto jac = make_array("J", 1, np);
+  auto hyd = make_array("hydrostatic_pressure", 1, np);
+  for (vtkIdType i = 0; i < np; ++i) {
+    jac->SetValue(i, v.jacobian[i]);
+    hyd->SetValue(i, v.pressure[i]);
+  }
+  grid->GetPointData()->AddArray(jac);
+  grid->GetPointData()->AddArray(hyd);
   grid->GetPointData()->SetActiveScalars("von_mises");
   return grid;
 }

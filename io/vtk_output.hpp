@@ -25,6 +25,11 @@
 //         "von_mises"     sqrt(3/2 s:s), s the deviator of sigma.
 //         "stress_magnitude"  the Frobenius norm |sigma| = sqrt(sigma:sigma),
 //                         the "stress magnitude" of the paper's figures.
+//         "J"             det F (1 + tr eps to first order in small strain):
+//                         where the body kept its volume.
+//         "hydrostatic_pressure"  -tr(sigma)/3; with formulation = "mixed"
+//                         the formulation's projected pressure
+//                         (model/field_recovery.hpp: recover_volume).
 //       How stress reaches the Bezier points: the stress is discontinuous
 //       between elements, so it is brought onto each element by an
 //       element-local L2 projection onto the element's rational Bezier basis

@@ -26,6 +26,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>  // determinant and inverse of fixed-size F (closed form)
+#include <cmath>
 #include <concepts>
 #include <limits>
 #include <map>
@@ -88,6 +89,13 @@ struct YoungPoissonParameters {
 // Throws MaterialParameterError naming the first key that is not.
 void validate_parameters(std::span<const LawParameter> declared, const MaterialParameters& given);
 
+// The volumetric part U(J) of a law's split Psi = W_iso(F) + U(J) and its
+// first two derivatives at one J (the mixed formulation, engine/
+// volumetric_projection.hpp, evaluates it at the projected dilatation).
+struct VolumetricValues {
+  double U = 0, dU = 0, d2U = 0;
+};
+
 // A second-order tensor (F, P) and a fourth-order tangent in the layout above.
 template <int dim>
 using DimMatrix = Eigen::Matrix<double, dim, dim>;
@@ -107,6 +115,28 @@ class HyperelasticLaw {
   // Psi(F); +inf when F is inadmissible.
   virtual double energy(const Eigen::Matrix2d& F) const = 0;
   virtual double energy(const Eigen::Matrix3d& F) const = 0;
+
+  // The isochoric/volumetric split Psi_split = W_iso(F) + U(J) of a law that
+  // declares one (VolumetricSplitLaw below): W_iso depends on F only through
+  // Fbar = J^{-1/3} F (3D J, also in plane strain), U is convex with
+  // U(1) = U'(1) = 0 and U''(1) = K, the bulk modulus.  The mixed formulation
+  // (engine/volumetric_projection.hpp) assembles with the two parts
+  // separately; Psi_split linearises at F = I to the law's own (lambda, mu),
+  // and for a law written as the split (Mooney-Rivlin) it is the law.
+  virtual bool has_volumetric_split() const { return false; }
+  // P_iso = dW_iso/dF and A_iso = dP_iso/dF; false when F is inadmissible or
+  // the law declares no split (P and A untouched).
+  virtual bool evaluate_isochoric(const Eigen::Matrix2d&, Eigen::Matrix2d&, Eigen::Matrix4d*) const { return false; }
+  virtual bool evaluate_isochoric(const Eigen::Matrix3d&, Eigen::Matrix3d&, Eigen::Matrix<double, 9, 9>*) const {
+    return false;
+  }
+  virtual double isochoric_energy(const Eigen::Matrix2d&) const { return std::numeric_limits<double>::infinity(); }
+  virtual double isochoric_energy(const Eigen::Matrix3d&) const { return std::numeric_limits<double>::infinity(); }
+  // U, U', U'' at J; false when J <= 0, not finite, or the law has no split.
+  virtual bool volumetric(double J, VolumetricValues& v) const {
+    static_cast<void>(J), static_cast<void>(v);
+    return false;
+  }
 };
 
 // What a law written as a template must provide (checked at compile time):
@@ -138,6 +168,24 @@ concept DimensionTemplatedLaw =
       law.template tangent<3>(F3, A3);
     };
 
+// A law that also declares its isochoric/volumetric split (optional; the
+// adapter exposes it through HyperelasticLaw::evaluate_isochoric/volumetric):
+//   template <int dim> double isochoric_energy(const DimMatrix<dim>& F) const;
+//   template <int dim> void isochoric_stress(const DimMatrix<dim>& F, DimMatrix<dim>& P) const;
+//   template <int dim> void isochoric_tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const;
+//   VolumetricValues volumetric(double J) const;     U, U', U'' (J > 0 given)
+template <class Law, int dim>
+concept HasIsochoricPart = requires(const Law& law, const DimMatrix<dim>& F, DimMatrix<dim>& P, TangentMatrix<dim>& A) {
+  { law.template isochoric_energy<dim>(F) } -> std::same_as<double>;
+  law.template isochoric_stress<dim>(F, P);
+  law.template isochoric_tangent<dim>(F, A);
+};
+template <class Law>
+concept VolumetricSplitLaw = DimensionTemplatedLaw<Law> && HasIsochoricPart<Law, 2> && HasIsochoricPart<Law, 3> &&
+                             requires(const Law& law, double J) {
+                               { law.volumetric(J) } -> std::same_as<VolumetricValues>;
+                             };
+
 // Turns a DimensionTemplatedLaw into a HyperelasticLaw: admissibility checks
 // and the no-garbage guarantee live here once, not in every law.
 template <DimensionTemplatedLaw Law>
@@ -154,6 +202,28 @@ class HyperelasticAdapter final : public HyperelasticLaw {
   }
   double energy(const Eigen::Matrix2d& F) const override { return energy_dim<2>(F); }
   double energy(const Eigen::Matrix3d& F) const override { return energy_dim<3>(F); }
+  bool has_volumetric_split() const override { return VolumetricSplitLaw<Law>; }
+  bool evaluate_isochoric(const Eigen::Matrix2d& F, Eigen::Matrix2d& P, Eigen::Matrix4d* A) const override {
+    return evaluate_dim<2, true>(F, P, A);
+  }
+  bool evaluate_isochoric(const Eigen::Matrix3d& F, Eigen::Matrix3d& P,
+                          Eigen::Matrix<double, 9, 9>* A) const override {
+    return evaluate_dim<3, true>(F, P, A);
+  }
+  double isochoric_energy(const Eigen::Matrix2d& F) const override { return energy_dim<2, true>(F); }
+  double isochoric_energy(const Eigen::Matrix3d& F) const override { return energy_dim<3, true>(F); }
+  bool volumetric(double J, VolumetricValues& v) const override {
+    if constexpr (VolumetricSplitLaw<Law>) {
+      if (!std::isfinite(J) || !(J > 0)) return false;
+      const VolumetricValues local = law_.volumetric(J);
+      if (!std::isfinite(local.U) || !std::isfinite(local.dU) || !std::isfinite(local.d2U)) return false;
+      v = local;
+      return true;
+    } else {
+      static_cast<void>(J), static_cast<void>(v);
+      return false;
+    }
+  }
   const Law& law() const { return law_; }
 
  private:
@@ -163,27 +233,45 @@ class HyperelasticAdapter final : public HyperelasticLaw {
     if constexpr (Law::kRequiresPositiveJ) return F.determinant() > 0;
     return true;
   }
-  template <int dim>
+  // isochoric: the split's W_iso instead of the law (false without a split).
+  template <int dim, bool isochoric = false>
   bool evaluate_dim(const DimMatrix<dim>& F, DimMatrix<dim>& P, TangentMatrix<dim>* A) const {
-    if (!admissible<dim>(F)) return false;
-    // Into locals first, so an overflow (huge but finite F) leaves P and A
-    // untouched; fixed-size, on the stack.
-    DimMatrix<dim> P_local;
-    law_.template stress<dim>(F, P_local);
-    if (!P_local.allFinite()) return false;
-    if (A) {
-      TangentMatrix<dim> A_local;
-      law_.template tangent<dim>(F, A_local);
-      if (!A_local.allFinite()) return false;
-      *A = A_local;
+    if constexpr (isochoric && !VolumetricSplitLaw<Law>) {
+      return false;
+    } else {
+      if (!admissible<dim>(F)) return false;
+      // Into locals first, so an overflow (huge but finite F) leaves P and A
+      // untouched; fixed-size, on the stack.
+      DimMatrix<dim> P_local;
+      if constexpr (isochoric)
+        law_.template isochoric_stress<dim>(F, P_local);
+      else
+        law_.template stress<dim>(F, P_local);
+      if (!P_local.allFinite()) return false;
+      if (A) {
+        TangentMatrix<dim> A_local;
+        if constexpr (isochoric)
+          law_.template isochoric_tangent<dim>(F, A_local);
+        else
+          law_.template tangent<dim>(F, A_local);
+        if (!A_local.allFinite()) return false;
+        *A = A_local;
+      }
+      P = P_local;
+      return true;
     }
-    P = P_local;
-    return true;
   }
-  template <int dim>
+  template <int dim, bool isochoric = false>
   double energy_dim(const DimMatrix<dim>& F) const {
-    if (!admissible<dim>(F)) return std::numeric_limits<double>::infinity();
-    return law_.template energy<dim>(F);
+    if constexpr (isochoric && !VolumetricSplitLaw<Law>) {
+      return std::numeric_limits<double>::infinity();
+    } else {
+      if (!admissible<dim>(F)) return std::numeric_limits<double>::infinity();
+      if constexpr (isochoric)
+        return law_.template isochoric_energy<dim>(F);
+      else
+        return law_.template energy<dim>(F);
+    }
   }
 
   Law law_;

@@ -80,6 +80,12 @@ void MooneyRivlin::tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const
         }
 }
 
+template double MooneyRivlin::energy<2>(const DimMatrix<2>&) const;
+template double MooneyRivlin::energy<3>(const DimMatrix<3>&) const;
+template void MooneyRivlin::stress<2>(const DimMatrix<2>&, DimMatrix<2>&) const;
+template void MooneyRivlin::stress<3>(const DimMatrix<3>&, DimMatrix<3>&) const;
+template void MooneyRivlin::tangent<2>(const DimMatrix<2>&, TangentMatrix<2>&) const;
+template void MooneyRivlin::tangent<3>(const DimMatrix<3>&, TangentMatrix<3>&) const;
 template class HyperelasticAdapter<MooneyRivlin>;
 
 }  // namespace igac

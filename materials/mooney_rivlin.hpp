@@ -20,6 +20,9 @@
 // Plane strain (2D): F_33 = 1 adds 1 to tr C and to tr C^2; the in-plane
 // block of the 3D P and A is the same code with dim = 2 and these invariants.
 // Requires J > 0.
+//
+// Split for the mixed formulation: the law is written as W_iso + U(J) with
+// U = K/2 (J - 1)^2 (U'' = K > 0: convex), so the split is the law itself.
 #pragma once
 
 #include <string_view>
@@ -49,10 +52,35 @@ class MooneyRivlin {
   template <int dim>
   void tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const;
 
+  // The split (VolumetricSplitLaw): W_iso = C10 (I1bar - 3) + C01 (I2bar - 3)
+  // is the law with K = 0, U(J) = K/2 (J - 1)^2, so W_iso + U is the law.
+  template <int dim>
+  double isochoric_energy(const DimMatrix<dim>& F) const { return isochoric().energy<dim>(F); }
+  template <int dim>
+  void isochoric_stress(const DimMatrix<dim>& F, DimMatrix<dim>& P) const { isochoric().stress<dim>(F, P); }
+  template <int dim>
+  void isochoric_tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const { isochoric().tangent<dim>(F, A); }
+  VolumetricValues volumetric(double J) const { return {0.5 * bulk_ * (J - 1) * (J - 1), bulk_ * (J - 1), bulk_}; }
+  // The isochoric part alone, C10 (I1bar - 3) + C01 (I2bar - 3): also the
+  // isochoric part of the decoupled Neo-Hookean split (neo_hookean.hpp).
+  static MooneyRivlin isochoric_part(double c10, double c01) {
+    MooneyRivlin m;
+    m.c10_ = c10, m.c01_ = c01, m.bulk_ = 0;
+    return m;
+  }
+
  private:
-  double c10_, c01_, bulk_;
+  MooneyRivlin() = default;
+  MooneyRivlin isochoric() const { return isochoric_part(c10_, c01_); }
+  double c10_ = 0, c01_ = 0, bulk_ = 0;
 };
 
 extern template class HyperelasticAdapter<MooneyRivlin>;
+extern template double MooneyRivlin::energy<2>(const DimMatrix<2>&) const;
+extern template double MooneyRivlin::energy<3>(const DimMatrix<3>&) const;
+extern template void MooneyRivlin::stress<2>(const DimMatrix<2>&, DimMatrix<2>&) const;
+extern template void MooneyRivlin::stress<3>(const DimMatrix<3>&, DimMatrix<3>&) const;
+extern template void MooneyRivlin::tangent<2>(const DimMatrix<2>&, TangentMatrix<2>&) const;
+extern template void MooneyRivlin::tangent<3>(const DimMatrix<3>&, TangentMatrix<3>&) const;
 
 }  // namespace igac

@@ -5,7 +5,13 @@
 
 namespace igac {
 
-NeoHookean::NeoHookean(const MaterialParameters& p) : lambda_(p.lambda()), mu_(p.mu()) {}
+NeoHookean::NeoHookean(const MaterialParameters& p)
+    : lambda_(p.lambda()), mu_(p.mu()), iso_(MooneyRivlin::isochoric_part(mu_ / 2, 0)) {}
+
+VolumetricValues NeoHookean::volumetric(double J) const {
+  const double K = lambda_ + 2 * mu_ / 3;
+  return {0.25 * K * (J * J - 1 - 2 * std::log(J)), 0.5 * K * (J - 1 / J), 0.5 * K * (1 + 1 / (J * J))};
+}
 
 template <int dim>
 double NeoHookean::energy(const DimMatrix<dim>& F) const {

@@ -17,11 +17,20 @@
 // exactly the 2D ones, i.e. the same code with dim = 2.
 //
 // Requires J > 0: ln J is undefined otherwise, and Psi -> +inf as J -> 0+.
+//
+// Split for the mixed formulation (VolumetricSplitLaw): the decoupled
+// Neo-Hookean solid of Simo and Miehe (1992), with the same mu and the bulk
+// modulus K = lambda + 2 mu / 3 of (E, nu):
+//   W_iso = mu/2 (I1bar - 3)    (Mooney-Rivlin with C10 = mu/2, C01 = 0),
+//   U(J)  = K/4 (J^2 - 1 - 2 ln J),  U' = K/2 (J - 1/J),  U'' = K/2 (1 + 1/J^2) > 0.
+// It linearises at F = I to the same (lambda, mu) as the coupled law above;
+// at finite strain the two differ (the coupled law has no isochoric split).
 #pragma once
 
 #include <string_view>
 
 #include "materials/hyperelastic.hpp"
+#include "materials/mooney_rivlin.hpp"
 
 namespace igac {
 
@@ -38,8 +47,17 @@ class NeoHookean : public YoungPoissonParameters {
   template <int dim>
   void tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const;
 
+  template <int dim>
+  double isochoric_energy(const DimMatrix<dim>& F) const { return iso_.energy<dim>(F); }
+  template <int dim>
+  void isochoric_stress(const DimMatrix<dim>& F, DimMatrix<dim>& P) const { iso_.stress<dim>(F, P); }
+  template <int dim>
+  void isochoric_tangent(const DimMatrix<dim>& F, TangentMatrix<dim>& A) const { iso_.tangent<dim>(F, A); }
+  VolumetricValues volumetric(double J) const;
+
  private:
   double lambda_, mu_;
+  MooneyRivlin iso_;  // mu/2 (I1bar - 3)
 };
 
 // Compiled once, in neo_hookean.cpp, together with the law's methods.

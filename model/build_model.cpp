@@ -318,7 +318,7 @@ void add_body(Model& m, const BodySpec& b, std::vector<NurbsPatch>& patches, std
     interfaces.push_back(shifted);
   }
   for (auto& p : own) patches.push_back(std::move(p));
-  m.parts.push_back({b.body_name, offset, int(coarse.patches.size()), LinearElastic{1.0, 0.0}, nullptr});
+  m.parts.push_back({b.body_name, offset, int(coarse.patches.size()), LinearElastic{1.0, 0.0}, nullptr, b.formulation});
 }
 
 }  // namespace
@@ -387,10 +387,11 @@ Model build_model(const CaseSpec& spec) {
     }
     // Near nu = 0.5 the pure displacement formulation locks (too stiff a
     // body): say so rather than let a result pass unremarked.
-    if (b.nu >= 0.499)
+    part.formulation = b.formulation;
+    if (b.nu >= 0.499 && b.formulation == Formulation::displacement)
       m.warnings.push_back(fmt::format("{}: {} nu = {}: nearly incompressible: igac's pure displacement "
                                        "elements lock as nu nears 0.5 (the body turns too stiff; docs/benchmarks.md "
-                                       "measures by how much)",
+                                       "measures by how much): formulation = \"mixed\" does not",
                                        spec.path, table, b.nu));
   }
   m.material = bodies.size() == 1 ? m.parts.front().material : small_strain_material(*m.law, m.body.space_dim());

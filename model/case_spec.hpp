@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/geometry/multipatch.hpp"
+#include "engine/volumetric_projection.hpp"
 #include "materials/hyperelastic.hpp"
 
 namespace igac {
@@ -102,6 +103,9 @@ struct BodySpec {
   std::string model = "linear_elastic";  // or a hyperelastic law: large deformation
   double E = 1, nu = 0.3;                  // the law's small-strain equivalent (Hertz, scales)
   MaterialParameters material_parameters;  // as the law declares them (E, nu or its own keys)
+  // displacement | mixed (engine/volumetric_projection.hpp: the volumetric
+  // part projected per element; nearly incompressible solids do not lock)
+  Formulation formulation = Formulation::displacement;
 
   bool finite_strain() const { return model != "linear_elastic"; }
   int dim() const {

@@ -8,6 +8,7 @@
 
 #include "engine/quadrature.hpp"
 #include "engine/spline/refinement.hpp"
+#include "engine/volumetric_projection.hpp"
 
 namespace igac {
 
@@ -146,6 +147,65 @@ StressLaw model_stress_law(const Model& model) {
   return model.law ? cauchy_stress(std::shared_ptr<const HyperelasticLaw>(model.law.get(), [](const HyperelasticLaw*) {}),
                                    !model.spec.finite_strain())
                    : linear_elastic_stress(model.material.lambda(), model.material.mu());  // a Model made in code
+}
+
+RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model) {
+  const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
+  if (pd != dim) throw std::invalid_argument("volume recovery needs a volume mesh");
+  const bool mixed = model.spec.formulation == Formulation::mixed, small = !model.spec.finite_strain();
+  const StressLaw law = model_stress_law(model);
+  const double bulk = model.material.lambda() + 2 * model.material.mu() / 3;
+  const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
+  const int nq = int(rule.points.size());
+  RecoveredVolume out;
+  out.jacobian.resize(mesh.num_points());
+  out.pressure.resize(mesh.num_points());
+  Eigen::VectorXd R, Jq(nq), pq(nq), wq(nq);
+  Eigen::MatrixXd dR, Jm(dim, dim), G(dim, dim), M(nl, nl), B(nl, 2);
+  std::vector<Eigen::Vector2d> s2(nq);
+  std::vector<Eigen::Vector3d> s3(nq);
+  std::vector<double> w(nq);
+  ElementProjection projection;
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    const BezierElement& el = mesh.element(e);
+    M.setZero();
+    std::vector<Eigen::VectorXd> basis(nq);
+    for (int q = 0; q < nq; ++q) {
+      mesh.basis(el, rule.points[q], R, &dR);
+      basis[q] = R;
+      Jm.noalias() = el.points.transpose() * dR;
+      G.noalias() = el.fields[0].transpose() * dR;
+      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
+      grad.topLeftCorner(dim, dim) = G * Jm.inverse();
+      Jq[q] = (Eigen::Matrix3d::Identity() + grad).determinant();
+      // small strain, mixed: the projected quantity is tr eps (stored in pq first)
+      pq[q] = mixed ? (small ? grad.trace() : 0.0) : -law(grad).trace() / 3;
+      w[q] = wq[q] = rule.weights[q] * std::abs(Jm.determinant());
+      if (dim == 2) s2[q] = rule.points[q].head<2>(); else s3[q] = rule.points[q].head<3>();
+      M.selfadjointView<Eigen::Lower>().rankUpdate(R, wq[q]);
+    }
+    if (mixed) {
+      if (dim == 2) projection.build(s2, w, pressure_degree(max_degree(mesh)));
+      else projection.build(s3, w, pressure_degree(max_degree(mesh)));
+      if (small) {
+        pq = -bulk * (projection.matrix() * pq);
+      } else {
+        const Eigen::VectorXd theta = projection.matrix() * Jq;
+        VolumetricValues v;
+        for (int q = 0; q < nq; ++q) pq[q] = model.law->volumetric(theta[q], v) ? v.dU : std::numeric_limits<double>::quiet_NaN();
+        pq = -(projection.matrix() * pq);
+      }
+    }
+    B.setZero();
+    for (int q = 0; q < nq; ++q) {
+      B.col(0) += wq[q] * Jq[q] * basis[q];
+      B.col(1) += wq[q] * pq[q] * basis[q];
+    }
+    const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
+    out.jacobian.segment(e * nl, nl) = C.col(0);
+    out.pressure.segment(e * nl, nl) = C.col(1);
+  }
+  return out;
 }
 
 ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,

@@ -55,6 +55,17 @@ BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int firs
 // with its own law.
 RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u);
 
+// J = det F and the hydrostatic pressure -tr(sigma)/3, projected onto each
+// element's Bezier basis like the stress (rows as recover_stress).  With
+// [material] formulation = "mixed" the pressure is the formulation's own,
+// -Pi_e U'(Pi_e J) (engine/volumetric_projection.hpp; small strain
+// -K Pi_e tr eps), not the pointwise law's, whose J oscillates at the scale
+// the projection removes.
+struct RecoveredVolume {
+  Eigen::VectorXd jacobian, pressure;  // num_points each
+};
+RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model);
+
 struct ContactPartFields {
   Eigen::VectorXd point_pressure;          // per Bezier point: the projection of -lambda_h
   std::vector<double> cell_pressure;       // per element: mean of -lambda_h over the reference face

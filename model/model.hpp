@@ -40,8 +40,16 @@ struct Model {
     int first_patch = 0, num_patches = 0;
     LinearElastic material{1.0, 0.0};
     std::shared_ptr<const HyperelasticLaw> law;
+    Formulation formulation = Formulation::displacement;
   };
   std::vector<Part> parts;
+  // The formulation of each patch of `body` (one entry: every patch's).
+  std::vector<Formulation> patch_formulations() const {
+    if (parts.size() <= 1) return {spec.formulation};
+    std::vector<Formulation> out;
+    for (const Part& p : parts) out.insert(out.end(), size_t(p.num_patches), p.formulation);
+    return out;
+  }
   // The small-strain material of each patch of `body` (one entry: every patch's).
   std::vector<LinearElastic> patch_materials() const {
     if (parts.size() <= 1) return {material};

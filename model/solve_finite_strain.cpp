@@ -123,6 +123,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   setup.body = &body;
   setup.dofs = m.dofs.get();
   setup.law = m.law.get();
+  setup.formulation = m.spec.formulation;
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value});
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts) setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});

@@ -197,7 +197,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   // One process: every element.  PETSc on several: this process's block
   // (the element loads summed over the processes, so f is whole everywhere).
   const bool petsc = uses_petsc(m);
-  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.patch_materials(), bf, process_elements(m));
+  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.patch_materials(), bf, process_elements(m),
+                                                m.patch_formulations());
   sum_over_processes(sys.f);
   for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
   r.timing.assembly = t0.seconds();

@@ -102,7 +102,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"nu_below_minus_one", "bad_nu_below_minus_one.toml", "nu = -1.2", {"[material] nu:", "-1.2", "(-1, 0.5)"}},
         BadCase{"unknown_pressure_face", "bad_unknown_face.toml", "", {"[pressure] faces:", "unknown face 'innner'", "inner"}},
         BadCase{"unknown_shape", "bad_unknown_shape.toml", "shape =", {"[geometry] shape:", "unknown shape 'hexagon'"}},
-        BadCase{"refine_30", "bad_refine_30.toml", "", {"[mesh] refine = 30", "GiB", "more than this machine"}}),
+        BadCase{"refine_30", "bad_refine_30.toml", "", {"[mesh] refine = 30", "GiB", "more than this machine"}},
+        BadCase{"unknown_formulation", "bad_unknown_formulation.toml", "formulation =",
+                {"[material] formulation:", "unknown formulation 'fbar'", "mixed"}},
+        BadCase{"bulk_modulus_negative", "bad_bulk_negative.toml", "bulk_modulus =", {"[material] bulk_modulus:", "positive"}},
+        BadCase{"bulk_modulus_nan", "bad_bulk_nan.toml", "bulk_modulus =", {"[material] bulk_modulus:"}},
+        BadCase{"mixed_without_split", "bad_mixed_without_split.toml", "formulation =",
+                {"[material] formulation:", "'saint_venant_kirchhoff' declares none"}}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
 TEST(BadInput, RefineOptionBeyondMemory) {

@@ -23,6 +23,7 @@
 #include <Eigen/SparseLU>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "engine/assembly.hpp"
 #include "engine/follower_pressure.hpp"
@@ -91,9 +92,11 @@ double fd_error(const Eigen::MatrixXd& K, const DofMap& dofs, const Eigen::Vecto
 
 // The wiggle is a fraction of the control-point spacing, so that
 // |Grad u| ~ 0.2 stays admissible (det F > 0) at every Gauss point.
-double tangent_fd_error(const NurbsPatch& patch, const DofMap& dofs, double wiggle, unsigned seed) {
-  const auto law = make_law("neo_hookean", kMaterial);
-  const TotalLagrangianAssembler tl(patch, dofs, *law);
+double tangent_fd_error(const NurbsPatch& patch, const DofMap& dofs, double wiggle, unsigned seed,
+                        Formulation formulation = Formulation::displacement, const std::string& law_name = "neo_hookean",
+                        const MaterialParameters& material = kMaterial) {
+  const auto law = make_law(law_name, material);
+  const TotalLagrangianAssembler tl(patch, dofs, *law, formulation);
   const Eigen::VectorXd free = random_state(patch, dofs, wiggle, seed);
   Eigen::VectorXd f;
   Eigen::SparseMatrix<double> K;
@@ -108,7 +111,7 @@ double tangent_fd_error(const NurbsPatch& patch, const DofMap& dofs, double wigg
     EXPECT_TRUE(tl.assemble(u, fu, nullptr));
     return fu;
   });
-  std::cout << "  TL tangent vs FD (" << patch.space_dim() << "D, p = " << patch.degree(0)
+  std::cout << "  TL tangent vs FD (" << formulation_name(formulation) << ", " << patch.space_dim() << "D, p = " << patch.degree(0)
             << ", " << dofs.num_free() << " dofs): " << err << "\n";
   return err;
 }
@@ -141,6 +144,61 @@ TEST(TotalLagrangian, TangentMatchesFiniteDifferences3D) {
     const DofMap dofs(patch, {{g.faces.at("bottom"), 2, 0.02}});
     EXPECT_LE(tangent_fd_error(patch, dofs, 0.005, 6), kFiniteDifference) << "box, p = 3";
   }
+}
+
+// The mixed formulation (engine/volumetric_projection.hpp): its condensed
+// tangent is the derivative of its internal force too (the projected
+// dilatation's term Bbar^T U'' Bbar and the pressure's geometric term
+// included), for both laws with a split, nearly incompressible (K/mu = 2000,
+// where a missing term of U'' size would show at once), 2D and 3D, p = 2, 3.
+TEST(TotalLagrangian, MixedTangentMatchesFiniteDifferences) {
+  const MaterialParameters rubber{1.0, 0.49975, {}};  // K / mu = 2000
+  const MaterialParameters mooney{NAN, NAN, {{"C10", 0.3}, {"C01", 0.05}, {"bulk_modulus", 1400.0}}};
+  const Geometry g = quarter_disc(1.0);
+  for (int p : {2, 3}) {
+    const NurbsPatch patch = refined(g.patch, p, 3);
+    EXPECT_LE(tangent_fd_error(patch, quarter_disc_dofs(g, patch), 0.02, 7 + p, Formulation::mixed, "neo_hookean", rubber),
+              kFiniteDifference)
+        << "neo_hookean, p = " << p;
+    EXPECT_LE(tangent_fd_error(patch, quarter_disc_dofs(g, patch), 0.02, 9 + p, Formulation::mixed, "mooney_rivlin", mooney),
+              kFiniteDifference)
+        << "mooney_rivlin, p = " << p;
+  }
+  const Geometry b = box(1.0, 0.8, 0.6);
+  const NurbsPatch patch = distort_interior(refined(b.patch, 2, 2), 0.03, 3);
+  const DofMap dofs(patch, {{b.faces.at("bottom"), 2, 0.02}});
+  EXPECT_LE(tangent_fd_error(patch, dofs, 0.005, 6, Formulation::mixed, "neo_hookean", rubber), kFiniteDifference)
+      << "box, p = 2";
+}
+
+// A law without a split cannot run mixed: said at construction.
+TEST(TotalLagrangian, MixedNeedsALawWithASplit) {
+  const Geometry g = quarter_disc(1.0);
+  const NurbsPatch patch = refined(g.patch, 2, 1);
+  const DofMap dofs = quarter_disc_dofs(g, patch);
+  const auto law = make_law("saint_venant_kirchhoff", kMaterial);
+  EXPECT_THROW(TotalLagrangianAssembler(patch, dofs, *law, Formulation::mixed), std::invalid_argument);
+}
+
+// With the linear law's small-strain split (U = K theta^2/2), the mixed
+// tangent at u = 0 is the B-bar stiffness of assemble_linear_elasticity:
+// the two paths project the same way.
+TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
+  const Geometry g = quarter_disc(1.0);
+  const NurbsPatch patch = refined(g.patch, 2, 3);
+  const DofMap dofs(patch, {{g.faces.at("left"), 0, 0.0}});
+  const MaterialParameters mooney{NAN, NAN, {{"C10", 0.5}, {"C01", 0.0}, {"bulk_modulus", 300.0}}};
+  const auto law = make_law("mooney_rivlin", mooney);
+  const TotalLagrangianAssembler tl(patch, dofs, *law, Formulation::mixed);
+  Eigen::VectorXd f;
+  Eigen::SparseMatrix<double> K;
+  ASSERT_TRUE(tl.assemble(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), f, &K));
+  const LinearElastic lin = small_strain_material(*law, 2);
+  const LinearSystem bbar = assemble_linear_elasticity(patch, dofs, lin, Eigen::VectorXd::Zero(2), {}, Formulation::mixed);
+  const LinearSystem plain = assemble_linear_elasticity(patch, dofs, lin, Eigen::VectorXd::Zero(2));
+  const Eigen::MatrixXd Kd(K), Kb(bbar.K), Kp(plain.K);
+  EXPECT_LE(max_abs(Kd - Kb), kRoundoff * 1e2 * max_abs(Kb));
+  EXPECT_GT(max_abs(Kd - Kp), 1e-3 * max_abs(Kp)) << "B-bar differs from the plain stiffness";
 }
 
 // f_int = 0 at u = 0 and under u = (Q - I) X: NURBS reproduce affine fields

@@ -596,5 +596,109 @@ TEST(MaterialParameters, InvalidParametersThrow) {
   }
 }
 
+// ------------------------------------------------- the volumetric split
+
+// The isochoric part of a law's split as a law of its own, so check_law
+// checks it like any law.
+class IsochoricView final : public HyperelasticLaw {
+ public:
+  explicit IsochoricView(const HyperelasticLaw& law) : law_(law) {}
+  std::string name() const override { return law_.name() + " (isochoric)"; }
+  bool evaluate(const Eigen::Matrix2d& F, Eigen::Matrix2d& P, Eigen::Matrix4d* A) const override {
+    return law_.evaluate_isochoric(F, P, A);
+  }
+  bool evaluate(const Eigen::Matrix3d& F, Eigen::Matrix3d& P, Eigen::Matrix<double, 9, 9>* A) const override {
+    return law_.evaluate_isochoric(F, P, A);
+  }
+  double energy(const Eigen::Matrix2d& F) const override { return law_.isochoric_energy(F); }
+  double energy(const Eigen::Matrix3d& F) const override { return law_.isochoric_energy(F); }
+
+ private:
+  const HyperelasticLaw& law_;
+};
+
+// Laws with a split (the mixed formulation's seam): the isochoric stress and
+// tangent against central differences, U' and U'' likewise, U convex with
+// U(1) = U'(1) = 0; the isochoric part is stress-free at F = I and
+// insensitive to volume (P_iso : F = 0); and at F = I the split's tangent
+// A_iso + U''(1) I (x) I is the law's own elasticity (same lambda, mu).
+template <int dim>
+void expect_split_consistent(const HyperelasticLaw& law, unsigned seed) {
+  const IsochoricView iso(law);
+  for (const DimMatrix<dim>& F : sample_F<dim>(seed)) {
+    const TangentCheck c = check_law(iso, F, kFdTolerance);
+    EXPECT_TRUE(c.ok) << c.report << "\nF =\n" << F;
+    DimMatrix<dim> P;
+    ASSERT_TRUE(law.evaluate_isochoric(F, P, nullptr));
+    // W_iso(s F) = W_iso(F) for a volumetric scaling s (3D: F_33 scales too, so check in 3D only)
+    if (dim == 3) EXPECT_NEAR((P.transpose() * F).trace(), 0.0, 1e-10 * std::max(1.0, max_abs<dim>(P)));
+  }
+  VolumetricValues v1, vp, vm;
+  ASSERT_TRUE(law.volumetric(1.0, v1));
+  EXPECT_NEAR(v1.U, 0.0, kRoundOff * v1.d2U);
+  EXPECT_NEAR(v1.dU, 0.0, kRoundOff * v1.d2U);
+  for (double J : {0.3, 0.8, 1.0, 1.2, 2.5}) {
+    const double h = 1e-6;
+    VolumetricValues v;
+    ASSERT_TRUE(law.volumetric(J, v));
+    ASSERT_TRUE(law.volumetric(J + h, vp));
+    ASSERT_TRUE(law.volumetric(J - h, vm));
+    EXPECT_NEAR(v.dU, (vp.U - vm.U) / (2 * h), 1e-7 * v1.d2U) << "J = " << J;
+    EXPECT_NEAR(v.d2U, (vp.dU - vm.dU) / (2 * h), 1e-7 * v1.d2U) << "J = " << J;
+    EXPECT_GT(v.d2U, 0.0) << "U is convex";
+  }
+  EXPECT_FALSE(law.volumetric(0.0, v1));
+  EXPECT_FALSE(law.volumetric(NAN, v1));
+  const DimMatrix<dim> I = DimMatrix<dim>::Identity();
+  DimMatrix<dim> P;
+  TangentMatrix<dim> A_iso, A;
+  ASSERT_TRUE(law.evaluate_isochoric(I, P, &A_iso));
+  EXPECT_LE(max_abs<dim>(P), kRoundOff);
+  ASSERT_TRUE(law.evaluate(I, P, &A));
+  ASSERT_TRUE(law.volumetric(1.0, v1));
+  for (int i = 0; i < dim; ++i)
+    for (int k = 0; k < dim; ++k) A_iso(i * dim + i, k * dim + k) += v1.d2U;
+  EXPECT_LE((A_iso - A).cwiseAbs().maxCoeff(), kLinearisation * A.cwiseAbs().maxCoeff()) << law.name();
+}
+
+TEST(MaterialSplit, IsochoricAndVolumetricPartsAreConsistent) {
+  for (const std::string name : {"neo_hookean", "mooney_rivlin"})
+    for (const MaterialParameters& mp : {kPaperMaterial, kStiffMaterial, MaterialParameters{1.0, 0.49975, {}}}) {
+      const auto law = make_test_law(name, mp);
+      ASSERT_TRUE(law->has_volumetric_split()) << name;
+      expect_split_consistent<2>(*law, 17);
+      expect_split_consistent<3>(*law, 19);
+    }
+}
+
+// Mooney-Rivlin is written as the split: W_iso + U is the law, P and A too.
+TEST(MaterialSplit, MooneyRivlinSplitIsTheLaw) {
+  const auto law = make_test_law("mooney_rivlin", kStiffMaterial);
+  for (const Eigen::Matrix3d& F : sample_F<3>(23)) {
+    Eigen::Matrix3d P, P_iso;
+    Eigen::Matrix<double, 9, 9> A, A_iso;
+    ASSERT_TRUE(law->evaluate(F, P, &A));
+    ASSERT_TRUE(law->evaluate_isochoric(F, P_iso, &A_iso));
+    VolumetricValues v;
+    const double J = F.determinant();
+    ASSERT_TRUE(law->volumetric(J, v));
+    EXPECT_NEAR(law->isochoric_energy(F) + v.U, law->energy(F), 1e-10 * std::max(1.0, std::abs(law->energy(F))));
+    const Eigen::Matrix3d P_vol = v.dU * J * F.inverse().transpose();
+    EXPECT_LE((P_iso + P_vol - P).cwiseAbs().maxCoeff(), 1e-10 * std::max(1.0, P.cwiseAbs().maxCoeff()));
+  }
+}
+
+// A law without a split says so, and its split methods refuse.
+TEST(MaterialSplit, LawsWithoutASplitSaySo) {
+  for (const std::string name : {"saint_venant_kirchhoff", "linear_elastic"}) {
+    const auto law = make_law(name, kPaperMaterial);
+    EXPECT_FALSE(law->has_volumetric_split()) << name;
+    Eigen::Matrix2d P = Eigen::Matrix2d::Zero();
+    EXPECT_FALSE(law->evaluate_isochoric(Eigen::Matrix2d::Identity(), P, nullptr));
+    VolumetricValues v;
+    EXPECT_FALSE(law->volumetric(1.0, v));
+  }
+}
+
 }  // namespace
 }  // namespace igac
