@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Fails the build when a source file includes a header of a folder above its
-# own: materials/ < engine/ < contact/ < solvers/ < model/ < io/ < app/
+# own: materials/ < engine/ < contact/ < solvers/ < model/ < io/ < app/ < python/
 # (docs/design.md, "Layout").
 # Run by the check_layering target on every build.
-set(levels materials engine contact solvers model io app)
+set(levels materials engine contact solvers model io app python)
 list(LENGTH levels n_levels)
 math(EXPR last "${n_levels} - 1")
 set(bad "")

@@ -186,7 +186,10 @@ CaseSpec read_case(const std::string& path) {
     throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a case file must be a regular file", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the case file ({})", path, std::strerror(errno)));
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return read_case_text(std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}, path);
+}
+
+CaseSpec read_case_text(const std::string& text, const std::string& path) {
   if (const auto line = overlong_toml_key(text))  // (toml++ would overflow its stack)
     throw InputError(fmt::format("{}:{}: a key of more than {} dotted parts", path, *line, kMaxTomlKeyParts));
   toml::table root;

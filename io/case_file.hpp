@@ -18,6 +18,10 @@ namespace igac {
 
 // Throws InputError.
 CaseSpec read_case(const std::string& path);
+// The same for a case file's text: `path` names it in messages, gives the
+// default name and the folder that relative geometry files are read from
+// (it need not exist).
+CaseSpec read_case_text(const std::string& text, const std::string& path);
 // Every key read_case accepts, sorted, as its path of tables: "name",
 // "mesh.degree", "mesh.grading.direction", "contact.obstacle.radius";
 // "faces.*" for the names of one's own in [faces].  Shapes, laws and

@@ -11,6 +11,7 @@ packages=(cmake g++ make pkg-config
           libfmt-dev libtomlplusplus-dev libcli11-dev libgtest-dev
           nlohmann-json3-dev libpugixml-dev libopenblas0-pthread libopenblas-dev
           python3 python3-matplotlib     # the plots of bench/*.py (igac writes its own as SVG)
+          python3-dev pybind11-dev python3-numpy  # the Python module (python/, docs/python.md)
           libpetsc-real-dev openmpi-bin)   # the PETSc (MPI) solver path: --solver petsc, scripts/mpirun.sh
 
 missing=()

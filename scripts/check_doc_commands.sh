@@ -6,7 +6,7 @@
 # indented ones, in a list), as written, and fails when one exits non-zero.
 # Each line of such a block is one command; a line whose comment says "not run by the doc check" (the whole
 # test suite, benchmarks of minutes) is listed and skipped. The commands run
-# in a temporary folder that links the repository's build/, cases/, bench/,
+# in a temporary folder that links the repository's build/, cases/, bench/, examples/,
 # scripts/, tests/ and the two top-level scripts, so whatever they write
 # (out/, my_part.xml) lands there and is removed at the end. Needs a build
 # (./test.sh or ./run.sh makes one). --list prints the commands only.
@@ -32,7 +32,7 @@ fi
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-for f in build cases bench scripts tests docs run.sh test.sh; do ln -s "$root/$f" "$work/$f"; done
+for f in build cases bench scripts tests docs examples run.sh test.sh; do ln -s "$root/$f" "$work/$f"; done
 
 run=0 skipped=0 failed=0
 start=$SECONDS

@@ -1,0 +1,128 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""The Python module against the command line (docs/python.md).
+
+Run by CTest (tests/CMakeLists.txt) with PYTHONPATH=build/python and
+IGAC_BINARY=build/igac:
+  - every shipped case of a second or less gives the summary igac run writes,
+    number for number (relative 1e-12; the keys that time the run aside);
+  - an override is the same as the case file edited;
+  - a case given as a dict is the same as its file;
+  - bad input is igac.InputError (a ValueError) with the one-line message;
+  - the arrays have the shapes of the model.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import tomllib
+import unittest
+
+import numpy as np
+
+import igac
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CASES = os.path.join(ROOT, "cases")
+IGAC = os.environ.get("IGAC_BINARY", os.path.join(ROOT, "build", "igac"))
+FAST_CASES = ["hertz2d", "hertz2d_two_patches", "two_blocks", "roller_on_block", "lame_cylinder",
+              "cattaneo_mindlin", "oring"]
+ROUND_OFF = 1e-12
+# Keys that measure the machine or name a file, not the numerics.
+MACHINE = ("time", "timing", "seconds", "_s", "memory", "resident", "path", "folder", "fnv1a64")
+
+
+def cli_summary(case_file):
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out")
+        subprocess.run([IGAC, "run", case_file, "--out", out, "--quiet"], check=False)
+        with open(os.path.join(out, "summary.json")) as f:
+            return json.load(f)
+
+
+def compare(test, a, b, where="summary"):
+    if isinstance(a, dict):
+        test.assertEqual(sorted(k for k in a if not k.endswith(MACHINE)),
+                         sorted(k for k in b if not k.endswith(MACHINE)), where)
+        for k in a:
+            if not k.endswith(MACHINE):
+                compare(test, a[k], b[k], f"{where}.{k}")
+    elif isinstance(a, list):
+        test.assertEqual(len(a), len(b), where)
+        for i, (x, y) in enumerate(zip(a, b)):
+            compare(test, x, y, f"{where}[{i}]")
+    elif isinstance(a, float) or isinstance(b, float):
+        test.assertTrue(math.isclose(a, b, rel_tol=ROUND_OFF, abs_tol=1e-300), f"{where}: {a} != {b}")
+    else:
+        test.assertEqual(a, b, where)
+
+
+class ModuleAgainstCommandLine(unittest.TestCase):
+    def test_every_fast_shipped_case_gives_the_command_lines_summary(self):
+        for name in FAST_CASES:
+            with self.subTest(case=name):
+                path = os.path.join(CASES, name + ".toml")
+                result = igac.run(path)
+                compare(self, cli_summary(path), result["summary"])
+                self.assertEqual(result["status"], result["summary"]["status"])
+
+    def test_an_override_is_the_case_file_edited(self):
+        path = os.path.join(CASES, "hertz2d.toml")
+        with open(path) as f:
+            text = f.read()
+        self.assertIn("E = 1.0", text)
+        with tempfile.TemporaryDirectory() as tmp:
+            edited = os.path.join(tmp, "hertz2d.toml")
+            with open(edited, "w") as f:
+                f.write(text.replace("E = 1.0", "E = 2.0"))
+            expected = cli_summary(edited)
+        got = igac.run(path, {"material.E": 2.0})["summary"]
+        compare(self, expected, got)
+        self.assertNotEqual(got["contact"]["max_pressure"], igac.run(path)["summary"]["contact"]["max_pressure"])
+
+    def test_an_array_of_tables_is_indexed(self):
+        path = os.path.join(CASES, "oring.toml")
+        with open(path, "rb") as f:
+            case = tomllib.load(f)
+        contact = case["contact"][0] if isinstance(case["contact"], list) else case["contact"]
+        motion = [0.5 * x for x in contact["obstacle"]["motion"]]
+        key = "contact.0.obstacle.motion" if isinstance(case["contact"], list) else "contact.obstacle.motion"
+        half = igac.run(path, {key: motion})["summary"]
+        full = igac.run(path)["summary"]
+        self.assertLess(half["contact"]["total_force"], full["contact"]["total_force"])
+
+    def test_a_case_as_a_dict_is_its_file(self):
+        path = os.path.join(CASES, "two_blocks.toml")  # with a geometry file beside it
+        with open(path, "rb") as f:
+            case = tomllib.load(f)
+        compare(self, igac.run(path)["summary"], igac.run_dict(case, folder=CASES)["summary"])
+
+    def test_bad_input_is_an_input_error_with_the_one_line_message(self):
+        path = os.path.join(CASES, "hertz2d.toml")
+        with self.assertRaises(igac.InputError) as e:
+            igac.run(path, {"material.nu": 0.5})
+        self.assertIn("[material] nu", str(e.exception))
+        self.assertTrue(issubclass(igac.InputError, ValueError))
+        with self.assertRaises(igac.InputError) as e:
+            igac.run(path, {"material.E.x": 1.0})
+        self.assertIn("'material.E' is not a table", str(e.exception))
+        with self.assertRaises(igac.InputError):
+            igac.run(path, {"material.colour": "red"})
+
+    def test_arrays_have_the_models_shapes(self):
+        r = igac.run(os.path.join(CASES, "roller_on_block.toml"))
+        n = r["summary"]["dofs"]
+        self.assertEqual(r["displacement"].shape, r["control_points"].shape)
+        self.assertEqual(r["displacement"].shape[1], 2)
+        self.assertGreaterEqual(r["displacement"].size, n)
+        self.assertEqual(r["multipliers"].shape, (r["summary"]["multipliers"],))
+        self.assertEqual(len(r["pressure"]), 1)
+        p = r["pressure"][0]
+        self.assertEqual(p["face"], "roller:curved")
+        self.assertAlmostEqual(float(np.max(p["pressure"])), r["summary"]["contact"]["max_pressure"], delta=1e-15)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
