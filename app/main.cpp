@@ -210,6 +210,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   const std::string dir = folder ? folder->staging() : std::string();
   const bool vtk = folder && spec.write_vtk;
   VtkSeries series(dir);
+  if (vtk) {  // step 0: the undeformed body, at load factor 0
+    RunResult undeformed;
+    undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
+    series.write_step(model, undeformed, 0.0);
+  }
   // Large deformation: one ParaView step per converged load step.
   StepObserver observer;
   if (vtk && spec.finite_strain())
