@@ -19,6 +19,7 @@
 #include "model/case_body.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"
+#include "model/progress.hpp"
 #include "model/solve.hpp"
 #include "app/launcher.hpp"
 #include "engine/stopwatch.hpp"
@@ -89,11 +90,24 @@ std::string percent(double v, double ref) {
   return ref != 0 ? fmt::format("{:+.2f} %", 100 * (v - ref) / ref) : std::string("no relative difference to 0");
 }
 
-void print_summary(const Model& m, const RunResult& r, const std::string& out, double wall_seconds) {
+// The first line of a run, printed before it solves (and flushed: the
+// progress lines that follow go to stderr).
+void print_header(const Model& m) {
   const Body& b = m.body;
   fmt::print("igac: {} — {}D, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
              b.degree(), b.num_elements(), b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
              m.dofs->num_free(), m.num_multipliers());
+  const UnitsSpec& u = m.spec.units;
+  if (u.declared())
+    fmt::print("  units         length {}, force {}, stress {} (labels only: igac converts nothing)\n",
+               u.length.empty() ? "-" : u.length, u.force.empty() ? "-" : u.force, u.stress.empty() ? "-" : u.stress);
+  else
+    fmt::print("  units         consistent units (none declared: [units] names them)\n");
+  std::fflush(stdout);
+}
+
+void print_summary(const Model& m, const RunResult& r, const std::string& out, double wall_seconds) {
+  const Body& b = m.body;
   std::string status = r.status;
   if (r.load_steps) {
     int newton = 0, cuts = r.load_steps->unfinished_cut_backs;  // (a failed run's last attempts too)
@@ -156,6 +170,8 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
       fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
   }
   if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
+  for (const FaceReaction& f : r.dirichlet_reactions)
+    fmt::print("  reaction      face '{}': ({:.6g})\n", f.face, fmt::join(f.force, ", "));
   if (r.pressure_error && r.pressure_error->second > 0)
     fmt::print("  pressure L2   {:.4e}  (relative {:.4e}, against Hertz)\n", r.pressure_error->first,
                r.pressure_error->first / r.pressure_error->second);
@@ -204,6 +220,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!out.empty()) folder.emplace(out);
   Model model = build_model(spec);
   model.quiet = quiet;
+  if (!quiet) print_header(model);
   if (!quiet)
     for (const auto& w : model.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   if (folder) folder->create_staging();
@@ -233,19 +250,21 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     summary["status"] = r.status;
   }
   if (folder) {
+    Progress progress(quiet);
+    if (vtk) progress.phase("writing the output (the ParaView files recover the stress)");
     // One contact: pressure.csv and .svg; several: pressure_<face>.csv and .svg each.
     const std::vector<std::string> stems = pressure_file_stems(model);
     for (size_t i = 0; i < r.contacts.size(); ++i) {
       const std::string title = r.contacts.size() > 1 ? fmt::format("{}: face '{}'", spec.name, r.contacts[i].face) : spec.name;
       write_file_atomically(dir + "/" + stems[i] + ".csv", pressure_csv(r, i));
-      write_file_atomically(dir + "/" + stems[i] + ".svg", svg::render(pressure_figure(r, title, i)));
+      write_file_atomically(dir + "/" + stems[i] + ".svg", svg::render(pressure_figure(r, title, i, spec.units)));
     }
     if (!r.load_curve.empty()) {
       write_file_atomically(dir + "/load_curve.csv", load_curve_csv(model, r));
       std::vector<std::string> faces;
       if (r.contacts.size() > 1)
         for (const ContactResult& c : r.contacts) faces.push_back(c.face);
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces)));
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim())));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);

@@ -51,8 +51,10 @@ class TotalLagrangianAssembler {
   // a pointer to `law`, which must outlive the assembler (a law keeps no
   // scratch, so it may be shared).  Throws std::invalid_argument unless the
   // patch is a 2D or 3D volume patch matching the dof map, and
-  // std::runtime_error when the geometry map folds.
-  TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law);
+  // std::runtime_error when the geometry map folds.  `tangent` false: the
+  // internal force only (no sparsity pattern is built; e.g. the reactions of
+  // model/reactions.hpp), and assemble throws std::logic_error if given a K.
+  TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law, bool tangent = true);
 
   // u: displacement per control point (n_cp x dim), prescribed values
   // included (e.g. DofMap::expand of the free values).  Fills f_int (free

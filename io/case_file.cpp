@@ -31,7 +31,7 @@ namespace {
 // keys of a shape, a law or an obstacle come from their registries.
 const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", "material", "dirichlet",
                                      "pressure", "body_force", "contact", "reference", "output", "loading",
-                                     "faces", "solver"};
+                                     "faces", "solver", "units"};
 const std::set<std::string> kGeometryKeys{"shape", "file"};  // and the shape's own
 const std::set<std::string> kGeometryFileKeys{"radius", "inner_radius", "outer_radius"};  // with file =
 const std::set<std::string> kMeshKeys{"degree", "elements", "refine", "grading"};
@@ -46,6 +46,7 @@ const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increm
                                          "max_newton_iterations", "line_search", "predictor", "pressure"};
 const std::set<std::string> kOutputKeys{"vtk"};
 const std::set<std::string> kSolverKeys{"type", "options", "preconditioner"};
+const std::set<std::string> kUnitsKeys{"system", "length", "force", "stress"};
 
 }  // namespace
 
@@ -615,6 +616,19 @@ CaseSpec read_case(const std::string& path) {
     if (c.solver.type == "petsc" && c.finite_strain())
       s.fail("type", "the PETSc solver runs the small-deformation (linear_elastic) contact solve only");
   }
+  if (root.contains("units")) {  // labels only
+    const Section s(path, "units", top.sub("units"), kUnitsKeys);
+    UnitsSpec& u = c.units;
+    u.system = s.string("system", "");
+    if (u.system == "mm-N-MPa") u = {u.system, "mm", "N", "MPa"};
+    else if (u.system == "SI") u = {u.system, "m", "N", "Pa"};
+    else if (!u.system.empty())
+      s.fail("system", fmt::format("unknown system '{}' (\"mm-N-MPa\" or \"SI\"; or give length, force and stress)",
+                                   u.system));
+    u.length = s.string("length", u.length);
+    u.force = s.string("force", u.force);
+    u.stress = s.string("stress", u.stress);
+  }
   apply_overrides(c, {}, {});
   return c;
 }
@@ -646,6 +660,7 @@ std::vector<std::string> declared_case_keys() {
   add("loading", kLoadingKeys);
   add("output", kOutputKeys);
   add("solver", kSolverKeys);
+  add("units", kUnitsKeys);
   return {out.begin(), out.end()};
 }
 

@@ -15,6 +15,8 @@
 #include "engine/prolongation.hpp"
 #include "model/deformation_check.hpp"
 #include "model/petsc_run.hpp"
+#include "model/progress.hpp"
+#include "model/reactions.hpp"
 #include "model/references.hpp"
 #include "model/solve.hpp"
 
@@ -143,6 +145,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
   RunResult r;
   Stopwatch t_start;
+  Progress progress(m.quiet);
+  progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
   const Body& body = m.body;
   const int dim = body.space_dim();
   Stopwatch t0;
@@ -168,15 +172,30 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.timing.assembly += t0.seconds();
   }
   check_body_is_held(m, modes, sys.f, op ? &*op : nullptr);
+  // A line per active-set iteration (with the Krylov iterations of its
+  // solve on the PETSc path).
+  const auto report_iteration = [&progress](int it, int active, int changed, int krylov) {
+    progress.line(fmt::format("active set {:3d}: {} active, {} changing{} ({:.1f} s)", it + 1, active, changed,
+                              krylov >= 0 ? fmt::format(", {} Krylov iterations", krylov) : "", progress.seconds()),
+                  changed > 0 ? "in the next active-set iteration" : "computing the reactions and reports");
+  };
   if (m.contacts.empty() && petsc) {
+    progress.phase(fmt::format("solving K u = f ({} equations) with PETSc", m.dofs->num_free()));
     WeightedGapOperator none;
     none.G.resize(0, m.dofs->num_free());
-    const ContactSolution s = solve_with_petsc(m, sys, none, modes, ContactSolverOptions{}, r.linear_solver);
+    ContactSolverOptions no_contact;
+    if (!m.quiet)
+      no_contact.on_iteration = [&progress](int, int, int, int krylov) {
+        progress.line(fmt::format("solved: {} Krylov iterations ({:.1f} s)", krylov, progress.seconds()),
+                      "computing the reactions and reports");
+      };
+    const ContactSolution s = solve_with_petsc(m, sys, none, modes, no_contact, r.linear_solver);
     r.timing.factorization = s.factorize_s;
     r.timing.linear_solve = s.iterations_s;
     r.status = s.status;
     r.u = m.dofs->expand(s.u);
   } else if (m.contacts.empty()) {
+    progress.phase(fmt::format("factorising K ({} equations)", m.dofs->num_free()));
     t0.restart();
     chol.factorize(sys.K);
     r.timing.factorization = t0.seconds();
@@ -188,6 +207,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     c->op = std::move(*op);
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+    if (!m.quiet) opt.on_iteration = report_iteration;
+    progress.phase(petsc ? fmt::format("the active-set iterations with PETSc ({} equations, {} multipliers)",
+                                       m.dofs->num_free(), m.num_multipliers())
+                         : fmt::format("factorising K ({} equations), then the active-set iterations ({} multipliers)",
+                                       m.dofs->num_free(), m.num_multipliers()));
     t0.restart();
     // Nested iteration from the solution one refinement below: the PETSc
     // path solves it first (a Krylov or MUMPS solve per active-set
@@ -218,6 +242,9 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.timing.postprocess += t0.seconds();
   }
   t0.restart();
+  // What the supports carry; a displacement-driven case's applied force.
+  r.dirichlet_reactions = ReactionEvaluator(m)(r.u, 1.0);
+  if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   if (auto w = small_deformation_warning(m, r)) r.warnings.push_back(std::move(*w));
   compare_with_reference(m, r);
   r.timing.postprocess += t0.seconds();
