@@ -220,7 +220,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!out.empty()) folder.emplace(out);
   Model model = build_model(spec);
   model.quiet = quiet;
-  if (!quiet) print_header(model);
+  bool header = false;  // printed once the solve accepts the case (bad input stays one line)
+  if (!quiet) model.on_solve_start = [&] { print_header(model), header = true; };
   if (!quiet)
     for (const auto& w : model.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   if (folder) folder->create_staging();
@@ -250,7 +251,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     summary["status"] = r.status;
   }
   if (folder) {
-    Progress progress(quiet);
+    Progress progress(quiet, wall.seconds());
     if (vtk) progress.phase("writing the output (the ParaView files recover the stress)");
     // One contact: pressure.csv and .svg; several: pressure_<face>.csv and .svg each.
     const std::vector<std::string> stems = pressure_file_stems(model);
@@ -271,6 +272,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
     folder->commit();
   }
+  if (!quiet && !header) print_header(model);
   if (!quiet) print_summary(model, r, folder ? folder->target() : std::string(), wall.seconds());
   return r.status == "converged" ? 0 : 1;
 }

@@ -20,7 +20,9 @@ namespace igac {
 
 class Progress {
  public:
-  explicit Progress(bool quiet, double period_s = 5.0) : quiet_(quiet), period_(period_s) {
+  // `offset_s`: seconds already spent (the times printed count from the run's start).
+  explicit Progress(bool quiet, double offset_s = 0.0, double period_s = 5.0)
+      : quiet_(quiet), offset_(offset_s), period_(period_s) {
     if (!quiet_) heartbeat_ = std::thread([this] { beat(); });
   }
   ~Progress() {
@@ -39,7 +41,7 @@ class Progress {
   void phase(const std::string& what) {
     std::lock_guard<std::mutex> lock(mutex_);
     phase_ = what;
-    print(fmt::format("{} ({:.1f} s)", what, clock_.seconds()));
+    print(fmt::format("{} ({:.1f} s)", what, seconds()));
   }
   // A line of the solve's own; `next`, when given, names what runs now
   // (for the heartbeat; not printed).
@@ -55,12 +57,20 @@ class Progress {
     phase_ = what;
     since_line_.restart();
   }
-  double seconds() const { return clock_.seconds(); }
+  // Held: nothing printed (the heartbeat neither) until released; e.g.
+  // until PETSc has read its options in the first solve, so that a wrong
+  // one stays a one-line input error.
+  void hold(bool held) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_ = held;
+    since_line_.restart();
+  }
+  double seconds() const { return offset_ + clock_.seconds(); }
   bool quiet() const { return quiet_; }
 
  private:
   void print(const std::string& text) {  // under mutex_
-    if (quiet_) return;
+    if (quiet_ || held_) return;
     fmt::print(stderr, "{}\n", text);
     since_line_.restart();
   }
@@ -69,7 +79,7 @@ class Progress {
     while (!stop_) {
       const double left = period_ - since_line_.seconds();
       if (left <= 0) {
-        if (!phase_.empty()) print(fmt::format("  ... still {} ({:.0f} s)", phase_, clock_.seconds()));
+        if (!phase_.empty()) print(fmt::format("  ... still {} ({:.0f} s)", phase_, seconds()));
         else since_line_.restart();
         continue;
       }
@@ -78,10 +88,10 @@ class Progress {
   }
 
   bool quiet_;
-  double period_;
+  double offset_, period_;
   Stopwatch clock_, since_line_;
   std::string phase_;
-  bool stop_ = false;
+  bool stop_ = false, held_ = false;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::thread heartbeat_;

@@ -46,6 +46,11 @@ class ReactionEvaluator {
   std::vector<std::vector<PatchSide>> pressure_faces_;
 };
 
+// int N_A b dX of a body force b per unit volume (free numbering of
+// `dofs`): the load alone, without the stiffness the linear assembly
+// computes with it.
+Eigen::VectorXd body_force_load(const Body& body, const DofMap& dofs, const Eigen::VectorXd& b);
+
 // The force a displacement-driven case applies: |sum of the reaction
 // components that nonzero prescribed values drive|; 0 when none is (a
 // moving obstacle's force is the contact's: against a curved obstacle the

@@ -4,6 +4,7 @@
 // and the deformed configuration and a load curve per step.
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <fmt/format.h>
 
 #include "contact/finite_strain_problem.hpp"
@@ -182,10 +183,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
   };
-  Progress progress(m.quiet);  // the heartbeat of a long load step (the step lines are load_stepping's)
-  progress.now("in the first load step");
+  std::optional<Progress> progress;  // the heartbeat of a long load step (the step lines are load_stepping's)
   const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
-    progress.now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
+    if (progress) progress->now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
     if (on_step) on_step(step, rec.load_factor);
@@ -201,6 +201,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
                                  "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
                                  "obstacle",
                                  m.spec.path, modes.modes.cols()));
+  if (m.on_solve_start) m.on_solve_start();
+  progress.emplace(m.quiet);
+  progress->now("in the first load step");
   if (loading != Loading::some) {
     r.warnings.push_back(fmt::format("{}: nothing loads the body (no pressure, prescribed displacement or body force, "
                                      "and no obstacle moves toward it or starts inside it): the solution is u = 0",
