@@ -166,8 +166,11 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     else if (r.applied_force > 0)
       fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force,
                  r.applied_force, std::abs(rep.total_force - r.applied_force) / r.applied_force);
-    else
-      fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
+    else  // no pressure load nor prescribed displacement: a moving obstacle, or nothing
+      fmt::print("  total force   {:.10g}  ({})\n", rep.total_force,
+                 m.contacts[i].motion.size() > 0 && m.contacts[i].motion.norm() > 0
+                     ? "driven by the obstacle's motion; the supports' reactions below"
+                     : "no load applied");
   }
   if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
   for (const FaceReaction& f : r.dirichlet_reactions)
