@@ -3,7 +3,8 @@
 // line when a phase begins ("factorising ..."), the lines the solve prints
 // as it goes (an active-set iteration), and while one call runs long (a
 // factorisation of a minute) a heartbeat "... still <phase> (N s)" after
-// every `period` seconds without a line.  Plain lines, whatever stdout is.
+// every `period` seconds without a line (4 s: a line at least every 5 s,
+// the bar, with room for a busy machine).  Plain lines, whatever stdout is.
 // Quiet: nothing, and no thread.
 #pragma once
 
@@ -21,7 +22,7 @@ namespace igac {
 class Progress {
  public:
   // `offset_s`: seconds already spent (the times printed count from the run's start).
-  explicit Progress(bool quiet, double offset_s = 0.0, double period_s = 5.0)
+  explicit Progress(bool quiet, double offset_s = 0.0, double period_s = 4.0)
       : quiet_(quiet), offset_(offset_s), period_(period_s) {
     if (!quiet_) heartbeat_ = std::thread([this] { beat(); });
   }
@@ -78,9 +79,9 @@ class Progress {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
       const double left = period_ - since_line_.seconds();
-      if (left <= 0) {
+      if (left <= 0) {  // (held or without a phase: nothing printed, but the period starts again)
         if (!phase_.empty()) print(fmt::format("  ... still {} ({:.0f} s)", phase_, seconds()));
-        else since_line_.restart();
+        since_line_.restart();
         continue;
       }
       wake_.wait_for(lock, std::chrono::duration<double>(left));
