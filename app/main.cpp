@@ -21,6 +21,7 @@
 #include "model/case_body.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"
+#include "model/progress.hpp"
 #include "model/solve.hpp"
 #include "contact/small_strain_friction.hpp"
 #include "app/launcher.hpp"
@@ -98,12 +99,25 @@ std::vector<std::string> body_names(const Model& m) {
   return out;
 }
 
-void print_summary(const Model& m, const RunResult& r, const std::string& out, double wall_seconds) {
+// The first line of a run, printed before it solves (and flushed: the
+// progress lines that follow go to stderr).
+void print_header(const Model& m) {
   const Body& b = m.body;
   fmt::print("igac: {} — {}D, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
              b.degree(), b.num_elements(), m.parts.size() > 1 ? fmt::format(" in {} bodies ({})", m.parts.size(), fmt::join(body_names(m), ", "))
                                            : b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
              m.dofs->num_free(), m.num_multipliers());
+  const UnitsSpec& u = m.spec.units;
+  if (u.declared())
+    fmt::print("  units         length {}, force {}, stress {} (labels only: igac converts nothing)\n",
+               u.length.empty() ? "-" : u.length, u.force.empty() ? "-" : u.force, u.stress.empty() ? "-" : u.stress);
+  else
+    fmt::print("  units         consistent units (none declared: [units] names them)\n");
+  std::fflush(stdout);
+}
+
+void print_summary(const Model& m, const RunResult& r, const std::string& out, double wall_seconds) {
+  const Body& b = m.body;
   std::string status = r.status;
   if (r.load_steps) {
     int newton = 0, cuts = r.load_steps->unfinished_cut_backs;  // (a failed run's last attempts too)
@@ -162,8 +176,11 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     else if (r.applied_force > 0)
       fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force,
                  r.applied_force, std::abs(rep.total_force - r.applied_force) / r.applied_force);
-    else
-      fmt::print("  total force   {:.10g}  (reaction to the prescribed displacement)\n", rep.total_force);
+    else  // no pressure load nor prescribed displacement: a moving obstacle, or nothing
+      fmt::print("  total force   {:.10g}  ({})\n", rep.total_force,
+                 m.contacts[i].motion.size() > 0 && m.contacts[i].motion.norm() > 0
+                     ? "driven by the obstacle's motion; the supports' reactions below"
+                     : "no load applied");
     if (i < r.reactions.size() && r.reactions[i].tangential_force.size() && m.contacts[i].friction > 0) {
       const std::vector<char>& st = r.contact->solution.friction_state;
       const auto first = st.begin() + c.first_multiplier, last = first + c.num_multipliers;
@@ -173,6 +190,8 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     }
   }
   if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
+  for (const FaceReaction& f : r.dirichlet_reactions)
+    fmt::print("  reaction      face '{}': ({:.6g})\n", f.face, fmt::join(f.force, ", "));
   if (r.pressure_error && r.pressure_error->second > 0)
     fmt::print("  pressure L2   {:.4e}  (relative {:.4e}, against Hertz)\n", r.pressure_error->first,
                r.pressure_error->first / r.pressure_error->second);
@@ -221,12 +240,19 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!out.empty()) folder.emplace(out);
   Model model = build_model(spec);
   model.quiet = quiet;
+  bool header = false;  // printed once the solve accepts the case (bad input stays one line)
+  if (!quiet) model.on_solve_start = [&] { print_header(model), header = true; };
   if (!quiet)
     for (const auto& w : model.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   if (folder) folder->create_staging();
   const std::string dir = folder ? folder->staging() : std::string();
   const bool vtk = folder && spec.write_vtk;
   VtkSeries series(dir);
+  if (vtk) {  // step 0: the undeformed body, at load factor 0
+    RunResult undeformed;
+    undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
+    series.write_step(model, undeformed, 0.0);
+  }
   // Large deformation: one ParaView step per converged load step.
   StepObserver observer;
   if (vtk && spec.finite_strain())
@@ -245,25 +271,28 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     summary["status"] = r.status;
   }
   if (folder) {
+    Progress progress(quiet, wall.seconds());
+    if (vtk) progress.phase("writing the output (the ParaView files recover the stress)");
     // One contact: pressure.csv and .svg; several: pressure_<face>.csv and .svg each.
     const std::vector<std::string> stems = pressure_file_stems(model);
     for (size_t i = 0; i < r.contacts.size(); ++i) {
       const std::string title = r.contacts.size() > 1 ? fmt::format("{}: face '{}'", spec.name, r.contacts[i].face) : spec.name;
       write_file_atomically(dir + "/" + stems[i] + ".csv", pressure_csv(r, i));
-      write_file_atomically(dir + "/" + stems[i] + ".svg", svg::render(pressure_figure(r, title, i)));
+      write_file_atomically(dir + "/" + stems[i] + ".svg", svg::render(pressure_figure(r, title, i, spec.units)));
     }
     if (!r.load_curve.empty()) {
       write_file_atomically(dir + "/load_curve.csv", load_curve_csv(model, r));
       std::vector<std::string> faces;
       if (r.contacts.size() > 1)
         for (const ContactResult& c : r.contacts) faces.push_back(c.face);
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces)));
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim())));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);
     write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
     folder->commit();
   }
+  if (!quiet && !header) print_header(model);
   if (!quiet) print_summary(model, r, folder ? folder->target() : std::string(), wall.seconds());
   return r.status == "converged" ? 0 : 1;
 }

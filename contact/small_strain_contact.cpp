@@ -53,7 +53,13 @@ std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::Ve
 }
 
 bool settle_active_set(const std::vector<char>& next, std::vector<char>& active, std::set<std::vector<char>>& seen,
-                       int iteration, ContactSolution& sol) {
+                       int iteration, ContactSolution& sol, const ContactSolverOptions& opt) {
+  if (opt.on_iteration) {
+    int changed = 0;
+    for (size_t K = 0; K < next.size(); ++K) changed += next[K] != active[K];
+    opt.on_iteration(iteration, sol.active_set_sizes.empty() ? 0 : sol.active_set_sizes.back(), changed,
+                     sol.linear_iterations.size() == sol.active_set_sizes.size() ? sol.linear_iterations.back() : -1);
+  }
   if (next == active) {
     sol.converged = true;
     sol.status = "converged";
@@ -150,7 +156,7 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
     const std::vector<char> next = next_active_set(lambda, gap, active, k, opt.complementarity_scale);
     sol.weighted_gap = gap;
-    if (settle_active_set(next, active, seen, it, sol)) break;
+    if (settle_active_set(next, active, seen, it, sol, opt)) break;
   }
   sol.schur_s += schur_in_loop;
   sol.iterations_s = iterations_clock.seconds() - schur_in_loop;

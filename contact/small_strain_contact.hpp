@@ -32,6 +32,7 @@
 // (Pi g)_K < 0), written as lambda_K + c_n (Pi g)_K < 0 with c_n > 0.
 #pragma once
 
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -55,6 +56,11 @@ struct ContactSolverOptions {
   // solver the first guess.  Empty: no such start.
   std::vector<char> initial_active;
   Eigen::VectorXd initial_u, initial_lambda;
+  // Progress: called after each active-set iteration with the iteration
+  // (from 0), the size of the set it solved with, how many multipliers
+  // change state for the next one (0: converged), and the Krylov iterations
+  // of its linear solve (-1 for a direct solve).
+  std::function<void(int iteration, int active, int changed, int krylov)> on_iteration;
 };
 
 struct ContactSolution {
@@ -98,9 +104,9 @@ std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::Ve
 // `next` (from next_active_set) against the current set.  Returns true when
 // the iteration ends -- the set settled (converged) or came back (cycling),
 // with sol.status set; otherwise records the current set in `seen` and moves
-// `active` to `next`.
+// `active` to `next`.  Reports the iteration to options.on_iteration first.
 bool settle_active_set(const std::vector<char>& next, std::vector<char>& active, std::set<std::vector<char>>& seen,
-                       int iteration, ContactSolution& sol);
+                       int iteration, ContactSolution& sol, const ContactSolverOptions& options);
 
 ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                            const WeightedGapOperator& op, const RigidModes& modes,

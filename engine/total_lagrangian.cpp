@@ -233,7 +233,7 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const Hyperela
 }  // namespace
 
 TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
-                                                   const HyperelasticLaw& law, Formulation formulation)
+                                                   const HyperelasticLaw& law, Formulation formulation, bool tangent)
     : body_(body), quad_(body_, gauss_points_for(body_.degree())), dofs_(dofs), law_(&law),
       formulation_(formulation), pressure_degree_(pressure_degree(body_.degree())) {
   const int dim = body_.space_dim();
@@ -247,7 +247,7 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
   if (dofs.dim() != dim || dofs.num_dofs() != body_.num_control_points() * dim)
     throw std::invalid_argument(fmt::format("the dof map ({} dofs in {}D) does not belong to this body ({} control points in {}D)",
                                             dofs.num_dofs(), dofs.dim(), body_.num_control_points(), dim));
-  pattern_ = coupling_pattern(quad_, dofs_);
+  if (tangent) pattern_ = coupling_pattern(quad_, dofs_);
   colours_ = colour_elements(quad_, dofs_);
   double min_det = std::numeric_limits<double>::infinity();
 #pragma omp parallel
@@ -276,6 +276,8 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
   if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
     throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
                                             dofs_.num_dofs() / dim, dim));
+  if (K && pattern_.rows() != dofs_.num_free())
+    throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
   return dim == 2 ? assemble_dim<2>(quad_, dofs_, *law_, formulation_, pressure_degree_, colours_, pattern_, u, f_int, K)
                   : assemble_dim<3>(quad_, dofs_, *law_, formulation_, pressure_degree_, colours_, pattern_, u, f_int, K);
 }

@@ -54,8 +54,11 @@ class TotalLagrangianAssembler {
   // std::runtime_error when the geometry map folds.
   // `mixed` (engine/volumetric_projection.hpp) needs a law with a volumetric
   // split (std::invalid_argument otherwise); the pattern is the same.
+  // `tangent` false: the internal force only (no sparsity pattern is built;
+  // e.g. the reactions of model/reactions.hpp), and assemble throws
+  // std::logic_error if given a K.
   TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law,
-                           Formulation formulation = Formulation::displacement);
+                           Formulation formulation = Formulation::displacement, bool tangent = true);
 
   // u: displacement per control point (n_cp x dim), prescribed values
   // included (e.g. DofMap::expand of the free values).  Fills f_int (free

@@ -34,7 +34,7 @@ namespace {
 // keys of a shape, a law or an obstacle come from their registries.
 const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", "material", "dirichlet",
                                      "pressure", "body_force", "contact", "reference", "output", "loading",
-                                     "faces", "solver", "body"};
+                                     "faces", "solver", "body", "units"};
 const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
 const std::set<std::string> kPressureKeys{"faces", "value"};
@@ -46,6 +46,7 @@ const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increm
                                          "max_newton_iterations", "line_search", "predictor", "pressure"};
 const std::set<std::string> kOutputKeys{"vtk"};
 const std::set<std::string> kSolverKeys{"type", "options", "preconditioner"};
+const std::set<std::string> kUnitsKeys{"system", "length", "force", "stress"};
 
 }  // namespace
 
@@ -372,6 +373,19 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     for (const ContactSpec& cs : c.contacts)
       if (c.solver.type == "petsc" && cs.friction > 0) s.fail("type", "friction runs with the direct solver only");
   }
+  if (root.contains("units")) {  // labels only
+    const Section s(path, "units", top.sub("units"), kUnitsKeys);
+    UnitsSpec& u = c.units;
+    u.system = s.string("system", "");
+    if (u.system == "mm-N-MPa") u = {u.system, "mm", "N", "MPa"};
+    else if (u.system == "SI") u = {u.system, "m", "N", "Pa"};
+    else if (!u.system.empty())
+      s.fail("system", fmt::format("unknown system '{}' (\"mm-N-MPa\" or \"SI\"; or give length, force and stress)",
+                                   u.system));
+    u.length = s.string("length", u.length);
+    u.force = s.string("force", u.force);
+    u.stress = s.string("stress", u.stress);
+  }
   apply_overrides(c, {}, {});
   return c;
 }
@@ -405,6 +419,7 @@ std::vector<std::string> declared_case_keys() {
   add("loading", kLoadingKeys);
   add("output", kOutputKeys);
   add("solver", kSolverKeys);
+  add("units", kUnitsKeys);
   return {out.begin(), out.end()};
 }
 

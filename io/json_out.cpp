@@ -88,6 +88,16 @@ Json contact_numbers(const RunResult& r, const ContactResult& cr) {
   c["total_force"] = finite_or_null(rep.total_force);
   return c;
 }
+// Every [[dirichlet]] face set's reaction: [{"face": NAME, "force": [x, y(, z)]}].
+Json reactions_json(const std::vector<FaceReaction>& reactions) {
+  Json out = Json::array();
+  for (const FaceReaction& r : reactions) {
+    Json f = Json::array();
+    for (int i = 0; i < r.force.size(); ++i) f.push_back(finite_or_null(r.force[i]));
+    out.push_back({{"face", r.face}, {"force", f}});
+  }
+  return out;
+}
 // FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
 // summary came from (not a cryptographic hash).  Empty when unreadable.
 std::string fnv1a64_of_file(const std::string& path) {
@@ -114,6 +124,14 @@ Json run_summary(const Model& m, const RunResult& r) {
   j["igac_version"] = IGAC_VERSION;
   if (const std::string hash = fnv1a64_of_file(m.spec.path); !hash.empty())
     j["input"] = {{"path", std::filesystem::absolute(m.spec.path).lexically_normal().string()}, {"fnv1a64", hash}};
+  {  // [units]: labels only
+    const UnitsSpec& u = m.spec.units;
+    Json units = {{"system", u.declared() ? (u.system.empty() ? "declared" : u.system) : "consistent units"}};
+    if (!u.length.empty()) units["length"] = u.length;
+    if (!u.force.empty()) units["force"] = u.force;
+    if (!u.stress.empty()) units["stress"] = u.stress;
+    j["units"] = units;
+  }
   j["dim"] = body.space_dim();
   j["degree"] = body.degree();
   j["elements"] = body.num_elements();
@@ -160,6 +178,7 @@ Json run_summary(const Model& m, const RunResult& r) {
   }
   if (r.load_steps) {
     Json steps = Json::array();
+    const bool per_step = r.load_curve.size() == r.load_steps->steps.size();  // one point per converged step
     for (const auto& st : r.load_steps->steps) {
       Json step;
       step["load_factor"] = finite_or_null(st.load_factor);
@@ -169,6 +188,8 @@ Json run_summary(const Model& m, const RunResult& r) {
       step["residual_norms"] = norms;
       step["active_set_sizes"] = st.active_set_sizes;
       step["cut_backs"] = st.cut_backs;
+      if (per_step && !m.spec.dirichlet.empty())
+        step["dirichlet_reactions"] = reactions_json(r.load_curve[steps.size()].dirichlet_reactions);
       steps.push_back(step);
     }
     j["load_steps"] = steps;
@@ -218,6 +239,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     }
     j["obstacles"] = obstacles;
   }
+  if (!r.dirichlet_reactions.empty()) j["dirichlet_reactions"] = reactions_json(r.dirichlet_reactions);
   if (r.hertz) j["analytic"] = {{"half_width", r.hertz->a}, {"max_pressure", r.hertz->p0}};
   Json e = Json::object();
   if (r.displacement_errors) {

@@ -16,7 +16,7 @@ const std::vector<std::string> kPalette{"#1f77b4", "#ff7f0e", "#2ca02c", "#d6272
 
 }  // namespace
 
-svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t contact) {
+svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t contact, const UnitsSpec& units) {
   const PressureReport& rep = r.contacts.at(contact).report;
   const bool analytic = has_hertz_scale(r);
   const double sx = analytic ? 1 / r.hertz->a : 1.0, sy = analytic ? 1 / r.hertz->p0 : 1.0;
@@ -29,8 +29,8 @@ svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t
   svg::Panel panel;
   panel.title = title;
   panel.legend = svg::Corner::upper_right;
-  panel.x.label = analytic ? "r / a" : "r (distance from the initial contact point)";
-  panel.y.label = analytic ? "p / p0" : "p = -lambda";
+  panel.x.label = analytic ? "r / a" : "r (distance from the initial contact point)" + UnitsSpec::bracket(units.length);
+  panel.y.label = analytic ? "p / p0" : "p = -lambda" + UnitsSpec::bracket(units.stress);
   const std::string blue = kPalette[0], orange = kPalette[1];
   // One constant per element (S0): the P1 breakpoints bound each multiplier's element.
   const bool constants = !mx.empty() && px.size() == mx.size() + 1;
@@ -87,7 +87,9 @@ svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t
   return {.panels = {std::move(panel)}, .panel_width = 700, .panel_height = 460};
 }
 
-svg::Figure load_curve_figure(const RunResult& r, const std::string& title, const std::vector<std::string>& faces) {
+svg::Figure load_curve_figure(const RunResult& r, const std::string& title, const std::vector<std::string>& faces,
+                              const UnitsSpec& units, int dim) {
+  const std::string force_unit = UnitsSpec::bracket(units.force_of_model(dim)), length_unit = UnitsSpec::bracket(units.length);
   std::vector<double> t{0}, force{0}, disp{0}, moved{0};
   std::vector<std::vector<double>> forces(faces.size(), std::vector<double>{0});  // several contacts: each one's
   double travel = 0;
@@ -103,20 +105,20 @@ svg::Figure load_curve_figure(const RunResult& r, const std::string& title, cons
   // A moving obstacle drives the run: the force against how far it has moved.
   const bool driven = travel > 0;
   const svg::Series style{.marker = svg::Marker::circle, .marker_size = 3};
-  svg::Panel by_load{.x = {.label = "load factor"}, .y = {.label = "total contact force (modelled part)"}};
+  svg::Panel by_load{.x = {.label = "load factor"}, .y = {.label = "total contact force (modelled part)" + force_unit}};
   by_load.series.push_back(style);
   by_load.series.back().x = t;
   by_load.series.back().y = force;
   svg::Panel by_motion{
-      .x = {.label = driven ? "obstacle displacement (squeeze)" : "loaded face displacement (last axis)"},
-      .y = {.label = "total contact force"}};
+      .x = {.label = (driven ? "obstacle displacement (squeeze)" : "loaded face displacement (last axis)") + length_unit},
+      .y = {.label = "total contact force" + force_unit}};
   by_motion.series.push_back(style);
   by_motion.series.back().x = driven ? moved : disp;
   by_motion.series.back().y = force;
   if (!faces.empty()) {  // a curve per contact, in the legend by its face
     by_load.series.clear();
     by_motion.series.clear();
-    by_load.y.label = by_motion.y.label = "contact force (modelled part)";
+    by_load.y.label = by_motion.y.label = "contact force (modelled part)" + force_unit;
     for (size_t i = 0; i < faces.size(); ++i) {
       svg::Series s = style;
       s.label = "face '" + faces[i] + "'";

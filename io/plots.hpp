@@ -27,11 +27,13 @@
 namespace igac {
 
 // Contact `contact` (case order) of result.contacts.
-svg::Figure pressure_figure(const RunResult& result, const std::string& title, size_t contact = 0);
+// `units` name the axes' units ([units]; none: no unit on the axes).
+svg::Figure pressure_figure(const RunResult& result, const std::string& title, size_t contact = 0,
+                            const UnitsSpec& units = {});
 // Needs result.load_curve (the origin is added as its first point).  With
 // `faces` (several contacts), a curve per contact labelled with its face.
 svg::Figure load_curve_figure(const RunResult& result, const std::string& title,
-                              const std::vector<std::string>& faces = {});
+                              const std::vector<std::string>& faces = {}, const UnitsSpec& units = {}, int dim = 2);
 
 // One error of a study, per level (aligned with the levels' h).
 struct StudyError {

@@ -147,25 +147,43 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   if (r.u.rows() != body.num_control_points() || r.u.cols() != body.space_dim())
     throw std::runtime_error(fmt::format("VTK output: displacement is {} x {} for {} control points in {}D", r.u.rows(),
                                          r.u.cols(), body.num_control_points(), body.space_dim()));
-  const BezierMesh mesh = body_bezier_mesh(body, r.u);  // every patch's elements, one after the other
+  std::vector<int> patch_of;  // per element
+  const BezierMesh mesh = body_bezier_mesh(body, r.u, 0, -1, &patch_of);  // every patch's elements, one after the other
   auto grid = bezier_grid(mesh);
-  // Large deformation: Cauchy stress sigma = P F^T / J of the case's law
-  // (plane strain in 2D is the 3D law with F_33 = 1).
-  const RecoveredStress s = recover_model_stress(model, r.u);
   const vtkIdType np = mesh.num_points();
-  auto stress = make_array("stress", 6, np);
+  RecoveredStress s;  // the undeformed body (step 0): no stress, nothing to recover
+  if (r.u.isZero(0.0)) {
+    s.stress.setZero(np, 6);
+    s.strain.setZero(np, 6);
+    s.principal.setZero(np, 3);
+    s.von_mises.setZero(np);
+    s.magnitude.setZero(np);
+  } else {
+    s = recover_model_stress(model, r.u);  // each body with its own law
+  }
   const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
-  for (int c = 0; c < 6; ++c) stress->SetComponentName(c, names[c]);
+  auto stress = make_array("stress", 6, np);
+  auto strain = make_array("strain", 6, np);
+  for (int c = 0; c < 6; ++c) {
+    stress->SetComponentName(c, names[c]);
+    strain->SetComponentName(c, names[c]);
+  }
+  auto principal = make_array("principal_stress", 3, np);
   auto vm = make_array("von_mises", 1, np);
   auto mag = make_array("stress_magnitude", 1, np);
+  auto patch_point = make_array("patch", 1, np);
   for (vtkIdType i = 0; i < np; ++i) {
-    for (int c = 0; c < 6; ++c) stress->SetComponent(i, c, s.stress(i, c));
+    for (int c = 0; c < 6; ++c) {
+      stress->SetComponent(i, c, s.stress(i, c));
+      strain->SetComponent(i, c, s.strain(i, c));
+    }
+    for (int c = 0; c < 3; ++c) principal->SetComponent(i, c, s.principal(i, c));
     vm->SetValue(i, s.von_mises[i]);
     mag->SetValue(i, s.magnitude[i]);
+    patch_point->SetValue(i, patch_of[i / mesh.num_local()]);
   }
-  grid->GetPointData()->AddArray(stress);
-  grid->GetPointData()->AddArray(vm);
-  grid->GetPointData()->AddArray(mag);
+  auto patch_cell = make_array("patch", 1, mesh.num_elements());
+  for (int e = 0; e < mesh.num_elements(); ++e) patch_cell->SetValue(e, patch_of[e]);
   // J = det F and the hydrostatic pressure (model/field_recovery.hpp)
   const RecoveredVolume v = recover_volume(mesh, model);
   auto jac = make_array("J", 1, np);
@@ -174,8 +192,9 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
     jac->SetValue(i, v.jacobian[i]);
     hyd->SetValue(i, v.pressure[i]);
   }
-  grid->GetPointData()->AddArray(jac);
-  grid->GetPointData()->AddArray(hyd);
+  for (auto* a : {stress.Get(), strain.Get(), principal.Get(), vm.Get(), mag.Get(), patch_point.Get(), jac.Get(), hyd.Get()})
+    grid->GetPointData()->AddArray(a);
+  grid->GetCellData()->AddArray(patch_cell);
   grid->GetPointData()->SetActiveScalars("von_mises");
   return grid;
 }
@@ -193,7 +212,7 @@ ContactSolution contact_block(const RunResult& r, size_t i) {
   return s;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r, size_t i) {
+vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunResult& r, size_t i, double load_factor) {
   const ContactFace& cf = *model.contacts[i].face;
   const ContactSolution sol = contact_block(r, i);
   BezierMesh mesh;                          // every side's elements, one after the other
@@ -206,23 +225,43 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
     mesh.append(part);
   }
   auto grid = bezier_grid(mesh);
-  const int ne = mesh.num_elements();
+  const int ne = mesh.num_elements(), sd = mesh.space_dim();
   auto p_point = make_array("pressure", 1, mesh.num_points());
+  auto t_point = make_array("traction", 3, mesh.num_points());
   auto p_cell = make_array("pressure", 1, ne);
   auto g_cell = make_array("weighted_gap", 1, ne);
+  auto gap_cell = make_array("normal_gap", 1, ne);
   auto a_cell = make_array("active", 1, ne);
 
-  const ContactPartFields fields = recover_contact_fields(mesh, side_of, sol);
-  for (vtkIdType i = 0; i < mesh.num_points(); ++i) p_point->SetValue(i, fields.point_pressure[i]);
+  const Model::Contact& contact = model.contacts[i];
+  const Eigen::VectorXd shift = model.spec.finite_strain() && contact.motion.size() > 0
+                                    ? Eigen::VectorXd(load_factor * contact.motion) : Eigen::VectorXd();
+  const ContactPartFields fields =
+      recover_contact_fields(mesh, side_of, sol, r.contact->op.weights.segment(r.contacts[i].first_multiplier, cf.num_multipliers()),
+                             contact.obstacle.get(), shift);
+  for (vtkIdType i = 0; i < mesh.num_points(); ++i) {
+    p_point->SetValue(i, fields.point_pressure[i]);
+    double t[3] = {0, 0, 0};
+    for (int c = 0; c < sd; ++c) t[c] = fields.point_traction(i, c);
+    t_point->SetTuple(i, t);
+  }
   for (int e = 0; e < ne; ++e) {
     p_cell->SetValue(e, fields.cell_pressure[e]);
     g_cell->SetValue(e, fields.cell_weighted_gap[e]);
+    gap_cell->SetValue(e, fields.cell_gap[e]);
     a_cell->SetValue(e, fields.cell_active[e] ? 1.0 : 0.0);
   }
   grid->GetPointData()->AddArray(p_point);
+  grid->GetPointData()->AddArray(t_point);
+  if (fields.point_gap.size() > 0) {
+    auto gap_point = make_array("normal_gap", 1, mesh.num_points());
+    for (vtkIdType i = 0; i < mesh.num_points(); ++i) gap_point->SetValue(i, fields.point_gap[i]);
+    grid->GetPointData()->AddArray(gap_point);
+  }
   grid->GetPointData()->SetActiveScalars("pressure");
   grid->GetCellData()->AddArray(p_cell);
   grid->GetCellData()->AddArray(g_cell);
+  grid->GetCellData()->AddArray(gap_cell);
   grid->GetCellData()->AddArray(a_cell);
   return grid;
 }
@@ -262,6 +301,7 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
   auto gap = make_array("weighted_gap", 1, m);
   auto active = make_array("active", 1, m);
   auto weight = make_array("weight", 1, m);
+  auto normal_gap = make_array("normal_gap", 1, m);
   auto disp = make_array("displacement", 3, m);
   grid->Allocate(m);
   for (const ContactSide& side : cf.sides) {
@@ -280,12 +320,13 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
       gap->SetValue(K, sol.weighted_gap[K]);
       active->SetValue(K, sol.active[K] ? 1.0 : 0.0);
       weight->SetValue(K, weights[K]);
+      normal_gap->SetValue(K, weights[K] > 0 ? sol.weighted_gap[K] / weights[K] : 0.0);
       const vtkIdType id = K;
       grid->InsertNextCell(VTK_VERTEX, 1, &id);
     }
   }
   grid->SetPoints(pts);
-  for (auto* a : {lambda.Get(), pressure.Get(), gap.Get(), active.Get(), weight.Get(), disp.Get()})
+  for (auto* a : {lambda.Get(), pressure.Get(), gap.Get(), normal_gap.Get(), active.Get(), weight.Get(), disp.Get()})
     grid->GetPointData()->AddArray(a);
   grid->GetPointData()->SetActiveScalars("pressure");
   grid->GetPointData()->SetActiveVectors("displacement");
@@ -308,7 +349,7 @@ VtkStep write_vtk(const std::string& dir, const Model& model, const RunResult& r
     const std::vector<std::string> tags = contact_file_tags(model);
     for (size_t i = 0; i < model.contacts.size(); ++i) {
       const std::string tag = tags[i].empty() ? "" : "_" + tags[i];
-      grids.push_back(contact_grid(model, result, i));
+      grids.push_back(contact_grid(model, result, i, load_factor));
       step.files.push_back(fmt::format("contact{}_{:04d}.vtu", tag, step_index));
       step.parts.push_back("contact_face" + tag);
       grids.push_back(multiplier_grid(model, result, i));

@@ -30,27 +30,43 @@
 //         "hydrostatic_pressure"  -tr(sigma)/3; with formulation = "mixed"
 //                         the formulation's projected pressure
 //                         (model/field_recovery.hpp: recover_volume).
+//         "principal_stress"  3 components sigma_1 >= sigma_2 >= sigma_3.
+//         "strain"        6 components as "stress" (tensor components, not
+//                         engineering shear): eps = sym grad u in small
+//                         deformation, Green-Lagrange E = (F^T F - I)/2 in
+//                         large deformation; zz = 0 in 2D (plane strain).
+//         "patch"         the patch number of the point's cell (also as
+//                         cell data "patch").
 //       How stress reaches the Bezier points: the stress is discontinuous
 //       between elements, so it is brought onto each element by an
 //       element-local L2 projection onto the element's rational Bezier basis
 //       R_i (the basis ParaView interpolates point data with):
 //           sum_j (int_e R_i R_j dX) c_j = int_e R_i f dX,
 //       Gauss rule with max(p)+2 points per direction, for f each stress
-//       component, von Mises and |sigma| separately (the last two are
-//       projected themselves, not computed from the projected tensor, because
-//       Bezier coefficients are not point values).  A stress in the span of
-//       the R_i -- in particular a constant one (patch test) -- is reproduced
-//       exactly; otherwise the projection is the element's best
-//       L2 approximation (so the Bezier coefficients of von Mises and |sigma|,
-//       which are not point values, may dip slightly below zero next to
-//       steep gradients).  This runs only when output is written.
+//       component.  A stress in the span of the R_i -- in particular a
+//       constant one (patch test) -- is reproduced exactly; otherwise the
+//       projection is the element's best L2 approximation.  Von Mises and
+//       |sigma| are not projected themselves (the projection of a
+//       nonnegative scalar dips below zero next to steep gradients): their
+//       Bezier coefficients are the scalar of the tensor's coefficients, so
+//       they are never negative, exact at element corners, and (both are
+//       convex in sigma) never below the scalar of the drawn tensor
+//       (model/field_recovery.hpp).  This runs only when output is written.
 //   contact_XXXX.vtu    (contact cases) the contact face Gamma_C, Bezier
 //       extracted the same way: VTK_BEZIER_CURVE cells in 2D,
 //       VTK_BEZIER_QUADRILATERAL in 3D, with
 //         point data "displacement" (exact) and "pressure" p_h = -lambda_h
 //                    (element-local L2 projection of sum_K -lambda_K B_K;
 //                    exact for S0, one constant per element);
-//         cell data  "pressure" (element mean of p_h over the reference face;
+//         point data "traction" (3 components: the projection of p_h n, the
+//                    force per area the contact exerts on the body, n the
+//                    obstacle's unit normal at the deformed point, or minus
+//                    the face's outward normal against a second body) and,
+//                    against an obstacle, "normal_gap" (projection of the
+//                    signed distance g_n(X + u) of the deformed face, a length);
+//         cell data  "normal_gap" (element mean of g_n(X + u), or against a
+//                    second body of sum_K (Pi g)_K / K_K B_K: a length),
+//                    "pressure" (element mean of p_h over the reference face;
 //                    for S0 exactly -lambda_K), "weighted_gap" (element mean
 //                    of sum_K (Pi g)_K B_K; for S0 exactly (Pi g)_K) and
 //                    "active" (1 when a multiplier whose support meets the
@@ -58,12 +74,14 @@
 //   multipliers_XXXX.vtu  (contact cases) one VTK_VERTEX per multiplier K at
 //       its anchor (Greville point on the reference face), with point data
 //       "lambda", "pressure" = -lambda_K, "weighted_gap" = (Pi g)_K,
-//       "active", "weight" = int B_K dGamma, "displacement": exact values for
-//       any degree.
+//       "active", "weight" = int B_K dGamma, "normal_gap" = (Pi g)_K / K_K
+//       (a length), "displacement": exact values for any degree.
 //   With several contacts, each has its own two files, named after its face
 //   (io/json_out.hpp, contact_file_tags): contact_<face>_XXXX.vtu and
 //   multipliers_<face>_XXXX.vtu, in case order.
 //   solution.pvd        a Collection with one DataSet per file and step:
+//       step 0 (`igac run`) is the undeformed body alone at timestep 0, then
+//       one step per load step (small deformation: one, step 1);
 //       timestep = the step's load factor, part 0 body (name "body"), 1
 //       contact face ("contact_face"), 2 multipliers ("multipliers"); with
 //       several contacts, parts 1, 2 the first contact's ("contact_face_<face>",

@@ -78,6 +78,22 @@ struct SolverSpec {
   int processes = 1;  // MPI processes of the run (set by the launcher, not by the case file)
 };
 
+// [units]: the names of the case's units, labels only (the console,
+// summary.json, the plots' axes); igac converts nothing.  Empty: not
+// declared ("consistent units").
+struct UnitsSpec {
+  std::string system;                 // "mm-N-MPa", "SI" or "" (the three given one by one, or none)
+  std::string length, force, stress;
+  bool declared() const { return !length.empty() || !force.empty() || !stress.empty(); }
+  // A force of the model: per unit thickness in 2D (force / length).
+  std::string force_of_model(int dim) const {
+    if (force.empty()) return "";
+    return dim == 2 && !length.empty() ? force + "/" + length : force;
+  }
+  // " [unit]" for an axis label, or nothing.
+  static std::string bracket(const std::string& unit) { return unit.empty() ? "" : " [" + unit + "]"; }
+};
+
 // One deformable body: its geometry (a built-in shape or a geometry file,
 // one or several patches), its mesh and its material.  A case with one body
 // is the CaseSpec itself; a case of several lists them in CaseSpec::bodies.
@@ -133,6 +149,7 @@ struct CaseSpec : BodySpec {
   std::string reference = "none";  // hertz | lame | none
   bool write_vtk = true;
   SolverSpec solver;
+  UnitsSpec units;
 
   // Every body as build_model refines it: the case itself, or each [[body]]
   // with the case's added refinement.

@@ -47,7 +47,7 @@ double measure(const Eigen::MatrixXd& J) {
 
 }  // namespace
 
-RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
+RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law, bool green_lagrange) {
   const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
   if (pd != dim) throw std::invalid_argument("stress recovery needs a volume mesh");
   if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
@@ -55,13 +55,14 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
   const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
   RecoveredStress out;
   out.stress.resize(mesh.num_points(), 6);
+  out.strain.resize(mesh.num_points(), 6);
   out.von_mises.resize(mesh.num_points());
   out.magnitude.resize(mesh.num_points());
-  static constexpr int comp[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+  out.principal.resize(mesh.num_points(), 3);
 
   Eigen::VectorXd R;
-  Eigen::MatrixXd dR, J(dim, dim), G(dim, dim), M(nl, nl), B(nl, 8);
-  Eigen::RowVectorXd f(8);
+  Eigen::MatrixXd dR, J(dim, dim), G(dim, dim), M(nl, nl), B(nl, 12);
+  Eigen::RowVectorXd f(12);
   for (int e = 0; e < mesh.num_elements(); ++e) {
     const BezierElement& el = mesh.element(e);
     M.setZero();
@@ -73,24 +74,37 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law) {
       Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
       grad.topLeftCorner(dim, dim) = G * J.inverse();
       const Eigen::Matrix3d sigma = law(grad);
-      for (int c = 0; c < 6; ++c) f[c] = sigma(comp[c][0], comp[c][1]);
-      f[6] = von_mises(sigma);
-      f[7] = sigma.norm();
+      // small strain eps = sym grad u; large deformation E = (F^T F - I) / 2
+      const Eigen::Matrix3d eps = green_lagrange ? Eigen::Matrix3d(0.5 * (grad + grad.transpose() + grad.transpose() * grad))
+                                                 : Eigen::Matrix3d(0.5 * (grad + grad.transpose()));
+      for (int c = 0; c < 6; ++c) {
+        f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
+        f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
+      }
       const double wt = rule.weights[q] * std::abs(J.determinant());
       M.selfadjointView<Eigen::Lower>().rankUpdate(R, wt);
       B.noalias() += (wt * R) * f;
     }
     const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
     out.stress.middleRows(e * nl, nl) = C.leftCols(6);
-    out.von_mises.segment(e * nl, nl) = C.col(6);
-    out.magnitude.segment(e * nl, nl) = C.col(7);
+    out.strain.middleRows(e * nl, nl) = C.rightCols(6);
+  }
+  // The scalars of the tensor, coefficient by coefficient (see the header).
+  for (int i = 0; i < mesh.num_points(); ++i) {
+    const Eigen::Matrix3d sigma = symmetric_tensor(out.stress.row(i));
+    out.von_mises[i] = von_mises(sigma);
+    out.magnitude[i] = sigma.norm();
+    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sigma, Eigen::EigenvaluesOnly).eigenvalues();
+    out.principal.row(i) << ev[2], ev[1], ev[0];  // largest first
   }
   return out;
 }
 
-BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch, int num_patches) {
+BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch, int num_patches,
+                            std::vector<int>* patch_of) {
   if (num_patches < 0) num_patches = body.num_patches() - first_patch;
   BezierMesh mesh;
+  if (patch_of) patch_of->clear();
   for (int k = first_patch; k < first_patch + num_patches; ++k) {
     const NurbsPatch& patch = body.patch(k);
     const Eigen::MatrixXd field = body.patch_field(k, u);
@@ -98,6 +112,7 @@ BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int firs
     for (int d = 0; d < patch.param_dim(); ++d) elevate = elevate || patch.degree(d) < body.degree();
     if (!elevate) {
       mesh.append(BezierMesh(patch, {field}));
+      if (patch_of) patch_of->resize(size_t(mesh.num_elements()), k);
       continue;
     }
     // The field rides along as more coordinates of the same rational map:
@@ -111,34 +126,46 @@ BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int firs
     for (int d = 0; d < high.param_dim(); ++d) high_knots.push_back(high.knots(d));
     const NurbsPatch geometry(std::move(high_knots), high.points().leftCols(patch.space_dim()), high.weights());
     mesh.append(BezierMesh(geometry, {high.points().rightCols(field.cols())}));
+    if (patch_of) patch_of->resize(size_t(mesh.num_elements()), k);
   }
   return mesh;
 }
 
 RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u) {
   const Body& body = model.body;
-  if (model.parts.size() <= 1) return recover_stress(body_bezier_mesh(body, u), model_stress_law(model));
+  const bool green_lagrange = model.spec.finite_strain();
+  if (model.parts.size() <= 1) return recover_stress(body_bezier_mesh(body, u), model_stress_law(model), green_lagrange);
   // Several bodies: each with its own law, stacked in the patches' order.
   std::vector<RecoveredStress> each;
   Eigen::Index rows = 0;
   for (const Model::Part& part : model.parts) {
     const BezierMesh mesh = body_bezier_mesh(body, u, part.first_patch, part.num_patches);
-    each.push_back(recover_stress(mesh, cauchy_stress(part.law, !model.spec.finite_strain())));
+    each.push_back(recover_stress(mesh, cauchy_stress(part.law, !green_lagrange), green_lagrange));
     rows += each.back().stress.rows();
   }
   RecoveredStress out;
   out.stress.resize(rows, 6);
   out.von_mises.resize(rows);
   out.magnitude.resize(rows);
+  out.principal.resize(rows, 3);
+  out.strain.resize(rows, 6);
   Eigen::Index at = 0;
   for (const RecoveredStress& s : each) {
     const Eigen::Index n = s.stress.rows();
     out.stress.middleRows(at, n) = s.stress;
     out.von_mises.segment(at, n) = s.von_mises;
     out.magnitude.segment(at, n) = s.magnitude;
+    out.principal.middleRows(at, n) = s.principal;
+    out.strain.middleRows(at, n) = s.strain;
     at += n;
   }
   return out;
+}
+
+Eigen::Matrix3d symmetric_tensor(const Eigen::Ref<const Eigen::RowVectorXd>& v) {
+  Eigen::Matrix3d s;
+  for (int c = 0; c < 6; ++c) s(kVoigt[c][0], kVoigt[c][1]) = s(kVoigt[c][1], kVoigt[c][0]) = v[c];
+  return s;
 }
 
 StressLaw model_stress_law(const Model& model) {
@@ -209,46 +236,73 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model) {
 }
 
 ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,
-                                         const ContactSolution& sol) {
-  const int nl = mesh.num_local(), ne = mesh.num_elements();
+                                         const ContactSolution& sol, const Eigen::VectorXd& weights,
+                                         const Obstacle* obstacle, const Eigen::VectorXd& obstacle_shift) {
+  const int nl = mesh.num_local(), ne = mesh.num_elements(), sd = mesh.space_dim();
+  const int nf = 1 + sd + (obstacle ? 1 : 0);  // projected: pressure, traction, gap
   ContactPartFields out;
   out.point_pressure.resize(mesh.num_points());
+  out.point_traction.resize(mesh.num_points(), sd);
+  if (obstacle) out.point_gap.resize(mesh.num_points());
   out.cell_pressure.resize(ne);
   out.cell_weighted_gap.resize(ne);
+  out.cell_gap.resize(ne);
   out.cell_active.assign(ne, false);
   const TensorGaussRule rule = tensor_gauss_rule(mesh.param_dim(), max_degree(mesh) + 3);
   Eigen::VectorXd R;
-  Eigen::MatrixXd dR, M(nl, nl);
-  Eigen::VectorXd b(nl);
+  Eigen::MatrixXd dR, M(nl, nl), b(nl, nf);
+  Eigen::RowVectorXd f(nf);
   std::vector<int> idx;
   std::vector<double> val;
   for (int e = 0; e < ne; ++e) {
     const BezierElement& el = mesh.element(e);
+    const ContactSide& side = *side_of[e];
     M.setZero();
     b.setZero();
-    double area = 0, p_int = 0, g_int = 0;
+    double area = 0, p_int = 0, g_int = 0, gap_int = 0;
     bool active = false;
     for (size_t q = 0; q < rule.points.size(); ++q) {
       mesh.basis(el, rule.points[q], R, &dR);
       const double wt = rule.weights[q] * measure(el.points.transpose() * dR);
-      side_of[e]->space.basis(el.parameter(rule.points[q]), idx, val);
-      for (int& K : idx) K += side_of[e]->first_multiplier;
-      double p = 0, g = 0;
+      const Eigen::VectorXd xi = el.parameter(rule.points[q]);
+      side.space.basis(xi, idx, val);
+      for (int& K : idx) K += side.first_multiplier;
+      double p = 0, g = 0, gap = 0;
       for (size_t k = 0; k < idx.size(); ++k) {
         p -= sol.lambda[idx[k]] * val[k];
         g += sol.weighted_gap[idx[k]] * val[k];
+        if (weights[idx[k]] > 0) gap += sol.weighted_gap[idx[k]] / weights[idx[k]] * val[k];
         if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
       }
+      // The contact pushes along the obstacle's normal at the deformed
+      // point; against a second body, along minus the face's outward normal.
+      Eigen::VectorXd n;
+      if (obstacle) {
+        Eigen::VectorXd x = el.points.transpose() * R + el.fields[0].transpose() * R;
+        if (obstacle_shift.size() == x.size()) x -= obstacle_shift;
+        const ObstacleProbe probe = obstacle->probe(x);
+        n = probe.normal;
+        gap = probe.gap;
+        f[nf - 1] = probe.gap;
+      } else {
+        n = -face_area_vector(side.face(), side.face_patch.jacobian(xi)).normalized();
+      }
+      f[0] = p;
+      f.segment(1, sd) = p * n.transpose();
       M.noalias() += wt * R * R.transpose();
-      b += wt * p * R;
+      b.noalias() += (wt * R) * f;
       area += wt;
       p_int += wt * p;
       g_int += wt * g;
+      gap_int += wt * gap;
     }
-    const Eigen::VectorXd c = M.llt().solve(b);
-    out.point_pressure.segment(e * nl, nl) = c;
+    const Eigen::MatrixXd c = M.llt().solve(b);
+    out.point_pressure.segment(e * nl, nl) = c.col(0);
+    out.point_traction.middleRows(e * nl, nl) = c.middleCols(1, sd);
+    if (obstacle) out.point_gap.segment(e * nl, nl) = c.col(nf - 1);
     out.cell_pressure[e] = p_int / area;
     out.cell_weighted_gap[e] = g_int / area;
+    out.cell_gap[e] = gap_int / area;
     out.cell_active[e] = active;
   }
   return out;

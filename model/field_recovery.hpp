@@ -30,14 +30,36 @@ StressLaw cauchy_stress(std::shared_ptr<const HyperelasticLaw> law, bool small_s
 // The linear_elastic law's sigma from its Lame constants.
 StressLaw linear_elastic_stress(double lambda, double mu);
 
+// The component order of a symmetric tensor's 6 columns (XX YY ZZ XY YZ
+// XZ, ParaView's), and the tensor of such a row.
+inline constexpr int kVoigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+Eigen::Matrix3d symmetric_tensor(const Eigen::Ref<const Eigen::RowVectorXd>& six);
+
 struct RecoveredStress {
   Eigen::MatrixXd stress;       // num_points x 6: XX YY ZZ XY YZ XZ
   Eigen::VectorXd von_mises;    // num_points
   Eigen::VectorXd magnitude;    // num_points, Frobenius norm
+  Eigen::MatrixXd principal;    // num_points x 3: sigma_1 >= sigma_2 >= sigma_3
+  Eigen::MatrixXd strain;       // num_points x 6, tensor components: eps, or E with green_lagrange
 };
-// Element-local L2 projection (see above) for a mesh whose field 0 is the
-// displacement; rows follow the mesh's elements, then local points.
-RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law);
+// Element-local L2 projection (see above) of the stress tensor for a mesh
+// whose field 0 is the displacement; rows follow the mesh's elements, then
+// local points.  The scalars are not projected themselves (the projection of
+// a nonnegative function has coefficients below zero next to steep
+// gradients, -0.052 in the O-ring): each Bezier coefficient of von Mises and
+// of |sigma| is the scalar of the tensor's coefficient there.  So they are
+// >= 0 and so is what ParaView draws (a rational Bezier basis is >= 0); they
+// are exact at element corners (where a Bezier element interpolates its
+// corner coefficient) and for a stress in the elements' span, e.g. constant;
+// and since both scalars are convex functions of sigma (seminorms), the
+// drawn scalar sum_i R_i s(c_i) is never below s(sum_i R_i c_i), the scalar of
+// the drawn tensor.  The principal stresses likewise: the eigenvalues of
+// each coefficient (exact at corners and for a stress in the span; sigma_1
+// is convex, so its drawn value is never below the drawn tensor's).  The
+// strain is projected as the stress: eps = sym grad u, or with
+// `green_lagrange` (large deformation) E = (F^T F - I) / 2 (plane strain:
+// the zz component 0).
+RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law, bool green_lagrange = false);
 
 double von_mises(const Eigen::Matrix3d& sigma);
 
@@ -49,7 +71,9 @@ StressLaw model_stress_law(const Model& model);
 // with the displacement u (one row per body control point) as field 0;
 // patches of a lower degree than the body's (bodies of different degrees)
 // elevated to it, geometry and field exactly.
-BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch = 0, int num_patches = -1);
+// `patch_of`, when given, receives each element's patch.
+BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch = 0, int num_patches = -1,
+                            std::vector<int>* patch_of = nullptr);
 // recover_stress on the model's body with displacement u (one row per body
 // control point): every patch's elements one after the other, each body
 // with its own law.
@@ -68,12 +92,25 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model);
 
 struct ContactPartFields {
   Eigen::VectorXd point_pressure;          // per Bezier point: the projection of -lambda_h
+  Eigen::MatrixXd point_traction;          // per Bezier point (x dim): the projection of p_h n
+  Eigen::VectorXd point_gap;               // per Bezier point, with an obstacle: the projection of g_n(X + u)
   std::vector<double> cell_pressure;       // per element: mean of -lambda_h over the reference face
   std::vector<double> cell_weighted_gap;   // per element: mean of sum_K (Pi g)_K B_K
+  std::vector<double> cell_gap;            // per element: mean of g_n(X + u), or of sum_K (Pi g)_K / K_K B_K
   std::vector<bool> cell_active;           // a multiplier whose support meets the element is active
 };
-// `side_of[e]`: the contact side element e of `mesh` lies on.
+// `side_of[e]`: the contact side element e of `mesh` lies on; field 0 of
+// `mesh` the displacement; `weights` the K_K = int B_K of the multipliers.
+// The traction p_h n on the body: n the obstacle's unit normal at the
+// deformed point X + u, or against a second body (`obstacle` null) minus the
+// face's outward unit normal.  The normal gap, a length: with an obstacle
+// its signed distance g_n(X + u) (docs/design.md, "Gap and sign
+// convention"); against a second body the multipliers' gaps (Pi g)_K / K_K
+// interpolated with the B_K (cell mean only).  `obstacle_shift`: how far
+// the obstacle has moved from where `obstacle` stands (large deformation:
+// t times its motion).
 ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,
-                                         const ContactSolution& sol);
+                                         const ContactSolution& sol, const Eigen::VectorXd& weights,
+                                         const Obstacle* obstacle, const Eigen::VectorXd& obstacle_shift = {});
 
 }  // namespace igac

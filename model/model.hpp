@@ -5,6 +5,7 @@
 // a CaseSpec; model/solve solves it.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -82,6 +83,10 @@ struct Model {
   // breakpoints (engine/geometry/conforming_interfaces.hpp).
   std::vector<InsertedKnots> interface_knots;
   bool quiet = false;    // no progress lines
+  // Called by solve_model once it has checked what only a solve can (the
+  // body is held, something loads it), before the long work: the console's
+  // header, so that bad input stays one line.
+  std::function<void()> on_solve_start;
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
   int num_multipliers() const {
     int m = 0;

@@ -55,6 +55,14 @@ struct ObstacleReaction {
   Eigen::VectorXd tangential_force;
 };
 
+// The force the supports of a [[dirichlet]] face set exert on the body
+// (model/reactions.hpp), a vector of the body's dimension (per unit
+// thickness in 2D, on the modelled part).
+struct FaceReaction {
+  std::string face;
+  Eigen::VectorXd force;
+};
+
 struct Timing {
   double setup = 0, assembly = 0, factorization = 0, linear_solve = 0, contact = 0, postprocess = 0, total = 0;
 };
@@ -66,6 +74,7 @@ struct LoadCurvePoint {
   double contact_force() const { return contact_forces.empty() ? 0.0 : contact_forces.front(); }  // the first's
   double face_displacement = 0;  // mean displacement of the loaded face along the last axis
   double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|)
+  std::vector<FaceReaction> dirichlet_reactions;  // every [[dirichlet]] face set's, at this step
 };
 
 // Who solved the linear systems, and how (summary.json "solver").
@@ -94,7 +103,8 @@ struct RunResult {
   std::optional<HertzSolution> hertz;
   std::optional<ErrorNorms> displacement_errors;           // against a closed form
   std::optional<std::pair<double, double>> pressure_error;  // against Hertz: (error, norm)
-  double applied_force = 0;                                 // resultant of the pressure loads (modelled part)
+  double applied_force = 0;  // resultant of the pressure loads, or the driven reaction (model/reactions.hpp)
+  std::vector<FaceReaction> dirichlet_reactions;            // every [[dirichlet]] face set's
   std::optional<LoadSteppingSummary> load_steps;            // large deformation only
   std::vector<LoadCurvePoint> load_curve;
   Timing timing;

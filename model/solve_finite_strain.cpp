@@ -4,6 +4,7 @@
 // and the deformed configuration and a load curve per step.
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <fmt/format.h>
 
 #include "contact/finite_strain_problem.hpp"
@@ -11,6 +12,8 @@
 #include "engine/face_quadrature.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/linear_static.hpp"
+#include "model/progress.hpp"
+#include "model/reactions.hpp"
 #include "model/references.hpp"
 #include "model/solve.hpp"
 
@@ -168,6 +171,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.line_search = m.spec.loading.line_search;
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.quiet = m.quiet;
+  const ReactionEvaluator reactions(m);
   auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
     out.u = problem.displacement(t, xs);
     if (!m.contacts.empty()) fill_contact(m, problem, t, xs, out);
@@ -176,9 +180,13 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
     p.face_displacement = mean_face_displacement(body, loaded, out.u);
     p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
+    p.dirichlet_reactions = reactions(out.u, t);
+    out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
   };
+  std::optional<Progress> progress;  // the heartbeat of a long load step (the step lines are load_stepping's)
   const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
+    if (progress) progress->now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
     if (on_step) on_step(step, rec.load_factor);
@@ -194,6 +202,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
                                  "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
                                  "obstacle",
                                  m.spec.path, modes.modes.cols()));
+  if (m.on_solve_start) m.on_solve_start();
+  progress.emplace(m.quiet);
+  progress->now("in the first load step");
   if (loading != Loading::some) {
     r.warnings.push_back(fmt::format("{}: nothing loads the body (no pressure, prescribed displacement or body force, "
                                      "and no obstacle moves toward it or starts inside it): the solution is u = 0",
@@ -227,6 +238,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     for (int e = 0; e < f_ext.size(); ++e) resultant[component[e]] += f_ext[e];
     r.applied_force = std::abs(resultant.dot(r.contacts.front().normal));
   }
+  if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   compare_with_reference(m, r);
   r.timing.total = t_start.seconds();
   return r;

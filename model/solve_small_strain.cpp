@@ -16,6 +16,8 @@
 #include "engine/prolongation.hpp"
 #include "model/deformation_check.hpp"
 #include "model/petsc_run.hpp"
+#include "model/progress.hpp"
+#include "model/reactions.hpp"
 #include "model/references.hpp"
 #include "model/solve.hpp"
 
@@ -194,35 +196,70 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   Eigen::VectorXd bf = m.spec.body_force.empty()
                            ? Eigen::VectorXd::Zero(dim)
                            : Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim).eval();
+  const RigidModes modes = free_rigid_modes(body, *m.dofs);
+  // The contact operator once: the held-body check and the solve read it
+  // (for two bodies it projects every slave point on the master).
+  std::optional<WeightedGapOperator> op;
+  if (!m.contacts.empty()) op = assemble_contact_operator(m);
+  // Is the body held?  Checked before the stiffness is assembled, with the
+  // loads alone: the lift K_fp u_p of prescribed values does no work on a
+  // rigid motion free of Dirichlet conditions (K r = 0 and r_p = 0).
+  if (modes.modes.cols() > 0) {
+    Eigen::VectorXd f = body_force_load(body, *m.dofs, bf);
+    for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, f);
+    check_body_is_held(m, modes, f, op ? &*op : nullptr);
+  }
+  r.timing.assembly = t0.seconds();
+  // The header, then the progress lines; with PETSc after its first solve
+  // (where it reads its options: a wrong one is an input error, one line).
+  const bool petsc = uses_petsc(m);
+  Progress progress(m.quiet);
+  bool started = false;
+  const auto start = [&] {
+    if (started) return;
+    started = true;
+    progress.hold(false);
+    if (m.on_solve_start) m.on_solve_start();
+  };
+  if (petsc) progress.hold(true);
+  else start();
+  progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
+  t0.restart();
   // One process: every element.  PETSc on several: this process's block
   // (the element loads summed over the processes, so f is whole everywhere).
-  const bool petsc = uses_petsc(m);
   LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.patch_materials(), bf, process_elements(m),
                                                 m.patch_formulations());
   sum_over_processes(sys.f);
   for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
-  r.timing.assembly = t0.seconds();
-  const RigidModes modes = free_rigid_modes(body, *m.dofs);
+  r.timing.assembly += t0.seconds();
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
-  // The contact operator once: the held-body check and the solve read it
-  // (for two bodies it projects every slave point on the master).
-  std::optional<WeightedGapOperator> op;
-  if (!m.contacts.empty()) {
-    t0.restart();
-    op = assemble_contact_operator(m);
-    r.timing.assembly += t0.seconds();
-  }
-  check_body_is_held(m, modes, sys.f, op ? &*op : nullptr);
+  // A line per active-set iteration (with the Krylov iterations of its
+  // solve on the PETSc path).
+  const auto report_iteration = [&progress, &start](int it, int active, int changed, int krylov) {
+    start();
+    progress.line(fmt::format("active set {:3d}: {} active, {} changing{} ({:.1f} s)", it + 1, active, changed,
+                              krylov >= 0 ? fmt::format(", {} Krylov iterations", krylov) : "", progress.seconds()),
+                  changed > 0 ? "in the next active-set iteration" : "computing the reactions and reports");
+  };
   if (m.contacts.empty() && petsc) {
+    progress.phase(fmt::format("solving K u = f ({} equations) with PETSc", m.dofs->num_free()));
     WeightedGapOperator none;
     none.G.resize(0, m.dofs->num_free());
-    const ContactSolution s = solve_with_petsc(m, sys, none, modes, ContactSolverOptions{}, r.linear_solver);
+    ContactSolverOptions no_contact;
+    if (!m.quiet)
+      no_contact.on_iteration = [&progress, &start](int, int, int, int krylov) {
+        start();
+        progress.line(fmt::format("solved: {} Krylov iterations ({:.1f} s)", krylov, progress.seconds()),
+                      "computing the reactions and reports");
+      };
+    const ContactSolution s = solve_with_petsc(m, sys, none, modes, no_contact, r.linear_solver);
     r.timing.factorization = s.factorize_s;
     r.timing.linear_solve = s.iterations_s;
     r.status = s.status;
     r.u = m.dofs->expand(s.u);
   } else if (m.contacts.empty()) {
+    progress.phase(fmt::format("factorising K ({} equations)", m.dofs->num_free()));
     t0.restart();
     chol.factorize(sys.K);
     r.timing.factorization = t0.seconds();
@@ -234,6 +271,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     c->op = std::move(*op);
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+    if (!m.quiet) opt.on_iteration = report_iteration;
+    progress.phase(petsc ? fmt::format("the active-set iterations with PETSc ({} equations, {} multipliers)",
+                                       m.dofs->num_free(), m.num_multipliers())
+                         : fmt::format("factorising K ({} equations), then the active-set iterations ({} multipliers)",
+                                       m.dofs->num_free(), m.num_multipliers()));
     t0.restart();
     // Nested iteration from the solution one refinement below: the PETSc
     // path solves it first (a Krylov or MUMPS solve per active-set
@@ -264,7 +306,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
                                rr.face, rr.normal_force);
     r.timing.postprocess += t0.seconds();
   }
+  start();  // (a PETSc solve that ended before its first iteration's report)
   t0.restart();
+  // What the supports carry; a displacement-driven case's applied force.
+  r.dirichlet_reactions = ReactionEvaluator(m)(r.u, 1.0);
+  if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   if (auto w = small_deformation_warning(m, r)) r.warnings.push_back(std::move(*w));
   compare_with_reference(m, r);
   r.timing.postprocess += t0.seconds();

@@ -600,7 +600,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
       --it;
       continue;
     }
-    if (settle_active_set(next, active, seen, it, sol)) break;
+    if (settle_active_set(next, active, seen, it, sol, o.contact)) break;
   }
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", o.contact.max_iterations);

@@ -38,8 +38,7 @@
 //        sensitivity to its two errors' tolerances (their floors and 1e-12
 //        relative) divided by ln(h_a / h_b).
 //      * anything else (forces, pressures, half widths, h, load factors):
-//        floor 0 (a zero, as a displacement-driven case's applied force,
-//        stays exactly zero).
+//        floor 0 (a zero stays exactly zero).
 //  - pressure.csv and load_curve.csv are printed with 10 significant
 //    digits: relative 1.5e-9 (one unit in the last printed digit is at most
 //    1e-9 relative, and a change of 1e-15 can flip it), floor 1e-12 times

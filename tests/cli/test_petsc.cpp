@@ -73,7 +73,7 @@ igac_test::Outcome run_mpi(int n, const std::string& args, const fs::path& cwd) 
 // The control-point displacements of a run's ParaView output.
 std::vector<double> displacements(const fs::path& dir) {
   vtkNew<vtkXMLUnstructuredGridReader> r;
-  r->SetFileName((dir / "solution_0000.vtu").c_str());
+  r->SetFileName((dir / "solution_0001.vtu").c_str());  // 0000: the undeformed body
   r->Update();
   vtkDataArray* a = r->GetOutput()->GetPointData()->GetArray("displacement");
   std::vector<double> u;

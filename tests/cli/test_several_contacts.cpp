@@ -126,8 +126,8 @@ TEST_F(TwoPlates, SummaryHasOneEntryPerContactWhoseForcesAreTheReactions) {
 }
 
 TEST_F(TwoPlates, ParaViewHasAContactPartPerContact) {
-  const int last = int(summary()["load_steps"].size()) - 1;
-  ASSERT_GE(last, 0);
+  const int last = int(summary()["load_steps"].size());  // step 0 is the undeformed body
+  ASSERT_GE(last, 1);
   const std::string pvd = read_file(out() / "solution.pvd");
   int multipliers = 0;
   for (size_t i = 0; i < 2; ++i) {
@@ -152,7 +152,7 @@ TEST_F(TwoPlates, ParaViewHasAContactPartPerContact) {
     EXPECT_NEAR(peak, expected, 1e-12 * expected) << face;
   }
   EXPECT_EQ(multipliers, summary()["multipliers"].get<int>());
-  EXPECT_FALSE(fs::exists(out() / "contact_0000.vtu"));
+  EXPECT_FALSE(fs::exists(out() / "contact_0001.vtu"));
 }
 
 // The load curve has each plate's force: they balance at every step, and
@@ -191,22 +191,22 @@ TEST_F(TwoPlates, ModelPartIsTheHalfItModels) {
   EXPECT_EQ(summary()["contact"]["model_part"], "half (forces per unit thickness of the modelled half)");
 }
 
-// One contact: pressure.csv, contact_0000.vtu and the "contact" report as
+// One contact: pressure.csv, contact_0001.vtu (step 0 is the undeformed body alone) and the "contact" report as
 // before, no "contacts".
 TEST(OneContact, KeepsItsFilesAndKeys) {
   TempDir tmp("one_contact");
   const auto o = run_igac("run " + quote(kCases + "hertz2d.toml") + " --out out", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const fs::path out = tmp.path() / "out";
-  for (const char* f : {"pressure.csv", "pressure.svg", "contact_0000.vtu", "multipliers_0000.vtu"})
+  for (const char* f : {"pressure.csv", "pressure.svg", "contact_0001.vtu", "multipliers_0001.vtu"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   const json s = json::parse(read_file(out / "summary.json"));
   EXPECT_FALSE(s.contains("contacts"));
   EXPECT_TRUE(s["contact"].contains("half_width"));
   EXPECT_EQ(s["contact"]["model_part"], "quarter (forces per unit thickness of the modelled quarter)");
   const std::string pvd = read_file(out / "solution.pvd");
-  EXPECT_NE(pvd.find("name=\"contact_face\" file=\"contact_0000.vtu\""), std::string::npos) << pvd;
-  EXPECT_NE(pvd.find("name=\"multipliers\" file=\"multipliers_0000.vtu\""), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("name=\"contact_face\" file=\"contact_0001.vtu\""), std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("name=\"multipliers\" file=\"multipliers_0001.vtu\""), std::string::npos) << pvd;
   EXPECT_NE(o.output.find("  half width    "), std::string::npos) << o.output;
 }
 

@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Progress lines of a long solve, on stderr (beside the load steps'): a
+// line when a phase begins ("factorising ..."), the lines the solve prints
+// as it goes (an active-set iteration), and while one call runs long (a
+// factorisation of a minute) a heartbeat "... still <phase> (N s)" after
+// every `period` seconds without a line (4 s: a line at least every 5 s,
+// the bar, with room for a busy machine).  Plain lines, whatever stdout is.
+// Quiet: nothing, and no thread.
+#pragma once
+
+#include <condition_variable>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "engine/stopwatch.hpp"
+
+namespace igac {
+
+class Progress {
+ public:
+  // `offset_s`: seconds already spent (the times printed count from the run's start).
+  explicit Progress(bool quiet, double offset_s = 0.0, double period_s = 4.0)
+      : quiet_(quiet), offset_(offset_s), period_(period_s) {
+    if (!quiet_) heartbeat_ = std::thread([this] { beat(); });
+  }
+  ~Progress() {
+    if (!heartbeat_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    heartbeat_.join();
+  }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  // A phase begins: "<what> (<elapsed> s)"; the heartbeat names it.
+  void phase(const std::string& what) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    phase_ = what;
+    print(fmt::format("{} ({:.1f} s)", what, seconds()));
+  }
+  // A line of the solve's own; `next`, when given, names what runs now
+  // (for the heartbeat; not printed).
+  void line(const std::string& text, const std::string& next = "") {
+    std::lock_guard<std::mutex> lock(mutex_);
+    print(text);
+    if (!next.empty()) phase_ = next;
+  }
+  // What runs now, after a line printed elsewhere (the load steps'): named
+  // for the heartbeat, nothing printed.
+  void now(const std::string& what) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    phase_ = what;
+    since_line_.restart();
+  }
+  // Held: nothing printed (the heartbeat neither) until released; e.g.
+  // until PETSc has read its options in the first solve, so that a wrong
+  // one stays a one-line input error.
+  void hold(bool held) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_ = held;
+    since_line_.restart();
+  }
+  double seconds() const { return offset_ + clock_.seconds(); }
+  bool quiet() const { return quiet_; }
+
+ private:
+  void print(const std::string& text) {  // under mutex_
+    if (quiet_ || held_) return;
+    fmt::print(stderr, "{}\n", text);
+    since_line_.restart();
+  }
+  void beat() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
+      const double left = period_ - since_line_.seconds();
+      if (left <= 0) {  // (held or without a phase: nothing printed, but the period starts again)
+        if (!phase_.empty()) print(fmt::format("  ... still {} ({:.0f} s)", phase_, seconds()));
+        since_line_.restart();
+        continue;
+      }
+      wake_.wait_for(lock, std::chrono::duration<double>(left));
+    }
+  }
+
+  bool quiet_;
+  double offset_, period_;
+  Stopwatch clock_, since_line_;
+  std::string phase_;
+  bool stop_ = false, held_ = false;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread heartbeat_;
+};
+
+}  // namespace igac

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The ParaView fields of the shipped cases as a user opens them: every
+// solution_XXXX.vtu of a run through the igac executable.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkPointData.h>
+
+#include "tests/support/igac_process.hpp"
+#include "tests/support/vtu_file.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The smallest value of a point array over every body file of a run.
+double min_over_steps(const fs::path& out, const char* array) {
+  double lo = std::numeric_limits<double>::infinity();
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("solution_", 0) != 0 || entry.path().extension() != ".vtu") continue;
+    ++files;
+    const auto g = igac_test::read_vtu(entry.path().string());
+    vtkDataArray* a = g->GetPointData()->GetArray(array);
+    EXPECT_NE(a, nullptr) << name << ": no " << array;
+    if (!a) continue;
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) lo = std::min(lo, a->GetComponent(i, 0));
+  }
+  EXPECT_GT(files, 0) << out;
+  return lo;
+}
+
+// Issue 25: von Mises and |sigma| cannot be negative, and were (-0.052 and
+// -0.89 in the O-ring) when their own Bezier coefficients were projected.
+// Every shipped case that runs in a few seconds, small and large deformation.
+TEST(VtkOutput, ScalarsThatCannotBeNegativeAreNotOnShippedCases) {
+  for (const char* name : {"oring", "hertz2d", "lame_cylinder", "two_blocks", "hertz2d_two_patches",
+                           "hertz2d_neohookean_displacement"}) {
+    igac_test::TempDir tmp(name);
+    const std::string toml = std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml";
+    const auto o = igac_test::run_igac("run " + igac_test::quote(toml) + " --quiet --out out", tmp.path());
+    ASSERT_EQ(o.exit_code, 0) << name << ": " << o.output;
+    EXPECT_GE(min_over_steps(tmp.path() / "out", "von_mises"), 0.0) << name;
+    EXPECT_GE(min_over_steps(tmp.path() / "out", "stress_magnitude"), 0.0) << name;
+  }
+}
+
+// The fields an engineer looks for (issue 25), on the two-patch Hertz case
+// against a plane: step 0 is the undeformed body at time 0; the body has
+// strain, principal stresses and the patch id; the contact part the
+// traction p n (n the plane's normal: exactly the pressure's coefficients
+// times n) and the normal gap, a length.
+TEST(VtkOutput, FieldsAnEngineerLooksFor) {
+  igac_test::TempDir tmp("fields");
+  const std::string toml = std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d_two_patches.toml";
+  const auto o = igac_test::run_igac("run " + igac_test::quote(toml) + " --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const fs::path out = tmp.path() / "out";
+  const std::string pvd = igac_test::read_file(out / "solution.pvd");
+  EXPECT_NE(pvd.find("<DataSet timestep=\"0\" part=\"0\" name=\"body\" file=\"solution_0000.vtu\"/>"),
+            std::string::npos) << pvd;
+  EXPECT_NE(pvd.find("timestep=\"1\" part=\"1\" name=\"contact_face\" file=\"contact_0001.vtu\""), std::string::npos)
+      << pvd;
+  const auto undeformed = igac_test::read_vtu((out / "solution_0000.vtu").string());
+  for (const char* a : {"displacement", "stress", "von_mises"}) {
+    vtkDataArray* arr = undeformed->GetPointData()->GetArray(a);
+    ASSERT_NE(arr, nullptr) << a;
+    for (vtkIdType i = 0; i < arr->GetNumberOfValues(); ++i)
+      ASSERT_EQ(arr->GetComponent(i / arr->GetNumberOfComponents(), int(i % arr->GetNumberOfComponents())), 0.0) << a;
+  }
+
+  const auto body = igac_test::read_vtu((out / "solution_0001.vtu").string());
+  vtkDataArray* strain = body->GetPointData()->GetArray("strain");
+  vtkDataArray* principal = body->GetPointData()->GetArray("principal_stress");
+  vtkDataArray* patch = body->GetCellData()->GetArray("patch");
+  ASSERT_NE(strain, nullptr);
+  ASSERT_NE(principal, nullptr);
+  ASSERT_NE(patch, nullptr);
+  ASSERT_NE(body->GetPointData()->GetArray("patch"), nullptr);
+  EXPECT_EQ(strain->GetNumberOfComponents(), 6);
+  ASSERT_EQ(principal->GetNumberOfComponents(), 3);
+  double strain_max = 0;
+  for (vtkIdType i = 0; i < strain->GetNumberOfTuples(); ++i) {
+    for (int c = 0; c < 6; ++c) strain_max = std::max(strain_max, std::abs(strain->GetComponent(i, c)));
+    EXPECT_EQ(strain->GetComponent(i, 2), 0.0);  // plane strain
+    EXPECT_GE(principal->GetComponent(i, 0), principal->GetComponent(i, 1));
+    EXPECT_GE(principal->GetComponent(i, 1), principal->GetComponent(i, 2));
+  }
+  EXPECT_GT(strain_max, 0.0);
+  std::set<double> patches;
+  for (vtkIdType e = 0; e < patch->GetNumberOfTuples(); ++e) patches.insert(patch->GetComponent(e, 0));
+  EXPECT_EQ(patches, (std::set<double>{0.0, 1.0}));
+
+  const auto contact = igac_test::read_vtu((out / "contact_0001.vtu").string());
+  vtkDataArray* p = contact->GetPointData()->GetArray("pressure");
+  vtkDataArray* t = contact->GetPointData()->GetArray("traction");
+  vtkDataArray* gap = contact->GetPointData()->GetArray("normal_gap");
+  ASSERT_NE(t, nullptr);
+  ASSERT_NE(gap, nullptr);
+  ASSERT_NE(contact->GetCellData()->GetArray("normal_gap"), nullptr);
+  double p_max = 0;
+  for (vtkIdType i = 0; i < p->GetNumberOfTuples(); ++i) p_max = std::max(p_max, std::abs(p->GetComponent(i, 0)));
+  ASSERT_GT(p_max, 0.0);
+  for (vtkIdType i = 0; i < t->GetNumberOfTuples(); ++i) {
+    EXPECT_NEAR(t->GetComponent(i, 0), 0.0, 1e-12 * p_max);                     // the plane y = const pushes along y
+    EXPECT_NEAR(t->GetComponent(i, 1), p->GetComponent(i, 0), 1e-12 * p_max);  // n = (0, 1): t = p n
+    EXPECT_GT(gap->GetComponent(i, 0), -1e-3);  // a length: the face is not inside the plane
+  }
+  ASSERT_NE(igac_test::read_vtu((out / "multipliers_0001.vtu").string())->GetPointData()->GetArray("normal_gap"), nullptr);
+}
+
+}  // namespace

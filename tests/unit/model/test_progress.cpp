@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The progress lines of a long solve (model/progress.hpp): a heartbeat
+// names the phase while one call runs long; quiet and held print nothing.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "model/progress.hpp"
+
+namespace igac {
+namespace {
+
+size_t count_of(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+std::string run(bool quiet, bool held) {
+  testing::internal::CaptureStderr();
+  {
+    Progress p(quiet, 0.0, 0.1);
+    if (held) p.hold(true);
+    p.phase("factorising K");
+    std::this_thread::sleep_for(std::chrono::milliseconds(450));  // one long call: no line of its own
+    p.line("active set   1: 3 active, 0 changing");
+  }
+  return testing::internal::GetCapturedStderr();
+}
+
+TEST(Progress, HeartbeatNamesWhatRunsLong) {
+  const std::string out = run(false, false);
+  EXPECT_EQ(out.rfind("factorising K (0.0 s)\n", 0), 0u) << out;
+  EXPECT_GE(count_of(out, "  ... still factorising K ("), 2u) << out;  // every 0.1 s without a line
+  EXPECT_NE(out.find("active set   1: 3 active, 0 changing\n"), std::string::npos) << out;
+}
+
+TEST(Progress, QuietAndHeldPrintNothing) {
+  EXPECT_EQ(run(true, false), "");
+  EXPECT_EQ(run(false, true), "");
+}
+
+}  // namespace
+}  // namespace igac
