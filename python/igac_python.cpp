@@ -10,7 +10,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fmt/format.h>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -43,7 +45,7 @@ std::unique_ptr<toml::node> to_toml(const py::handle& v, const std::string& key)
     return t;
   }
   if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v) || py::hasattr(v, "tolist")) {
-    const py::list items = py::hasattr(v, "tolist") ? py::list(v.attr("tolist")()) : py::list(v);
+    const py::list items = py::hasattr(v, "tolist") ? py::list(v.attr("tolist")()) : py::list(py::reinterpret_borrow<py::object>(v));
     auto a = std::make_unique<toml::array>();
     for (const auto& x : items) {
       auto node = to_toml(x, key);
