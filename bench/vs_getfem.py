@@ -33,7 +33,9 @@ file, mesh, solve, report) with --no-output, since GetFEM writes no files.
 Each run is a fresh process; the two codes never run at the same time.
 
 Writes bench/results/vs_getfem_runs.csv (every run), vs_getfem.csv (time to
-each target, ratio) and vs_getfem.png (error against time, both codes).
+each target, ratio) and vs_getfem.png (error against time, both codes); a
+run of another set of problems, or --quick, writes vs_getfem_<problems>[_quick]
+*.csv/png instead (e.g. vs_getfem_two_bodies.csv), leaving those alone.
 """
 import argparse
 import csv
@@ -60,6 +62,7 @@ LARGEDEF_TOL = {"force": 0.005, "half_width": 0.03, "max_pressure": 0.03}
 TARGETS = {"2d": [0.02, 0.01, 0.007], "3d": [0.05], "follower": [1.0], "disp": [1.0],
            "two_bodies": [0.02, 0.01, 0.007]}
 L2_PROBLEMS = ("2d", "3d", "two_bodies")
+DEFAULT_PROBLEMS = ["2d", "3d", "follower", "disp"]
 ROLLER_HERTZ = (0.096277, 0.039674)  # a, p0: Hertz with the combined modulus, roller_on_block.toml
 
 
@@ -223,7 +226,7 @@ def summarise(problem, gf, ig):
     return out
 
 
-def plot(runs, problems):
+def plot(runs, problems, tag):
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -249,7 +252,7 @@ def plot(runs, problems):
         ax.grid(alpha=0.3, which="both")
         ax.legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(HERE, "results", "vs_getfem.png"), dpi=110)
+    fig.savefig(os.path.join(HERE, "results", f"vs_getfem{tag}.png"), dpi=110)
 
 
 def write_csv(path, rows):
@@ -264,7 +267,7 @@ def write_csv(path, rows):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--problems", nargs="+", default=["2d", "3d", "follower", "disp"], choices=list(TARGETS))
+    ap.add_argument("--problems", nargs="+", default=DEFAULT_PROBLEMS, choices=list(TARGETS))
     ap.add_argument("--quick", action="store_true", help="fewer meshes (a smoke run of the bench)")
     args = ap.parse_args()
     if not os.path.exists(IGAC):
@@ -275,9 +278,13 @@ def main():
         gf, ig = run_getfem(problem, args.quick), run_igac(problem, args.quick)
         runs += gf + ig
         summary += summarise(problem, gf, ig)
+    # the four original problems keep their file names; any other set (and --quick) gets its own, so a
+    # run of one problem never overwrites another's record
+    tag = "" if args.problems == DEFAULT_PROBLEMS and not args.quick else \
+        "_" + "_".join(args.problems) + ("_quick" if args.quick else "")
     os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    write_csv(os.path.join(HERE, "results", "vs_getfem_runs.csv"), runs)
-    write_csv(os.path.join(HERE, "results", "vs_getfem.csv"), summary)
+    write_csv(os.path.join(HERE, "results", f"vs_getfem{tag}_runs.csv"), runs)
+    write_csv(os.path.join(HERE, "results", f"vs_getfem{tag}.csv"), summary)
     for r in runs:
         err = f"L2 rel {100 * r['error']:.3f} %" if r["problem"] in L2_PROBLEMS else \
             f"force {r['force']:.6f}, a {r['half_width']:.4f}, p {r['max_pressure']:.5f} (error/tol {r['error']:.2f})"
@@ -288,7 +295,7 @@ def main():
         extra = f", GetFEM N=64 {s['getfem_N64_s']} s: ratio {s['ratio_getfem_N64_over_igac']}" if s["getfem_N64_s"] else ""
         print(f"{s['problem']} {s['target']}: GetFEM {s['getfem_s'] or '-'} s ({s['getfem_mesh']}), "
               f"igac {s['igac_s'] or '-'} s ({s['igac_mesh']}), ratio {s['ratio_getfem_over_igac'] or '-'}{extra}")
-    plot(runs, args.problems)
+    plot(runs, args.problems, tag)
 
 
 if __name__ == "__main__":
