@@ -25,7 +25,15 @@ GetFEM / igac.
             bench/getfem_two_bodies.py (both meshes graded, P2, integral Alart-Curnier contact between
             the meshes, N = 8 .. 64); igac: the case with both bodies' element counts scaled, its L2
             error from pressure.csv of a second (untimed) run of the same mesh.
-  (friction, issue 23: no race yet; docs/benchmarks.md says why.)
+  friction  Cattaneo-Mindlin, f = 0.3 (issue 23): cases/cattaneo_mindlin.toml, a half disc pressed by
+            0.02 on a rigid plane, then sheared by 0.008 in 4 steps.  No closed form for the forces of
+            this displacement-driven geometry: the target is the normal force N and tangential force Q
+            within 1 %, 0.5 %, 0.2 % of their converged values (FRICTION_REF: both codes' finest
+            meshes agree within 0.1 % on Q and 0.01 % on N).  The stick half width c against the
+            Cattaneo-Mindlin law a sqrt(1 - Q / (f N)) is recorded beside it (it moves by whole
+            multipliers, too jumpy to time).  GetFEM: bench/getfem_friction.py (the top sheared
+            instead of the plane, P2, integral Alart-Curnier brick with friction, N = 8 .. 64); igac:
+            the case scaled, c from pressure.csv of a second (untimed) run.
 
 Times.  GetFEM: mesh + setup + solve of its run (Python import excluded, as
 its READMEs measure).  igac: the wall time of the whole process (start, case
@@ -63,6 +71,9 @@ TARGETS = {"2d": [0.02, 0.01, 0.007], "3d": [0.05], "follower": [1.0], "disp": [
            "two_bodies": [0.02, 0.01, 0.007]}
 L2_PROBLEMS = ("2d", "3d", "two_bodies")
 DEFAULT_PROBLEMS = ["2d", "3d", "follower", "disp"]
+TARGETS["friction"] = [0.01, 0.005, 0.002]
+FRICTION_REF = {"normal_force": 0.014952, "tangential_force": 0.0027638}  # see docs/benchmarks.md
+FRICTION_F = 0.3
 ROLLER_HERTZ = (0.096277, 0.039674)  # a, p0: Hertz with the combined modulus, roller_on_block.toml
 
 
@@ -80,8 +91,15 @@ def largedef_error(problem, force, half_width, max_pressure):
     return max(abs(got[k] - ref[k]) / ref[k] / LARGEDEF_TOL[k] for k in ref)
 
 
+def friction_error(run):
+    return max(abs(run[k] - v) / v for k, v in FRICTION_REF.items())
+
+
 def run_getfem(problem, quick):
-    if problem == "two_bodies":
+    if problem == "friction":
+        script = os.path.join(HERE, "getfem_friction.py")
+        args = ["--N"] + (["8", "16"] if quick else ["8", "16", "32", "64"])
+    elif problem == "two_bodies":
         script = os.path.join(HERE, "getfem_two_bodies.py")
         args = ["--N"] + (["8", "16", "32"] if quick else ["8", "16", "24", "32", "48", "64"])
     elif problem in ("2d", "3d"):
@@ -103,7 +121,12 @@ def run_getfem(problem, quick):
     runs = []
     for r in rows:
         run = {"code": "getfem", "problem": problem, "mesh": f"N={r['N']}", "unknowns": int(r["n_dof_total"])}
-        if problem == "two_bodies":
+        if problem == "friction":
+            run.update(seconds=float(r["t_mesh_s"]) + float(r["t_setup_s"]) + float(r["t_solve_s"]),
+                       **{k: float(r[k]) for k in ("normal_force", "tangential_force", "half_width",
+                                                   "stick_half_width", "stick_law")})
+            run["error"] = friction_error(run)
+        elif problem == "two_bodies":
             run.update(seconds=float(r["t_mesh_s"]) + float(r["t_setup_s"]) + float(r["t_solve_s"]),
                        error=float(r["L2_err_rel"]), half_width=float(r["a_h"]), max_pressure=float(r["p0_h"]))
         elif problem in ("2d", "3d"):
@@ -126,8 +149,27 @@ def scaled_case(case, factor, tmp):
         return "elements = [" + ", ".join(map(str, counts)) + "]"
     path = os.path.join(tmp, f"x{factor:g}_{os.path.basename(case)}")
     with open(path, "w") as f:
-        f.write(re.sub(r"elements = \[([0-9, ]+)\]", scale, text))
+        text = re.sub(r"elements = \[([0-9, ]+)\]", scale, text)
+        # a geometry file named relative to the case stays found from the temporary folder
+        text = re.sub(r'^(file *= *")([^"/][^"]*)"', lambda m: m.group(1) + os.path.join(os.path.dirname(
+            os.path.abspath(case)), m.group(2)) + '"', text, flags=re.M)
+        f.write(text)
     return path
+
+
+def stick_half_width(path):
+    """The stick zone's half width from igac's pressure.csv: to the outer edge of the outermost sticking
+    multiplier (r is the distance from the lowest point; the multipliers of both sides share it)."""
+    with open(path) as f:
+        rows = [r for r in csv.DictReader(f) if r["kind"] == "multiplier"]
+    rs = sorted({float(r["r"]) for r in rows})
+    stuck = [float(r["r"]) for r in rows if r["state"] == "stick"]
+    if not stuck:
+        return 0.0
+    r = max(stuck)
+    k = rs.index(r)
+    span = (rs[k + 1] - rs[k]) if k + 1 < len(rs) else (rs[k] - rs[k - 1])
+    return r + 0.5 * span
 
 
 def pressure_l2_from_csv(path, a, p0):
@@ -162,6 +204,8 @@ def igac_meshes(problem, quick):
             return [("hertz3d.toml", 2, 1), ("hertz3d_p3.toml", 3, 0.75), ("hertz3d_p3.toml", 3, 1)]
         return [("hertz3d.toml", 2, 1), ("hertz3d.toml", 2, 1.5)] + [
             ("hertz3d_p3.toml", 3, f) for f in (0.75, 1, 1.25, 1.5)]
+    if problem == "friction":
+        return [("cattaneo_mindlin.toml", 2, f) for f in ((0.125, 0.25) if quick else (0.125, 0.25, 0.5, 1, 2))]
     if problem == "two_bodies":
         return [("roller_on_block.toml", 2, f) for f in ((0.5, 1) if quick else (0.5, 0.75, 1, 1.5, 2, 3, 4))]
     case = "hertz2d_neohookean_pressure.toml" if problem == "follower" else "hertz2d_neohookean_displacement.toml"
@@ -185,7 +229,17 @@ def run_igac(problem, quick):
         sizes = re.search(r"(\d+) dofs, (\d+) multipliers", out)
         run = {"code": "igac", "problem": problem, "mesh": label,
                "unknowns": int(sizes.group(1)) + int(sizes.group(2)), "seconds": wall}
-        if problem == "two_bodies":   # the error from the same mesh run again with output (untimed)
+        if problem == "friction":   # the stick zone from the same mesh run again with output (untimed)
+            outdir = os.path.join(tmp.name, f"out_x{factor:g}")
+            subprocess.run([IGAC, "run", path, "--quiet", "--out", outdir, "--degree", str(degree)], check=True)
+            run["normal_force"] = float(re.search(r"total force +(\S+)", out).group(1))
+            run["tangential_force"] = float(re.search(r"tangential force +(\S+)", out).group(1))
+            run["half_width"] = float(re.search(r"half width +(\S+)", out).group(1))
+            run["stick_half_width"] = stick_half_width(os.path.join(outdir, "pressure.csv"))
+            run["stick_law"] = run["half_width"] * math.sqrt(
+                max(0.0, 1.0 - run["tangential_force"] / (FRICTION_F * run["normal_force"])))
+            run["error"] = friction_error(run)
+        elif problem == "two_bodies":   # the error from the same mesh run again with output (untimed)
             outdir = os.path.join(tmp.name, f"out_x{factor:g}")
             subprocess.run([IGAC, "run", path, "--quiet", "--out", outdir, "--degree", str(degree)], check=True)
             run["error"] = pressure_l2_from_csv(os.path.join(outdir, "pressure.csv"), *ROLLER_HERTZ)
@@ -213,6 +267,7 @@ def summarise(problem, gf, ig):
         g, i = time_to(gf, target), time_to(ig, target)
         row = {"problem": problem,
                "target": f"L2 pressure {100 * target:g} %" if problem in L2_PROBLEMS
+               else f"N and Q {100 * target:g} %" if problem == "friction"
                else "force 0.5 %, half width 3 %, peak pressure 3 %",
                "getfem_s": f"{g['seconds']:.3f}" if g else "", "getfem_mesh": g["mesh"] if g else "not reached",
                "igac_s": f"{i['seconds']:.3f}" if i else "", "igac_mesh": i["mesh"] if i else "not reached",
@@ -239,16 +294,17 @@ def plot(runs, problems, tag):
         for code, style in (("getfem", "s-"), ("igac", "o")):
             pts = sorted((r["seconds"], r["error"]) for r in runs if r["code"] == code and r["problem"] == problem)
             if pts:
-                ax.loglog([p[0] for p in pts], [p[1] * (100 if problem in L2_PROBLEMS else 1) for p in pts], style,
+                ax.loglog([p[0] for p in pts], [p[1] * (1 if problem in LARGEDEF else 100) for p in pts], style,
                           label=code)
         for t in TARGETS[problem]:
-            ax.axhline(t * (100 if problem in L2_PROBLEMS else 1), color="grey", lw=0.5, ls=":")
+            ax.axhline(t * (1 if problem in LARGEDEF else 100), color="grey", lw=0.5, ls=":")
         ax.set_xlabel("time (s, same machine, same run)")
         ax.set_ylabel("relative L2 pressure error (%)" if problem in L2_PROBLEMS
-                      else "largest error / its tolerance")
+                      else "N, Q: largest error (%)" if problem == "friction" else "largest error / its tolerance")
         ax.set_title({"2d": "Hertz 2D, P = 0.003", "3d": "Hertz 3D, P = 1e-4",
                       "follower": "Neo-Hookean, follower P = 0.1", "disp": "Neo-Hookean, u_y = -0.4",
-                      "two_bodies": "roller (E = 1) on block (E = 3), P = 0.003"}[problem])
+                      "two_bodies": "roller (E = 1) on block (E = 3), P = 0.003",
+                      "friction": "Cattaneo-Mindlin, f = 0.3"}[problem])
         ax.grid(alpha=0.3, which="both")
         ax.legend()
     fig.tight_layout()
@@ -286,8 +342,14 @@ def main():
     write_csv(os.path.join(HERE, "results", f"vs_getfem{tag}_runs.csv"), runs)
     write_csv(os.path.join(HERE, "results", f"vs_getfem{tag}.csv"), summary)
     for r in runs:
-        err = f"L2 rel {100 * r['error']:.3f} %" if r["problem"] in L2_PROBLEMS else \
-            f"force {r['force']:.6f}, a {r['half_width']:.4f}, p {r['max_pressure']:.5f} (error/tol {r['error']:.2f})"
+        if r["problem"] in L2_PROBLEMS:
+            err = f"L2 rel {100 * r['error']:.3f} %"
+        elif r["problem"] == "friction":
+            err = (f"N {r['normal_force']:.7f}, Q {r['tangential_force']:.7f} (error {100 * r['error']:.3f} %), "
+                   f"a {r['half_width']:.5f}, stick c {r['stick_half_width']:.5f}, law {r['stick_law']:.5f}")
+        else:
+            err = (f"force {r['force']:.6f}, a {r['half_width']:.4f}, p {r['max_pressure']:.5f} "
+                   f"(error/tol {r['error']:.2f})")
         if r["problem"] == "two_bodies":
             err += f", a {r['half_width']:.5f}, p0 {r['max_pressure']:.5f} (Hertz {ROLLER_HERTZ[0]}, {ROLLER_HERTZ[1]})"
         print(f"{r['code']:7} {r['problem']:8} {r['mesh']:32} {r['unknowns']:>8} unknowns {r['seconds']:9.3f} s  {err}")
