@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""vs_getfem.py [--problems 2d 3d follower disp two_bodies] [--quick] — igac against GetFEM, same machine, same run.
+"""vs_getfem.py [--problems 2d 3d follower disp two_bodies friction] [--quick]
+igac against GetFEM, same machine, same run.
 
 Runs the GetFEM peer scripts (../shared/peers/getfem and getfem-largedef,
 Debian's python3-getfem++, installed here when missing: the bench's, never
