@@ -14,8 +14,8 @@ found best: Q2 isoparametric meshes (the roller is hertz_mesh.quarter_disc_mesh,
 graded toward the contact point; the block a graded Q2 grid, fine at (0,-1)),
 P2 displacements, P2 multipliers on the roller's arc (the slave), the
 integral Alart-Curnier (unsymmetric) contact between the two meshes,
-augmentation r = 0.75/h (h: the arc element at the contact point), contact integrals on a 4x composite rule, MUMPS, Newton
-to 1e-8, started from a rigid approach of the roller.
+augmentation r = 0.75/h (h: the arc element at the contact point), contact
+integrals on a 4x composite rule, MUMPS, Newton to 1e-8, started from a rigid approach of the roller.
 
 --brick gwfl (the default) writes that augmented Lagrangian in GetFEM's weak
 form language: the slave point X meets the block's flat top at (X(1), -1), an
@@ -193,7 +193,7 @@ def main():
     ap.add_argument("--lambda-deg", type=int, default=2)
     ap.add_argument("--option", type=int, default=1, help="1 Alart-Curnier unsym, 2 sym, 3 unsym+augm, 4 new unsym")
     ap.add_argument("--brick", default="gwfl", choices=["gwfl", "integral", "nodal"])
-    ap.add_argument("--r", type=float, default=-1, help="augmentation (<= 0: 0.75/h, h the arc element at the contact point)")
+    ap.add_argument("--r", type=float, default=-1, help="augmentation (<= 0: 0.75/h, h the arc element at the contact)")
     ap.add_argument("--contact-subdiv", type=int, default=4)
     ap.add_argument("--tol", type=float, default=1e-8)
     ap.add_argument("--max-iter", type=int, default=100)
