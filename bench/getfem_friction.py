@@ -26,14 +26,15 @@ against the Cattaneo-Mindlin law c = a sqrt(1 - Q / (f N)).  Times are mesh,
 setup and the five solves (import excluded), each N a fresh subprocess.
 """
 import argparse
-import csv
-import json
 import os
 import subprocess
 import sys
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from getfem_per_mesh import one_mesh_row, run_per_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PEER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers", "getfem"))
@@ -163,27 +164,11 @@ def main():
     ap.add_argument("--json-one", type=int, default=0, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.json_one:
-        row = solve_one(args, args.json_one)
-        print("JSON " + json.dumps({k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}), flush=True)
+        one_mesh_row(solve_one(args, args.json_one))
         return
-    for N in args.N:
-        out = subprocess.run([sys.executable, os.path.abspath(__file__)] + sys.argv[1:] + ["--json-one", str(N)],
-                             capture_output=True, text=True)
-        if out.returncode != 0:
-            print("N=%d: FAILED\n%s" % (N, out.stderr[-3000:]), flush=True)
-            continue
-        row = json.loads([l for l in out.stdout.splitlines() if l.startswith("JSON ")][-1][5:])
-        print("N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d N=%(normal_force).6f "
-              "Q=%(tangential_force).6f a=%(half_width).5f c=%(stick_half_width).5f law %(stick_law).5f "
-              "err/a %(stick_err).4f" % row, flush=True)
-        if args.csv:
-            new = not os.path.exists(args.csv)
-            with open(args.csv, "a", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=FIELDS)
-                if new:
-                    w.writeheader()
-                w.writerow({k: row.get(k, "") for k in FIELDS})
-
+    run_per_mesh(__file__, args.N, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d N=%(normal_force).6f "
+                 "Q=%(tangential_force).6f a=%(half_width).5f c=%(stick_half_width).5f law %(stick_law).5f "
+                 "err/a %(stick_err).4f", args.csv, FIELDS)
 
 if __name__ == "__main__":
     main()

@@ -31,14 +31,14 @@ at 1.5 % L2 (N = 48, 64), so the race uses gwfl.
 Each N is a fresh subprocess; times are mesh, setup and solve (import excluded).
 """
 import argparse
-import csv
-import json
 import os
-import subprocess
 import sys
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from getfem_per_mesh import one_mesh_row, run_per_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PEER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers", "getfem"))
@@ -201,26 +201,10 @@ def main():
     ap.add_argument("--json-one", type=int, default=0, help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.json_one:
-        row = solve_one(args, args.json_one)
-        print("JSON " + json.dumps({k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}), flush=True)
+        one_mesh_row(solve_one(args, args.json_one))
         return
-    for N in args.N:
-        out = subprocess.run([sys.executable, os.path.abspath(__file__)] + sys.argv[1:] + ["--json-one", str(N)],
-                             capture_output=True, text=True)
-        if out.returncode != 0:
-            print("N=%d: FAILED\n%s" % (N, out.stderr[-3000:]), flush=True)
-            continue
-        row = json.loads([l for l in out.stdout.splitlines() if l.startswith("JSON ")][-1][5:])
-        print("N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d a_h=%(a_h).5f (%(a_exact).5f) "
-              "p0_h=%(p0_h).5f (%(p0_exact).5f) L2rel=%(L2_err_rel).3e F=%(force_h).6f" % row, flush=True)
-        if args.csv:
-            new = not os.path.exists(args.csv)
-            with open(args.csv, "a", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=FIELDS)
-                if new:
-                    w.writeheader()
-                w.writerow({k: row.get(k, "") for k in FIELDS})
-
+    run_per_mesh(__file__, args.N, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d a_h=%(a_h).5f (%(a_exact).5f) "
+                 "p0_h=%(p0_h).5f (%(p0_exact).5f) L2rel=%(L2_err_rel).3e F=%(force_h).6f", args.csv, FIELDS)
 
 if __name__ == "__main__":
     main()

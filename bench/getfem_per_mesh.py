@@ -1,0 +1,33 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""The driver the GetFEM peer scripts of bench/ share: every mesh N in a
+fresh Python process (GetFEM's memory and caches start clean, as the
+timings of ../shared/peers' scripts do), its row printed with `line` and
+appended to the CSV file `csv_path` (columns `fields`)."""
+import csv
+import json
+import os
+import subprocess
+import sys
+
+
+def one_mesh_row(row):
+    """What a child process prints for run_per_mesh to read back."""
+    print("JSON " + json.dumps({k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()}), flush=True)
+
+
+def run_per_mesh(script, meshes, line, csv_path, fields):
+    for N in meshes:
+        out = subprocess.run([sys.executable, os.path.abspath(script)] + sys.argv[1:] + ["--json-one", str(N)],
+                             capture_output=True, text=True)
+        if out.returncode != 0:
+            print("N=%d: FAILED\n%s" % (N, out.stderr[-3000:]), flush=True)
+            continue
+        row = json.loads([l for l in out.stdout.splitlines() if l.startswith("JSON ")][-1][5:])
+        print(line % row, flush=True)
+        if csv_path:
+            new = not os.path.exists(csv_path)
+            with open(csv_path, "a", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=fields)
+                if new:
+                    w.writeheader()
+                w.writerow({k: row.get(k, "") for k in fields})
