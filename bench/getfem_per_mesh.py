@@ -3,11 +3,21 @@
 fresh Python process (GetFEM's memory and caches start clean, as the
 timings of ../shared/peers' scripts do), its row printed with `line` and
 appended to the CSV file `csv_path` (columns `fields`)."""
+import argparse
 import csv
 import json
 import os
 import subprocess
 import sys
+
+
+def add_solver_arguments(ap):
+    """The options both scripts take: contact quadrature, Newton, output, and the child's mesh."""
+    ap.add_argument("--contact-subdiv", type=int, default=4)
+    ap.add_argument("--tol", type=float, default=1e-8)
+    ap.add_argument("--max-iter", type=int, default=100)
+    ap.add_argument("--csv", default="")
+    ap.add_argument("--json-one", type=int, default=0, help=argparse.SUPPRESS)
 
 
 def one_mesh_row(row):

@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from getfem_per_mesh import one_mesh_row, run_per_mesh  # noqa: E402
+from getfem_per_mesh import add_solver_arguments, one_mesh_row, run_per_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PEER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers", "getfem"))
@@ -194,11 +194,7 @@ def main():
     ap.add_argument("--option", type=int, default=1, help="1 Alart-Curnier unsym, 2 sym, 3 unsym+augm, 4 new unsym")
     ap.add_argument("--brick", default="gwfl", choices=["gwfl", "integral", "nodal"])
     ap.add_argument("--r", type=float, default=-1, help="augmentation (<= 0: 0.75/h, h the arc element at the contact)")
-    ap.add_argument("--contact-subdiv", type=int, default=4)
-    ap.add_argument("--tol", type=float, default=1e-8)
-    ap.add_argument("--max-iter", type=int, default=100)
-    ap.add_argument("--csv", default="")
-    ap.add_argument("--json-one", type=int, default=0, help=argparse.SUPPRESS)
+    add_solver_arguments(ap)
     args = ap.parse_args()
     if args.json_one:
         one_mesh_row(solve_one(args, args.json_one))
