@@ -220,16 +220,21 @@ void join_coincident_sides(MultiPatch& coarse, Model& m, const BodySpec& body, i
 
 }  // namespace
 
+namespace {
+// A case of [[body]] tables (one or several): faces are named through their body.
+bool named_bodies(const Model& m) { return !m.parts.empty() && !m.parts.front().name.empty(); }
+}  // namespace
+
 std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::string& name) {
   if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
   // (A reoriented patch runs its first direction backwards: the file's west
   // is its east, and side_in_file swaps them back.)
-  if (m.parts.size() <= 1) {
+  if (!named_bodies(m)) {
     if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim()))
       return std::vector<PatchSide>{side_in_file(m, *side)};
     return std::nullopt;
   }
-  // Several bodies: "NAME:PATCH:SIDE" (or "NAME:SIDE" of a one-patch body).
+  // [[body]] tables: "NAME:PATCH:SIDE" (or "NAME:SIDE" of a one-patch body).
   for (const Model::Part& part : m.parts)
     if (name.starts_with(part.name + ":"))
       if (auto side = parametric_side(name.substr(part.name.size() + 1), part.num_patches, m.body.param_dim())) {
@@ -242,7 +247,7 @@ std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::stri
 std::vector<std::string> face_names(const Model& m) {
   std::vector<std::string> out;
   for (const auto& [k, v] : m.faces) out.push_back(k);
-  if (m.parts.size() <= 1) {
+  if (!named_bodies(m)) {
     for (auto& n : parametric_side_names(m.body.num_patches(), m.body.param_dim())) out.push_back(std::move(n));
     return out;
   }

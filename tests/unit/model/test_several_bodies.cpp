@@ -92,6 +92,20 @@ TEST(SeveralBodies, AStiffBlockApproachesTheRigidPlane) {
   EXPECT_NEAR(p.report.half_width, rigid.a, spacing_at(p.report, rigid.a));
 }
 
+TEST(SeveralBodies, OneBodyTableNamesItsFacesThroughItsBody) {
+  // A case of a single [[body]] table: its faces are "roller:...", as with
+  // several (the parametric names too), not the bare patch sides.
+  CaseSpec spec = roller_on_block("1.0", "3.0", "igac_one_body_table");
+  spec.bodies.resize(1);
+  spec.contacts.clear();
+  spec.dirichlet = {{{"roller:left"}, 0, 0.0}, {{"roller:curved"}, 1, 0.0}};
+  const Model m = build_model(spec);
+  ASSERT_EQ(m.parts.size(), 1u);
+  EXPECT_EQ(find_faces(m, "roller:curved"), find_faces(m, "roller:0:south"));
+  EXPECT_EQ(find_faces(m, "roller:curved"), find_faces(m, "roller:v0"));
+  EXPECT_FALSE(find_faces(m, "0:south"));
+}
+
 TEST(SeveralBodies, BodiesOfDifferentDegreesAreOneModel) {
   // The block cubic, the roller quadratic: one body of both degrees; the
   // roller's multipliers stay N2/S0 (its own degree), the block's
