@@ -159,7 +159,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
     s.von_mises.setZero(np);
     s.magnitude.setZero(np);
   } else {
-    s = recover_model_stress(model, r.u);  // each body with its own law
+    s = recover_model_stress(model, mesh, r.u);  // each body with its own law
   }
   const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
   auto stress = make_array("stress", 6, np);

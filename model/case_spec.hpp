@@ -131,8 +131,8 @@ struct BodySpec {
 };
 
 // A case.  Its BodySpec part is its one body; with [[body]] tables (bodies
-// not empty) it holds what the bodies share: the dimension, the largest
-// degree, the model path (every body small or every body large
+// not empty) it holds what the bodies share: the dimension, the smallest
+// degree (what the contact check needs), the model path (every body small or every body large
 // deformation), the largest E and its nu (the contact's scales), and in
 // `refine` the refinement added to every body's own (--refine r: every
 // body r times finer than its [mesh] says).

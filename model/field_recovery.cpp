@@ -131,16 +131,16 @@ BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int firs
   return mesh;
 }
 
-RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u) {
+RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u) {
   const Body& body = model.body;
   const bool green_lagrange = model.spec.finite_strain();
-  if (model.parts.size() <= 1) return recover_stress(body_bezier_mesh(body, u), model_stress_law(model), green_lagrange);
+  if (model.parts.size() <= 1) return recover_stress(mesh, model_stress_law(model), green_lagrange);
   // Several bodies: each with its own law, stacked in the patches' order.
   std::vector<RecoveredStress> each;
   Eigen::Index rows = 0;
   for (const Model::Part& part : model.parts) {
-    const BezierMesh mesh = body_bezier_mesh(body, u, part.first_patch, part.num_patches);
-    each.push_back(recover_stress(mesh, cauchy_stress(part.law, !green_lagrange), green_lagrange));
+    const BezierMesh part_mesh = body_bezier_mesh(body, u, part.first_patch, part.num_patches);
+    each.push_back(recover_stress(part_mesh, cauchy_stress(part.law, !green_lagrange), green_lagrange));
     rows += each.back().stress.rows();
   }
   RecoveredStress out;

@@ -74,10 +74,11 @@ StressLaw model_stress_law(const Model& model);
 // `patch_of`, when given, receives each element's patch.
 BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch = 0, int num_patches = -1,
                             std::vector<int>* patch_of = nullptr);
-// recover_stress on the model's body with displacement u (one row per body
-// control point): every patch's elements one after the other, each body
-// with its own law.
-RecoveredStress recover_model_stress(const Model& model, const Eigen::MatrixXd& u);
+// recover_stress on `mesh`, the model's body_bezier_mesh for the
+// displacement u (one row per body control point): one body with the
+// case's law on that mesh; several bodies each with its own law (on a mesh
+// of its own patches, stacked in the patches' order).
+RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u);
 
 // J = det F and the hydrostatic pressure -tr(sigma)/3, projected onto each
 // element's Bezier basis like the stress (rows as recover_stress).  With
