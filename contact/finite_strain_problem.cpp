@@ -15,16 +15,22 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   offsets_.assign(1, 0);
   for (const auto& c : s_.contacts) offsets_.push_back(offsets_.back() + c.face->num_multipliers());
   m_ = offsets_.back();
-  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, *s_.law, s_.formulation);
+  if (s_.patch_laws.empty()) s_.patch_laws.assign(1, s_.law);
+  if (s_.patch_formulations.empty()) s_.patch_formulations.assign(1, s_.formulation);
+  tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, s_.patch_laws, s_.patch_formulations);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
     for (const auto& c : s_.contacts) contact_quadratures_.emplace_back(*c.face);
     // K_K on the reference faces: the small-deformation operator's weights
-    for (size_t k = 0; k < s_.contacts.size(); ++k)
+    for (size_t k = 0; k < s_.contacts.size(); ++k) {
+      const auto& c = s_.contacts[k];
+      masters_.push_back(c.master ? std::make_unique<MasterSurface>(*c.master) : nullptr);
       weights_.segment(offsets_[k], offsets_[k + 1] - offsets_[k]) =
-          assemble_weighted_gaps(*s_.dofs, *s_.contacts[k].face, *s_.contacts[k].obstacle).weights;
+          c.master ? assemble_mortar_gaps(*s_.dofs, *c.face, *c.master, c.integration).weights
+                   : assemble_weighted_gaps(*s_.dofs, *c.face, *c.obstacle).weights;
+    }
   }
 }
 
@@ -38,7 +44,8 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 }
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                                           Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling) const {
+                                           Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling,
+                                           std::vector<Eigen::Triplet<double>>* K_coupling) const {
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
@@ -47,6 +54,14 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
   for (size_t c = 0; c < s_.contacts.size(); ++c) {
     const auto& contact = s_.contacts[c];
     const int offset = offsets_[c];
+    if (masters_[c]) {
+      const int count = offsets_[c + 1] - offset;
+      add_finite_strain_mortar(dofs, *contact.face, *masters_[c], contact.integration, u,
+                               lambda.size() ? Eigen::VectorXd(lambda.segment(offset, count))
+                                             : Eigen::VectorXd::Zero(count),
+                               offset, {&out.gamma, coupling ? &out.G : nullptr, K, K_coupling});
+      continue;
+    }
     // A moving obstacle stands at its reference position moved by t * motion.
     std::optional<TranslatedObstacle> moved;
     if (contact.motion.size() > 0) moved.emplace(*contact.obstacle, t * contact.motion);
@@ -126,9 +141,13 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   if (m_ > 0) {
     const Eigen::VectorXd lambda = x.tail(m_);
     ContactEval ce;
-    evaluate_contact(t, u, lambda, &J.K, ce);  // adds the curvature term to K (face couplings: in the pattern)
+    std::vector<Eigen::Triplet<double>> coupling;
+    // adds the curvature terms to K (one face's couplings: in the pattern; two bodies': beside it)
+    evaluate_contact(t, u, lambda, &J.K, ce, true, &coupling);
     const auto active = decide_active(ce.gamma, lambda);
     J.B.setFromTriplets(ce.G.begin(), ce.G.end());
+    J.K_coupling.resize(n_, n_);
+    J.K_coupling.setFromTriplets(coupling.begin(), coupling.end());
     for (int K = 0; K < m_; ++K) {
       if (active[K]) J.s[K] = s_.complementarity_scale;
       else J.d[K] = weights_[K];

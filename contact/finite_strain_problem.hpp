@@ -20,6 +20,7 @@
 #include <memory>
 #include <vector>
 
+#include "contact/finite_strain_mortar.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/linear_static.hpp"
 #include "engine/load_stepping.hpp"
@@ -38,14 +39,23 @@ struct FiniteStrainSetup {
   const DofMap* dofs = nullptr;               // prescribed values at full load (ramped with t)
   const HyperelasticLaw* law = nullptr;
   Formulation formulation = Formulation::displacement;  // engine/volumetric_projection.hpp
+  // Several bodies (or materials): the law and formulation of each patch of
+  // `body`; empty: `law` and `formulation` for every patch.
+  std::vector<const HyperelasticLaw*> patch_laws;
+  std::vector<Formulation> patch_formulations;
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
   // One face pressed on one rigid obstacle; several are stacked, each with its
   // own multipliers (S^{p-2} on its face), in order.  Empty: no multipliers.
+  // Or a face pressed on a face of a second deformable body (`master` not
+  // null, at its reference position; contact/finite_strain_mortar.hpp):
+  // both move, the master is projected on where it stands.
   struct Contact {
     const ContactFace* face = nullptr;
     const Obstacle* obstacle = nullptr;  // at its reference position
     Eigen::VectorXd motion;              // empty, or its translation at full load (ramped with t)
+    const MasterSurface* master = nullptr;
+    MortarIntegration integration = MortarIntegration::element;
   };
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
@@ -86,10 +96,13 @@ class FiniteStrainProblem final : public NonlinearProblem {
     std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value)
   };
   // gamma and (with `coupling`) dgamma/du at displacement u
-  // (ContactQuadrature, the one face loop); when K is not null, adds the
-  // obstacle's curvature term int lambda B N_A N_B dn/dx to it.
+  // (ContactQuadrature, the one face loop; a master face: the mortar
+  // points); when K is not null, adds the curvature term (the obstacle's
+  // int lambda B N_A N_B dn/dx, a master's lambda int B Delta delta g) to it,
+  // and a master's slave-master blocks to K_coupling.
   void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                        Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true) const;
+                        Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true,
+                        std::vector<Eigen::Triplet<double>>* K_coupling = nullptr) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;
@@ -100,6 +113,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   BlockJacobian blocks_;             // jacobian()'s, reused across calls
   std::vector<ContactQuadrature> contact_quadratures_;  // per contact: tabulated once
   std::vector<int> offsets_;         // first multiplier of each contact
+  // per contact: its master surface, moved to every state asked about (null: an obstacle)
+  std::vector<std::unique_ptr<MasterSurface>> masters_;
 };
 
 }  // namespace igac

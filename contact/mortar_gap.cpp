@@ -2,6 +2,7 @@
 #include "contact/mortar_gap.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <stdexcept>
 
 #include "engine/quadrature.hpp"
@@ -24,28 +25,20 @@ std::string MasterAsObstacle::describe() const { return "the deformable face '" 
 
 namespace {
 
-// One slave quadrature point of the mortar integral: where it is, its
-// weight (Jacobian included), the slave's control points (body numbers)
-// with their basis values, and the multipliers with theirs.
-struct SlavePoint {
-  Eigen::VectorXd X;
-  double JxW = 0;
-  std::vector<int> cps;
-  Eigen::VectorXd N;
-  std::vector<int> K;
-  std::vector<double> B;
-};
-
 // The slave side's element [a, b] (2D: a curve) cut where the master
 // point nearest to it crosses a master element edge, so that the master's
 // basis is smooth on every piece.  The projected master parameter is
 // monotone along the slave curve; each crossing of a master breakpoint is
 // found by the Illinois (regula falsi) iteration on it; a change of master
 // side by bisection.
-std::vector<double> segment_cuts(const ContactSide& side, const MasterSurface& master, double a, double b) {
+std::vector<double> segment_cuts(const ContactSide& side, const Eigen::MatrixXd* u_side, const MasterSurface& master,
+                                 double a, double b) {
   constexpr double kParameterTolerance = 1e-13;
   auto project = [&](double t) {
-    const std::optional<MasterPoint> mp = master.project(side.face_patch.point(Eigen::VectorXd::Constant(1, t)));
+    const Eigen::VectorXd xi = Eigen::VectorXd::Constant(1, t);
+    Eigen::VectorXd x = side.face_patch.point(xi);
+    if (u_side) x += side.face_patch.field(*u_side, xi);
+    const std::optional<MasterPoint> mp = master.project(x);
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     return *mp;
   };
@@ -96,13 +89,16 @@ std::vector<double> segment_cuts(const ContactSide& side, const MasterSurface& m
   return cuts;
 }
 
-// Every slave quadrature point of the mortar integral, element-based
-// (the face's own Gauss points) or segmented (2D: Gauss points on each
-// piece of segment_cuts).
-template <class Visit>
+}  // namespace
+
 void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
-                           Visit&& visit) {
-  SlavePoint sp;
+                           const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit) {
+  MortarSlavePoint sp;
+  const auto displace = [&] {
+    sp.x = sp.X;
+    if (u)
+      for (size_t a = 0; a < sp.cps.size(); ++a) sp.x += sp.N[Eigen::Index(a)] * u->row(sp.cps[a]).transpose();
+  };
   if (integration == MortarIntegration::element) {
     ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                                 const std::vector<double>& B) {
@@ -113,6 +109,7 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
       for (int a = 0; a < ev.n_loc; ++a) sp.N[a] = ev.N(q, a);
       sp.K = K;
       sp.B = B;
+      displace();
       visit(sp);
     });
     return;
@@ -123,10 +120,15 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
   std::vector<int> local;
   Eigen::VectorXd values;
   Eigen::MatrixXd derivs;
+  Eigen::MatrixXd u_side;
   for (const ContactSide& side : slave.sides) {
+    if (u) {
+      u_side.resize(Eigen::Index(side.face_cps.size()), u->cols());
+      for (size_t a = 0; a < side.face_cps.size(); ++a) u_side.row(Eigen::Index(a)) = u->row(side.face_cps[a]);
+    }
     const std::vector<double> breaks = side.face_patch.knots(0).breakpoints();
     for (size_t e = 0; e + 1 < breaks.size(); ++e) {
-      const std::vector<double> cuts = segment_cuts(side, master, breaks[e], breaks[e + 1]);
+      const std::vector<double> cuts = segment_cuts(side, u ? &u_side : nullptr, master, breaks[e], breaks[e + 1]);
       for (size_t c = 0; c + 1 < cuts.size(); ++c)
         for (size_t q = 0; q < rule.points.size(); ++q) {
           const Eigen::VectorXd t = Eigen::VectorXd::Constant(1, cuts[c] + rule.points[q] * (cuts[c + 1] - cuts[c]));
@@ -143,13 +145,12 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
           sp.JxW = rule.weights[q] * (cuts[c + 1] - cuts[c]) * tangent.norm();
           side.space.basis(t, sp.K, sp.B);
           for (int& K : sp.K) K += side.first_multiplier;
+          displace();
           visit(sp);
         }
     }
   }
 }
-
-}  // namespace
 
 MortarIntegration default_mortar_integration(int dim) {
   return dim == 2 ? MortarIntegration::segmented : MortarIntegration::element;
@@ -165,7 +166,7 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
   Eigen::MatrixXd master_derivs;
-  for_each_mortar_point(slave, master, integration, [&](const SlavePoint& sp) {
+  for_each_mortar_point(slave, master, integration, nullptr, [&](const MortarSlavePoint& sp) {
     const std::optional<MasterPoint> mp = master.project(sp.X);
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     master.side_patch(mp->side).rational_basis(mp->xi, master_local, master_values, master_derivs);
@@ -195,15 +196,14 @@ Eigen::VectorXd exact_mortar_gaps(const Eigen::MatrixXd& u, const ContactFace& s
   master.update(Eigen::MatrixXd::Zero(u.rows(), u.cols()));  // the cuts of the reference surface
   const int m = slave.num_multipliers();
   Eigen::VectorXd num = Eigen::VectorXd::Zero(m), den = Eigen::VectorXd::Zero(m);
-  std::vector<std::pair<Eigen::VectorXd, SlavePoint>> points;
-  for_each_mortar_point(slave, master, integration, [&](const SlavePoint& sp) {
-    Eigen::VectorXd x = sp.X;
-    for (size_t a = 0; a < sp.cps.size(); ++a) x += sp.N[Eigen::Index(a)] * u.row(sp.cps[a]).transpose();
-    points.emplace_back(x, sp);
+  std::vector<MortarSlavePoint> points;
+  for_each_mortar_point(slave, master, integration, nullptr, [&](const MortarSlavePoint& sp) {
+    points.push_back(sp);
+    for (size_t a = 0; a < sp.cps.size(); ++a) points.back().x += sp.N[Eigen::Index(a)] * u.row(sp.cps[a]).transpose();
   });
   master.update(u);
-  for (const auto& [x, sp] : points) {
-    const std::optional<MasterPoint> mp = master.project(x);
+  for (const MortarSlavePoint& sp : points) {
+    const std::optional<MasterPoint> mp = master.project(sp.x);
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     for (size_t k = 0; k < sp.K.size(); ++k) {
       num[sp.K[k]] += mp->gap * sp.B[k] * sp.JxW;

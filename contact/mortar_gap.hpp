@@ -20,6 +20,8 @@
 // master to round-off.
 #pragma once
 
+#include <functional>
+
 #include "contact/master_surface.hpp"
 #include "contact/weighted_gap.hpp"
 
@@ -52,6 +54,31 @@ class MasterAsObstacle final : public Obstacle {
 enum class MortarIntegration { element, segmented };
 // segmented in 2D, element in 3D.
 MortarIntegration default_mortar_integration(int dim);
+
+// One slave quadrature point of the mortar integral: where it is on the
+// reference face (X, where the integral is taken) and now (x = X + u(X);
+// X without a displacement), its weight (Jacobian of the reference face
+// included), the slave's control points (body numbers) with their basis
+// values, and the multipliers with theirs.
+struct MortarSlavePoint {
+  Eigen::VectorXd X, x;
+  double JxW = 0;
+  std::vector<int> cps;
+  Eigen::VectorXd N;
+  std::vector<int> K;
+  std::vector<double> B;
+};
+
+// Every slave quadrature point of the mortar integral, element-based (the
+// face's own Gauss points) or segmented (2D: Gauss points on each piece of
+// the slave element cut where its points' projections cross a master
+// element edge).  With u (n_cp x dim, body numbering; null: none) the slave
+// face is cut at its displaced position against `master` as it stands (the
+// caller has moved it): the integrand is continuous across the cuts, so the
+// gaps' derivative may be taken with the cuts held.  The one loop of the
+// small- and large-deformation mortar gaps.
+void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
+                           const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit);
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
                                          MortarIntegration integration);

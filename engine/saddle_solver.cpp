@@ -30,6 +30,9 @@ Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {
   t.reserve(J.K.nonZeros() + 2 * J.B.nonZeros() + m);
   for (int c = 0; c < J.K.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (int c = 0; c < J.K_coupling.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
+      t.emplace_back(it.row(), it.col(), it.value());
   for (int k = 0; k < m; ++k) {
     for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
       t.emplace_back(it.col(), n + k, it.value());
@@ -93,6 +96,7 @@ struct SaddleSolver::Impl {
   Eigen::VectorXd apply_J(const Eigen::VectorXd& x) const {
     Eigen::VectorXd y(n + m);
     y.head(n).noalias() = J->K * x.head(n);
+    if (J->K_coupling.nonZeros() > 0) y.head(n).noalias() += J->K_coupling * x.head(n);
     if (m > 0) {
       y.head(n).noalias() += J->B.transpose() * x.tail(m);
       const Eigen::VectorXd Bu = J->B * x.head(n);
@@ -217,6 +221,9 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
     Eigen::VectorXd rows = Eigen::VectorXd::Zero(I.n + I.m);
     for (int c = 0; c < J.K.outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) rows[it.row()] += std::abs(it.value());
+    for (int c = 0; c < J.K_coupling.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
+        rows[it.row()] += std::abs(it.value());
     for (int k = 0; k < I.m; ++k)
       for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
         rows[it.col()] += std::abs(it.value());

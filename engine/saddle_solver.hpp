@@ -27,7 +27,7 @@
 //    stiffness): the solve of that symmetric-part system preconditions GMRES
 //    on J (right preconditioning; the skew part is of the order of the
 //    pressure over the stiffness), and GMRES also absorbs what makes
-//    K_s R != 0 (the curvature of a curved obstacle).  A problem may hand
+//    K_s R != 0 (the curvature of a curved obstacle) and K_coupling.  A problem may hand
 //    over the symmetric matrix to factorise (K_factor; the large-deformation
 //    problem gives K without the follower load stiffness, which keeps
 //    K_s R = 0).  For a symmetric K one application is exact.
@@ -49,6 +49,13 @@ struct BlockJacobian {
   // Optional: the symmetric matrix to factorise in K's place (K's pattern);
   // empty: (K + K^T) / 2.
   Eigen::SparseMatrix<double> K_factor;
+  // Optional: a part of the displacement block outside K's pattern, so
+  // that J's K is K + K_coupling (empty: none).  The factor leaves it out
+  // and GMRES applies it, as it does the follower load's skew part: the
+  // large-deformation mortar contact's curvature terms that couple two
+  // bodies' control points (contact/finite_strain_mortar.hpp), which no
+  // element of either body joins.  Its pattern may change every call.
+  Eigen::SparseMatrix<double> K_coupling;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B;  // m x n (m = 0: no constraints)
   Eigen::VectorXd s, d;                            // m each
   // Motions the constraints must hold (K R = 0 up to the terms GMRES

@@ -183,8 +183,8 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
 constexpr int kElementsPerColourForThreads = 64;
 
 template <int dim>
-bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const HyperelasticLaw& law, Formulation formulation,
-                  int pressure_degree,
+bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vector<const HyperelasticLaw*>& laws,
+                  const std::vector<Formulation>& formulations, int pressure_degree,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
                   const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
   const bool tangent = K != nullptr;
@@ -216,6 +216,9 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const Hyperela
       for (int j = 0; j < n; ++j) {
         if (failed.load(std::memory_order_relaxed)) continue;
         quad.evaluate(colour[j], ws.geo, true);
+        const int patch = laws.size() > 1 || formulations.size() > 1 ? quad.patch_of(colour[j]) : 0;
+        const HyperelasticLaw& law = *laws[laws.size() == 1 ? 0 : patch];
+        const Formulation formulation = formulations[formulations.size() == 1 ? 0 : patch];
         if (!element_kernel<dim>(law, formulation, pressure_degree, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
@@ -234,12 +237,27 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const Hyperela
 
 TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
                                                    const HyperelasticLaw& law, Formulation formulation, bool tangent)
-    : body_(body), quad_(body_, gauss_points_for(body_.degree())), dofs_(dofs), law_(&law),
-      formulation_(formulation), pressure_degree_(pressure_degree(body_.degree())) {
+    : TotalLagrangianAssembler(body, dofs, std::vector<const HyperelasticLaw*>{&law}, std::vector<Formulation>{formulation},
+                               tangent) {}
+
+TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
+                                                   std::vector<const HyperelasticLaw*> patch_laws,
+                                                   std::vector<Formulation> patch_formulations, bool tangent)
+    : body_(body), quad_(body_, gauss_points_for(body_.degree())), dofs_(dofs), laws_(std::move(patch_laws)),
+      formulations_(std::move(patch_formulations)), pressure_degree_(pressure_degree(body_.degree())) {
   const int dim = body_.space_dim();
-  if (formulation_ == Formulation::mixed && !law.has_volumetric_split())
-    throw std::invalid_argument(fmt::format("the mixed formulation needs a law with an isochoric/volumetric split; "
-                                            "'{}' declares none", law.name()));
+  const size_t patches = size_t(body_.num_patches());
+  if (laws_.empty() || (laws_.size() != 1 && laws_.size() != patches) || formulations_.empty() ||
+      (formulations_.size() != 1 && formulations_.size() != patches))
+    throw std::invalid_argument(fmt::format("total-Lagrangian assembly of {} patches got {} laws and {} formulations "
+                                            "(one for all, or one per patch)", patches, laws_.size(),
+                                            formulations_.size()));
+  for (size_t k = 0; k < std::max(laws_.size(), formulations_.size()); ++k) {
+    const HyperelasticLaw& law = *laws_[laws_.size() == 1 ? 0 : k];
+    if (formulations_[formulations_.size() == 1 ? 0 : k] == Formulation::mixed && !law.has_volumetric_split())
+      throw std::invalid_argument(fmt::format("the mixed formulation needs a law with an isochoric/volumetric split; "
+                                              "'{}' declares none", law.name()));
+  }
   if ((dim != 2 && dim != 3) || body_.param_dim() != dim)
     throw std::invalid_argument(fmt::format(
         "total-Lagrangian assembly needs a 2D or 3D volume body, got {} parametric directions in R^{}",
@@ -278,8 +296,8 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
-  return dim == 2 ? assemble_dim<2>(quad_, dofs_, *law_, formulation_, pressure_degree_, colours_, pattern_, u, f_int, K)
-                  : assemble_dim<3>(quad_, dofs_, *law_, formulation_, pressure_degree_, colours_, pattern_, u, f_int, K);
+  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, colours_, pattern_, u, f_int, K)
+                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, colours_, pattern_, u, f_int, K);
 }
 
 }  // namespace igac

@@ -59,6 +59,12 @@ class TotalLagrangianAssembler {
   // std::logic_error if given a K.
   TotalLagrangianAssembler(const Body& body, const DofMap& dofs, const HyperelasticLaw& law,
                            Formulation formulation = Formulation::displacement, bool tangent = true);
+  // Patch k of the body with law patch_laws[k] and formulation
+  // patch_formulations[k] (a list of one entry: every patch's), e.g. two
+  // bodies of different rubbers in one model.  The laws must outlive the
+  // assembler.
+  TotalLagrangianAssembler(const Body& body, const DofMap& dofs, std::vector<const HyperelasticLaw*> patch_laws,
+                           std::vector<Formulation> patch_formulations, bool tangent = true);
 
   // u: displacement per control point (n_cp x dim), prescribed values
   // included (e.g. DofMap::expand of the free values).  Fills f_int (free
@@ -77,7 +83,6 @@ class TotalLagrangianAssembler {
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
   const DofMap& dofs() const { return dofs_; }
   int dim() const { return dofs_.dim(); }
-  Formulation formulation() const { return formulation_; }
   // Smallest det J of the geometry map met at a Gauss point.
   double min_det_J() const { return min_det_J_; }
 
@@ -85,8 +90,8 @@ class TotalLagrangianAssembler {
   Body body_;
   BodyQuadrature quad_;  // the elements, their tabulated basis and control points
   DofMap dofs_;
-  const HyperelasticLaw* law_;
-  Formulation formulation_;
+  std::vector<const HyperelasticLaw*> laws_;  // one, or one per patch
+  std::vector<Formulation> formulations_;     // one, or one per patch
   int pressure_degree_;
   Eigen::SparseMatrix<double> pattern_;
   std::vector<std::vector<int>> colours_;  // elements by colour: one colour shares no equation

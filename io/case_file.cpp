@@ -152,9 +152,13 @@ void read_bodies(const std::string& path, const toml::table& root, CaseSpec& c) 
     if (!c.bodies.empty() && b.dim() != c.bodies.front().dim())
       s.fail("geometry", fmt::format("body '{}' is {}D, body '{}' {}D: the bodies of a case share one dimension",
                                      b.body_name, b.dim(), c.bodies.front().body_name, c.bodies.front().dim()));
-    if (b.finite_strain() && tabs.size() > 1)
-      s.fail("material", fmt::format("body '{}' has model \"{}\": several bodies run in small deformation "
-                                     "(model \"linear_elastic\") today", b.body_name, b.model));
+    // One kinematics per case: a linear body (small strain, not objective)
+    // beside a hyperelastic one would turn its rotations into strain.
+    if (!c.bodies.empty() && b.finite_strain() != c.bodies.front().finite_strain())
+      s.fail("material", fmt::format("body '{}' has model \"{}\" and body '{}' model \"{}\": the bodies of a case are "
+                                     "all small-deformation (\"linear_elastic\") or all hyperelastic (large "
+                                     "deformation; \"saint_venant_kirchhoff\" for a stiff part)",
+                                     b.body_name, b.model, c.bodies.front().body_name, c.bodies.front().model));
     c.bodies.push_back(std::move(b));
   }
   // What the bodies share (model/case_spec.hpp): the stiffest body's E and
@@ -260,9 +264,6 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
       cs.master = s.string("master");
       if (cs.master.empty()) s.fail("master", "empty: name the face of the second body");  // ("" means no master)
       if (cs.master == cs.face) s.fail("master", "the master face is the contact face itself");
-      if (c.finite_strain())
-        s.fail("master", fmt::format("contact between two deformable bodies runs in small deformation only (material "
-                                     "model \"linear_elastic\"), not with model \"{}\"", c.model));
     } else {
       const toml::table& ot = s.sub("obstacle");
       const std::string type = ot["type"].value_or(std::string());

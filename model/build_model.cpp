@@ -427,9 +427,6 @@ Model build_model(const CaseSpec& spec) {
             throw InputError(fmt::format("{}: [contact] master '{}' is on the same body as the face '{}' ({} and {} are "
                                          "joined): the master is a face of a second body", spec.path, cs.master,
                                          cs.face, m.body.describe(s), m.body.describe(f)));
-      if (spec.finite_strain())
-        throw InputError(fmt::format("{}: [contact] master: contact between two deformable bodies runs in small "
-                                     "deformation only (model \"linear_elastic\")", spec.path));
       c.master_name = cs.master;
       c.master = std::make_unique<MasterSurface>(m.body, master);
       // The reports read the master as an obstacle at its reference position.

@@ -7,6 +7,7 @@
 
 #include <functional>
 
+#include "contact/finite_strain_problem.hpp"
 #include "model/model.hpp"
 #include "model/run_result.hpp"
 
@@ -25,6 +26,10 @@ struct CoarserRun {
 RunResult solve_model(const Model& model, const StepObserver& on_step = {}, CoarserRun coarser = {});
 // The large-deformation path (model/solve_finite_strain.cpp).
 RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
+// What the large-deformation problem of a model is made of: its body, dofs,
+// laws (one per body), pressures, contacts (obstacles and master faces) and
+// the complementarity scale.  Borrows from `model`.
+FiniteStrainSetup finite_strain_setup(const Model& model);
 
 // Throws InputError (naming the case) when free rigid motions (`modes`, not
 // held by Dirichlet conditions) are not held: no contact, a contact that

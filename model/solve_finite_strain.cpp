@@ -118,19 +118,31 @@ Loading loading_of(const Model& m) {
 
 }  // namespace
 
-RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
-  RunResult r;
-  Stopwatch t_start;
+FiniteStrainSetup finite_strain_setup(const Model& m) {
   const Body& body = m.body;
   FiniteStrainSetup setup;
   setup.body = &body;
   setup.dofs = m.dofs.get();
   setup.law = m.law.get();
   setup.formulation = m.spec.formulation;
+  if (m.parts.size() > 1) {  // several bodies: each patch with its body's law
+    setup.patch_formulations = m.patch_formulations();
+    for (const Model::Part& p : m.parts) setup.patch_laws.insert(setup.patch_laws.end(), size_t(p.num_patches), p.law.get());
+  }
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value});
   setup.follower_pressure = m.spec.loading.follower_pressure;
-  for (const auto& c : m.contacts) setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});
+  for (const auto& c : m.contacts)
+    setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
+                              default_mortar_integration(body.space_dim())});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+  return setup;
+}
+
+RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
+  RunResult r;
+  Stopwatch t_start;
+  const Body& body = m.body;
+  const FiniteStrainSetup setup = finite_strain_setup(m);
   FiniteStrainProblem problem(setup);
 
   const RigidModes modes = free_rigid_modes(body, *m.dofs);

@@ -96,6 +96,60 @@ Eigen::MatrixXd NurbsPatch::jacobian(const Eigen::VectorXd& xi) const {
   return J;
 }
 
+Eigen::MatrixXd NurbsPatch::second_derivatives(const Eigen::VectorXd& xi) const {
+  const int pd = param_dim(), sd = space_dim();
+  std::array<std::vector<std::vector<double>>, 3> b;
+  std::array<int, 3> span{0, 0, 0}, np{1, 1, 1};
+  for (int d = 0; d < pd; ++d) {
+    span[d] = knots_[d].find_span(xi[d]);
+    knots_[d].basis_derivatives(span[d], xi[d], 2, b[d]);
+    np[d] = degree(d) + 1;
+  }
+  // homogeneous sums: A (point times weight) and W, with their first and second derivatives
+  Eigen::VectorXd A = Eigen::VectorXd::Zero(sd);
+  Eigen::MatrixXd dA = Eigen::MatrixXd::Zero(sd, pd), ddA = Eigen::MatrixXd::Zero(sd, pd * pd);
+  double W = 0;
+  Eigen::VectorXd dW = Eigen::VectorXd::Zero(pd), ddW = Eigen::VectorXd::Zero(pd * pd);
+  const int n = np[0] * np[1] * np[2];
+  for (int a = 0; a < n; ++a) {
+    const std::array<int, 3> loc{a % np[0], (a / np[0]) % np[1], a / (np[0] * np[1])};
+    std::array<int, 3> gi{0, 0, 0};
+    for (int d = 0; d < pd; ++d) gi[d] = span[d] - degree(d) + loc[d];
+    const int i = index(gi);
+    // d^k/dxi of the tensor product with order[d] derivatives in direction d
+    auto product = [&](const std::array<int, 3>& order) {
+      double v = weights_[i];
+      for (int d = 0; d < pd; ++d) v *= b[d][order[d]][loc[d]];
+      return v;
+    };
+    const double v = product({0, 0, 0});
+    A += v * points_.row(i).transpose();
+    W += v;
+    for (int p = 0; p < pd; ++p) {
+      std::array<int, 3> o{0, 0, 0};
+      ++o[p];
+      const double dv = product(o);
+      dA.col(p) += dv * points_.row(i).transpose();
+      dW[p] += dv;
+      for (int q = 0; q < pd; ++q) {
+        std::array<int, 3> oo = o;
+        ++oo[q];
+        const double ddv = product(oo);
+        ddA.col(p * pd + q) += ddv * points_.row(i).transpose();
+        ddW[p * pd + q] += ddv;
+      }
+    }
+  }
+  const Eigen::VectorXd X = A / W;
+  Eigen::MatrixXd dX(sd, pd);
+  for (int p = 0; p < pd; ++p) dX.col(p) = (dA.col(p) - dW[p] * X) / W;
+  Eigen::MatrixXd out(sd, pd * pd);
+  for (int p = 0; p < pd; ++p)
+    for (int q = 0; q < pd; ++q)
+      out.col(p * pd + q) = (ddA.col(p * pd + q) - ddW[p * pd + q] * X - dW[p] * dX.col(q) - dW[q] * dX.col(p)) / W;
+  return out;
+}
+
 std::vector<int> NurbsPatch::face_control_points(const Face& f) const {
   std::vector<int> out;
   const int fixed = f.at_end ? num_basis(f.direction) - 1 : 0;

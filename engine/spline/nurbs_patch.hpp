@@ -53,6 +53,11 @@ class NurbsPatch {
   Eigen::VectorXd point(const Eigen::VectorXd& xi) const;
   // Jacobian dX/dxi (space_dim x param_dim) at xi.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& xi) const;
+  // Second parametric derivatives of the point at xi: space_dim x (pd * pd),
+  // column a * pd + b = d^2 X / dxi_a dxi_b (the curvature of a face, e.g.
+  // for the large-deformation mortar contact's linearisation), from the
+  // homogeneous form X = A / W: X,ab = (A,ab - W,ab X - W,a X,b - W,b X,a) / W.
+  Eigen::MatrixXd second_derivatives(const Eigen::VectorXd& xi) const;
   // Rational basis values and first parametric derivatives at xi:
   // indices of the nonzero functions, values, derivatives (n x param_dim).
   void rational_basis(const Eigen::VectorXd& xi, std::vector<int>& indices,

@@ -82,8 +82,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadMaster{"with_obstacle", "master = \"0:north\"",
                   "master = \"0:north\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]",
                   "not both"},
-        BadMaster{"large_deformation", "model = \"linear_elastic\"", "model = \"neo_hookean\"",
-                  "two deformable bodies runs in small deformation only"},
         // A part nothing holds sideways: the message names the loose patch.
         BadMaster{"loose_part", "faces = [\"0:west\", \"1:west\"]", "faces = [\"0:west\"]",
                   "they move patch(es) 1: the body is 2 parts that no interface joins"},
@@ -126,8 +124,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadMaster{"key_of_a_body", "name = \"block\"", "name = \"block\"\ncolour = \"red\"", "[body] colour: unknown key"},
         BadMaster{"bodies_overlap", "translate = [0.0, -5.0]", "translate = [0.0, -4.9]",
                   "starts inside the body of its master 'block:top': 0.1 deep at (0, -1)"},
-        BadMaster{"large_deformation", "model = \"linear_elastic\"\nE = 3.0", "model = \"neo_hookean\"\nE = 3.0",
-                  "several bodies run in small deformation"},
+        // a linear body beside a hyperelastic one: one kinematics per case
+        BadMaster{"mixed_kinematics", "model = \"linear_elastic\"\nE = 3.0", "model = \"neo_hookean\"\nE = 3.0",
+                  "the bodies of a case are all small-deformation (\"linear_elastic\") or all hyperelastic"},
         BadMaster{"block_in_3d", "elements = [48, 24]", "elements = [48, 24, 2]",
                   "body 'block' is 3D, body 'roller' 2D"},
         BadMaster{"bad_translate", "translate = [0.0, -5.0]", "translate = [0.0]", "translate: must have 2 entries"}),

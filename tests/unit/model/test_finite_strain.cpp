@@ -16,6 +16,7 @@
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "tests/support/central_differences.hpp"
 
 using namespace igac;
 
@@ -31,32 +32,11 @@ Model model_of(const std::string& path, int refine = 0) {
   return m;
 }
 
-FiniteStrainSetup setup_of(const Model& m) {
-  FiniteStrainSetup s;
-  s.body = &m.body;
-  s.dofs = m.dofs.get();
-  s.law = m.law.get();
-  for (const auto& p : m.spec.pressure) {
-    PressureLoad pl;
-    for (const auto& n : p.faces) {
-      const auto f = *find_faces(m, n);
-      pl.faces.insert(pl.faces.end(), f.begin(), f.end());
-    }
-    pl.value = p.value;
-    s.pressures.push_back(pl);
-  }
-  s.follower_pressure = m.spec.loading.follower_pressure;
-  for (const auto& c : m.contacts) s.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});
-  s.complementarity_scale = m.spec.E / m.mesh_size;
-  return s;
-}
+FiniteStrainSetup setup_of(const Model& m) { return finite_strain_setup(m); }
 
 }  // namespace
 
 TEST(FiniteStrainTangent, MatchesCentralDifferencesWithActiveCurvedContact) {
-  // Central differences of a smooth residual: error ~ h^2 |R'''| plus
-  // round-off |R| eps / h; h = 1e-6 relative gives ~1e-8 of the column.
-  constexpr double kStep = 1e-6;
   constexpr double kTolerance = 1e-5;  // relative to the column's largest entry
   const Model m = model_of(kSource + "/tests/data/finite_strain_curved_obstacle.toml");
   FiniteStrainProblem problem(setup_of(m));
@@ -69,32 +49,12 @@ TEST(FiniteStrainTangent, MatchesCentralDifferencesWithActiveCurvedContact) {
   const auto summary = run_load_steps(problem, x, opt, {});
   ASSERT_EQ(summary.status, "converged");
   const double t = summary.steps.back().load_factor;
-  Eigen::SparseMatrix<double> J;
-  ASSERT_TRUE(problem.jacobian(t, x, J));
-  Eigen::VectorXd r0;
-  ASSERT_TRUE(problem.residual(t, x, r0));
   const auto active = problem.active_set(t, x);
   ASSERT_GE(std::count(active.begin(), active.end(), 1), 3) << "the contact zone must be active";
-  const Eigen::MatrixXd Jd = Eigen::MatrixXd(J);
   // every multiplier column and displacement columns near the contact face
   std::vector<int> columns;
   for (int j = 0; j < problem.size(); j += (j < problem.num_displacements() ? 7 : 1)) columns.push_back(j);
-  int checked = 0;
-  for (int j : columns) {
-    const double h = kStep * std::max(1.0, std::abs(x[j]));
-    Eigen::VectorXd xp = x, xm = x, rp, rm;
-    xp[j] += h;
-    xm[j] -= h;
-    ASSERT_TRUE(problem.residual(t, xp, rp));
-    const auto ap = problem.active_set(t, xp);
-    ASSERT_TRUE(problem.residual(t, xm, rm));
-    const auto am = problem.active_set(t, xm);
-    if (ap != active || am != active) continue;  // across the semismooth kink: no derivative to compare
-    const Eigen::VectorXd fd = (rp - rm) / (2 * h);
-    const double scale = std::max(Jd.col(j).cwiseAbs().maxCoeff(), 1e-12);
-    EXPECT_LT((fd - Jd.col(j)).cwiseAbs().maxCoeff() / scale, kTolerance) << "column " << j;
-    ++checked;
-  }
+  const int checked = igac_test::expect_jacobian_matches_central_differences(problem, t, x, columns, kTolerance);
   EXPECT_GT(checked, int(columns.size()) * 9 / 10);
 }
 

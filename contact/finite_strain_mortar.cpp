@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "contact/finite_strain_mortar.hpp"
+
+#include <stdexcept>
+
+#include "engine/sparsity.hpp"
+
+namespace igac {
+
+void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, MasterSurface& master,
+                              MortarIntegration integration, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
+                              int offset, const FiniteStrainMortarTerms& out) {
+  master.update(u);
+  const int dim = dofs.dim(), pd = dim - 1;
+  std::vector<int> master_local, master_cps, eq_s, eq_m, eq_block;
+  Eigen::VectorXd R;
+  Eigen::MatrixXd dR, P, W, H, block;
+  for_each_mortar_point(slave, master, integration, &u, [&](const MortarSlavePoint& sp) {
+    const std::optional<MasterPoint> mp = master.project(sp.x);
+    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    double lambda_B = 0;  // sum_K lambda_K B_K at the point, times the weight
+    for (size_t k = 0; k < sp.K.size(); ++k) {
+      const double bw = sp.B[k] * sp.JxW;
+      (*out.gamma)[offset + sp.K[k]] += mp->gap * bw;
+      lambda_B += lambda[sp.K[k]] * bw;
+    }
+    if (!out.G) return;
+    const NurbsPatch& face = master.side_patch(mp->side);
+    face.rational_basis(mp->xi, master_local, R, dR);
+    const std::vector<int>& side_cps = master.side_control_points(mp->side);
+    master_cps.resize(master_local.size());
+    for (size_t b = 0; b < master_local.size(); ++b) master_cps[b] = side_cps[master_local[b]];
+    dofs.element_equations(sp.cps, eq_s);
+    dofs.element_equations(master_cps, eq_m);
+    const Eigen::VectorXd& n = mp->normal;
+    const int ns = int(sp.cps.size()), nm = int(master_cps.size());
+    // delta g = (delta x_s - delta x_m) . n
+    for (size_t k = 0; k < sp.K.size(); ++k) {
+      const double bw = sp.B[k] * sp.JxW;
+      if (bw == 0.0) continue;
+      const int row = offset + sp.K[k];
+      for (int a = 0; a < ns; ++a)
+        for (int i = 0; i < dim; ++i)
+          if (eq_s[a * dim + i] >= 0) out.G->emplace_back(row, eq_s[a * dim + i], bw * sp.N[a] * n[i]);
+      for (int b = 0; b < nm; ++b)
+        for (int i = 0; i < dim; ++i)
+          if (eq_m[b * dim + i] >= 0) out.G->emplace_back(row, eq_m[b * dim + i], -bw * R[b] * n[i]);
+    }
+    if (!out.K || lambda_B == 0.0) return;
+    // lambda_B Delta delta g over the local dofs: the slave's, then the master's
+    const Eigen::MatrixXd a = face.jacobian(mp->xi);  // current tangents, dim x pd
+    const Eigen::MatrixXd second = face.second_derivatives(mp->xi);
+    const Eigen::MatrixXd m = a.transpose() * a;
+    Eigen::MatrixXd b(pd, pd);
+    for (int al = 0; al < pd; ++al)
+      for (int be = 0; be < pd; ++be) b(al, be) = n.dot(second.col(al * pd + be));
+    const double g = mp->gap;
+    const Eigen::MatrixXd A_inv = (m - g * b).inverse();
+    const Eigen::MatrixXd C = m.inverse() * b * A_inv;
+    const int nd = (ns + nm) * dim;
+    P.setZero(pd, nd);  // a_a . D
+    W.setZero(pd, nd);  // n . delta a_a
+    for (int s = 0; s < ns; ++s)
+      for (int i = 0; i < dim; ++i) P.col(s * dim + i) = sp.N[s] * a.row(i).transpose();
+    for (int r = 0; r < nm; ++r)
+      for (int i = 0; i < dim; ++i) {
+        P.col((ns + r) * dim + i) = -R[r] * a.row(i).transpose();
+        W.col((ns + r) * dim + i) = n[i] * dR.row(r).transpose();
+      }
+    const Eigen::MatrixXd AP = A_inv * P;
+    H.noalias() = -W.transpose() * AP;
+    H += H.transpose().eval();  // -(W^T A^-1 P + P^T A^-1 W)
+    H.noalias() -= g * W.transpose() * (A_inv * W);
+    H.noalias() -= P.transpose() * (C * P);
+    H *= lambda_B;
+    // in the pattern: each side's own block; the slave-master blocks beside it
+    block = H.topLeftCorner(ns * dim, ns * dim);
+    scatter_element_matrix(*out.K, out.K->valuePtr(), eq_s, block);
+    block = H.bottomRightCorner(nm * dim, nm * dim);
+    scatter_element_matrix(*out.K, out.K->valuePtr(), eq_m, block);
+    if (!out.K_coupling) return;
+    for (int r = 0; r < ns * dim; ++r) {
+      if (eq_s[r] < 0) continue;
+      for (int c = 0; c < nm * dim; ++c) {
+        if (eq_m[c] < 0) continue;
+        out.K_coupling->emplace_back(eq_s[r], eq_m[c], H(r, ns * dim + c));
+        out.K_coupling->emplace_back(eq_m[c], eq_s[r], H(ns * dim + c, r));
+      }
+    }
+  });
+}
+
+}  // namespace igac

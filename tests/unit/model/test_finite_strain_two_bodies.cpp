@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Two deformable bodies in large deformation (contact/finite_strain_mortar):
+// the Newton matrix against central differences of the residual in 2D and
+// 3D with a curved master, the slave-master coupling that the stiffness
+// pattern does not hold, and the contact force on the slave equal and
+// opposite to the force on the master.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "contact/finite_strain_problem.hpp"
+#include "engine/linear_static.hpp"
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
+#include "tests/support/central_differences.hpp"
+
+using namespace igac;
+
+namespace {
+
+const std::string kData = std::string(IGAC_SOURCE_DIR) + "/tests/data/";
+
+Model model_of(const std::string& file) {
+  CaseSpec spec = read_case(kData + file);
+  apply_overrides(spec, {}, 0);
+  Model m = build_model(spec);
+  m.quiet = true;
+  return m;
+}
+
+// The problem of `file` solved to its full load; t of the last step.
+double solve(const Model& m, FiniteStrainProblem& problem, Eigen::VectorXd& x) {
+  x = Eigen::VectorXd::Zero(problem.size());
+  problem.activate_nearest(x, int(free_rigid_modes(m.body, *m.dofs).modes.cols()));
+  LoadSteppingOptions opt;
+  opt.steps = m.spec.loading.steps;
+  opt.quiet = true;
+  const auto summary = run_load_steps(problem, x, opt, {});
+  EXPECT_EQ(summary.status, "converged");
+  return summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
+}
+
+void expect_tangent_matches(const std::string& file, int stride) {
+  constexpr double kTolerance = 1e-5;  // relative to the column's largest entry
+  const Model m = model_of(file);
+  FiniteStrainProblem problem(finite_strain_setup(m));
+  Eigen::VectorXd x;
+  const double t = solve(m, problem, x);
+  ASSERT_EQ(t, 1.0);
+  const auto active = problem.active_set(t, x);
+  ASSERT_GE(std::count(active.begin(), active.end(), 1), 3) << "the contact zone must be active";
+  std::vector<int> columns;
+  for (int j = 0; j < problem.size(); j += (j < problem.num_displacements() ? stride : 1)) columns.push_back(j);
+  const int checked = igac_test::expect_jacobian_matches_central_differences(problem, t, x, columns, kTolerance);
+  EXPECT_GT(checked, int(columns.size()) * 9 / 10);
+}
+
+}  // namespace
+
+TEST(FiniteStrainTwoBodies, TangentMatchesCentralDifferences2D) {
+  expect_tangent_matches("finite_strain_two_bodies.toml", 3);
+}
+
+TEST(FiniteStrainTwoBodies, TangentMatchesCentralDifferences3D) {
+  expect_tangent_matches("finite_strain_two_bodies_3d.toml", 13);
+}
+
+TEST(FiniteStrainTwoBodies, SlaveMasterCouplingIsOutsideThePatternAndNotNegligible) {
+  // The curvature terms couple the block's and the roller's control points,
+  // which no element joins: they come as K_coupling, and they matter (the
+  // tangent check above fails without them).
+  const Model m = model_of("finite_strain_two_bodies.toml");
+  FiniteStrainProblem problem(finite_strain_setup(m));
+  Eigen::VectorXd x;
+  const double t = solve(m, problem, x);
+  BlockJacobian J;
+  ASSERT_TRUE(problem.block_jacobian(t, x, J));
+  ASSERT_GT(J.K_coupling.nonZeros(), 0);
+  const double coupling = Eigen::MatrixXd(J.K_coupling).cwiseAbs().maxCoeff();
+  const double stiffness = Eigen::MatrixXd(J.K).cwiseAbs().maxCoeff();
+  EXPECT_GT(coupling, 1e-4 * stiffness);
+  // and none of it lies in K's pattern
+  for (int c = 0; c < J.K_coupling.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
+      EXPECT_EQ(J.K.coeff(it.row(), it.col()), 0.0) << it.row() << ", " << it.col();
+}
+
+TEST(FiniteStrainTwoBodies, ForceOnTheSlaveIsMinusTheForceOnTheMaster) {
+  // sum_K lambda_K dgamma_K/du summed per component over each body: the
+  // basis functions of either side are a partition of unity at every point.
+  constexpr double kRoundOff = 1e-12;
+  for (const char* file : {"finite_strain_two_bodies.toml", "finite_strain_two_bodies_3d.toml"}) {
+    const Model m = model_of(file);
+    FiniteStrainProblem problem(finite_strain_setup(m));
+    Eigen::VectorXd x;
+    const double t = solve(m, problem, x);
+    BlockJacobian J;
+    ASSERT_TRUE(problem.block_jacobian(t, x, J));
+    const Eigen::VectorXd f = J.B.transpose() * x.tail(problem.num_multipliers());
+    const int dim = m.body.space_dim();
+    const std::vector<int> part = m.body.parts();
+    std::vector<int> patch_of_cp(size_t(m.body.num_control_points()), -1);
+    for (int p = 0; p < m.body.num_patches(); ++p)
+      for (int a : m.body.body_cps(p)) patch_of_cp[size_t(a)] = p;
+    Eigen::MatrixXd per_body = Eigen::MatrixXd::Zero(2, dim);
+    for (int i = 0; i < m.dofs->num_dofs(); ++i)
+      if (m.dofs->equation(i) >= 0) per_body(part[patch_of_cp[i / dim]], i % dim) += f[m.dofs->equation(i)];
+    // the vertical component (the other ones are partly held by symmetry)
+    EXPECT_GT(std::abs(per_body(0, dim - 1)), 1e-4) << file;
+    EXPECT_NEAR(per_body(0, dim - 1), -per_body(1, dim - 1), kRoundOff * std::abs(per_body(0, dim - 1))) << file;
+  }
+}
