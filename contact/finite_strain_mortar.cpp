@@ -24,6 +24,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
       (*out.gamma)[offset + sp.K[k]] += mp->gap * bw;
       lambda_B += lambda[sp.K[k]] * bw;
     }
+    if (out.resultant) *out.resultant -= lambda_B * mp->normal;
     if (!out.G) return;
     const NurbsPatch& face = master.side_patch(mp->side);
     face.rational_basis(mp->xi, master_local, R, dR);

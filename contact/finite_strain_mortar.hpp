@@ -43,6 +43,8 @@ struct FiniteStrainMortarTerms {
   std::vector<Eigen::Triplet<double>>* G = nullptr;      // (offset + K, free eq, d gamma_K / d u); null: gaps only
   Eigen::SparseMatrix<double>* K = nullptr;              // += the in-pattern curvature blocks (null: none)
   std::vector<Eigen::Triplet<double>>* K_coupling = nullptr;  // the slave-master blocks (free x free)
+  // += the force on the slave face, -int lambda n dGamma_0 (minus the force on the master); null: not asked
+  Eigen::VectorXd* resultant = nullptr;
 };
 
 // Adds contact (slave, master) at displacement u (n_cp x dim, prescribed

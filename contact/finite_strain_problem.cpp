@@ -49,6 +49,7 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
   const DofMap& dofs = *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
+  out.resultants.assign(s_.contacts.size(), Eigen::VectorXd::Zero(dofs.dim()));
   std::vector<int> eq;
   Eigen::MatrixXd Kc;
   for (size_t c = 0; c < s_.contacts.size(); ++c) {
@@ -59,7 +60,8 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
       add_finite_strain_mortar(dofs, *contact.face, *masters_[c], contact.integration, u,
                                lambda.size() ? Eigen::VectorXd(lambda.segment(offset, count))
                                              : Eigen::VectorXd::Zero(count),
-                               offset, {&out.gamma, coupling ? &out.G : nullptr, K, K_coupling});
+                               offset, {&out.gamma, coupling ? &out.G : nullptr, K, K_coupling,
+                                        coupling ? &out.resultants[c] : nullptr});
       continue;
     }
     // A moving obstacle stands at its reference position moved by t * motion.
@@ -85,6 +87,7 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
           for (int i = 0; i < dim; ++i)
             if (eq[a * dim + i] >= 0) out.G.emplace_back(row, eq[a * dim + i], bw * v.N(q, a) * pr.normal[i]);
       }
+      out.resultants[c] -= lambda_B * pr.normal;
       // the obstacle's curvature: lambda_B N_a N_b dn/dx, into K by the one scatter
       if (!K || lambda_B == 0.0 || !(pr.normal_derivative.squaredNorm() > 0)) return;
       const int nd = v.n_loc * dim;
@@ -122,6 +125,9 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     evaluate_contact(t, u, lambda, nullptr, ce);
     for (const auto& g : ce.G) r[g.col()] += lambda[g.row()] * g.value();
     const std::vector<char> active = decide_active(ce.gamma, lambda);  // of (t, x), as active_set
+    last_t_ = t;
+    last_x_ = x;
+    last_gamma_ = ce.gamma;
     for (int K = 0; K < m_; ++K)
       r[n_ + K] = active[K] ? s_.complementarity_scale * ce.gamma[K] : weights_[K] * lambda[K];
   }
@@ -178,12 +184,16 @@ int FiniteStrainProblem::active_set_size(double t, const Eigen::VectorXd& x) con
   return int(std::count(a.begin(), a.end(), 1));
 }
 
+Eigen::VectorXd FiniteStrainProblem::gaps_at(double t, const Eigen::VectorXd& x) const {
+  if (t == last_t_ && x.size() == last_x_.size() && x == last_x_) return last_gamma_;  // the same bits
+  ContactEval ce;
+  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce, false);
+  return ce.gamma;
+}
+
 std::vector<char> FiniteStrainProblem::active_set(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
-  const Eigen::VectorXd lambda = x.tail(m_);
-  ContactEval ce;
-  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, false);
-  return decide_active(ce.gamma, lambda);
+  return decide_active(gaps_at(t, x), x.tail(m_));
 }
 
 double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
@@ -200,9 +210,14 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
 
 Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
+  return gaps_at(t, x).cwiseQuotient(weights_);
+}
+
+std::vector<Eigen::VectorXd> FiniteStrainProblem::contact_resultants(double t, const Eigen::VectorXd& x) const {
+  if (m_ == 0) return {};
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce, false);
-  return ce.gamma.cwiseQuotient(weights_);
+  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce);
+  return ce.resultants;
 }
 
 void FiniteStrainProblem::activate_nearest(Eigen::VectorXd& x, int count) const {

@@ -83,6 +83,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::MatrixXd displacement(double t, const Eigen::VectorXd& x) const;
   // Weighted gaps gamma_K / K_K at the current position.
   Eigen::VectorXd weighted_gaps(double t, const Eigen::VectorXd& x) const;
+  // The force each contact exerts on its face, -int lambda_h n dGamma_0
+  // with n the obstacle's (the master's) current normal: a vector per
+  // contact.  On a plane it is the total force along the normal; on a
+  // surface that curves or deforms the resultant, what balances the loads.
+  std::vector<Eigen::VectorXd> contact_resultants(double t, const Eigen::VectorXd& x) const;
   const Eigen::VectorXd& multiplier_weights() const { return weights_; }
   // First multiplier of contact k (k = number of contacts: the total).
   int multiplier_offset(int k) const { return offsets_[k]; }
@@ -94,6 +99,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   struct ContactEval {
     Eigen::VectorXd gamma;                                // m
     std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value)
+    std::vector<Eigen::VectorXd> resultants;              // per contact (with the coupling): the force on its face
   };
   // gamma and (with `coupling`) dgamma/du at displacement u
   // (ContactQuadrature, the one face loop; a master face: the mortar
@@ -115,6 +121,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   std::vector<int> offsets_;         // first multiplier of each contact
   // per contact: its master surface, moved to every state asked about (null: an obstacle)
   std::vector<std::unique_ptr<MasterSurface>> masters_;
+  // The gaps of the last residual's (t, x): the driver asks the active set
+  // of the state whose residual it has just evaluated (a mortar evaluation saved).
+  mutable double last_t_ = 0;
+  mutable Eigen::VectorXd last_x_, last_gamma_;
+  Eigen::VectorXd gaps_at(double t, const Eigen::VectorXd& x) const;
 };
 
 }  // namespace igac

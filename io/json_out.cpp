@@ -86,6 +86,11 @@ Json contact_numbers(const RunResult& r, const ContactResult& cr) {
     c["max_pressure"] = finite_or_null(rep.max_pressure);
   }
   c["total_force"] = finite_or_null(rep.total_force);
+  if (cr.resultant.size() > 0) {
+    Json f = Json::array();
+    for (int i = 0; i < cr.resultant.size(); ++i) f.push_back(finite_or_null(cr.resultant[i]));
+    c["resultant"] = f;
+  }
   return c;
 }
 // Every [[dirichlet]] face set's reaction: [{"face": NAME, "force": [x, y(, z)]}].

@@ -42,6 +42,11 @@ struct ContactResult {
   // Large deformation: the extent in the deformed configuration and the
   // Cauchy pressure at the most pressed multiplier.
   double half_width_deformed = 0, max_pressure_cauchy = 0;
+  // Large deformation: the force the contact exerts on the face,
+  // -int lambda n dGamma_0 with the current normal (on a plane it is
+  // total_force along the normal; against a deformed master or a curved
+  // obstacle, what balances the loads).  Empty in small deformation.
+  Eigen::VectorXd resultant;
 };
 
 // The force each obstacle exerts on the body: -sum_K lambda_K K_K over its

@@ -88,8 +88,11 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   c.op.weights = problem.multiplier_weights();
   r.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active);
   r.contacts = report_contacts(m, c);
-  for (size_t i = 0; i < r.contacts.size(); ++i)
+  const std::vector<Eigen::VectorXd> resultants = problem.contact_resultants(t, x);
+  for (size_t i = 0; i < r.contacts.size(); ++i) {
     deformed_report(m, *m.contacts[i].face, c.solution.lambda, r.u, r.contacts[i]);
+    r.contacts[i].resultant = resultants[i];
+  }
 }
 
 // What loads a large-deformation body: something, nothing (u = 0 solves

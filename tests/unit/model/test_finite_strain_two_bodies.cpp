@@ -63,7 +63,7 @@ TEST(FiniteStrainTwoBodies, TangentMatchesCentralDifferences2D) {
 }
 
 TEST(FiniteStrainTwoBodies, TangentMatchesCentralDifferences3D) {
-  expect_tangent_matches("finite_strain_two_bodies_3d.toml", 13);
+  expect_tangent_matches("finite_strain_two_bodies_3d.toml", 25);
 }
 
 TEST(FiniteStrainTwoBodies, SlaveMasterCouplingIsOutsideThePatternAndNotNegligible) {
@@ -110,4 +110,31 @@ TEST(FiniteStrainTwoBodies, ForceOnTheSlaveIsMinusTheForceOnTheMaster) {
     EXPECT_GT(std::abs(per_body(0, dim - 1)), 1e-4) << file;
     EXPECT_NEAR(per_body(0, dim - 1), -per_body(1, dim - 1), kRoundOff * std::abs(per_body(0, dim - 1))) << file;
   }
+}
+
+TEST(FiniteStrainTwoBodies, SwappingSlaveAndMasterGivesTheSameForce) {
+  // The roller's curved face as the master, then as the slave: the contact
+  // resultant balances the follower load in both (to the Newton
+  // tolerance), and the two agree to the discretisation error (measured
+  // 6.5e-5 on the vertical force, 0.3 % on the Cauchy peak at this mesh).
+  constexpr double kBalance = 1e-8;
+  constexpr double kForceDiscretisation = 1e-3;
+  constexpr double kPeakDiscretisation = 0.02;
+  std::vector<RunResult> runs;
+  for (bool swap : {false, true}) {
+    CaseSpec spec = read_case(kData + "finite_strain_two_bodies.toml");
+    apply_overrides(spec, {}, 0);
+    if (swap) std::swap(spec.contacts.at(0).face, spec.contacts.at(0).master);
+    Model m = build_model(spec);
+    m.quiet = true;
+    runs.push_back(solve_model(m));
+    ASSERT_EQ(runs.back().status, "converged");
+    const RunResult& r = runs.back();
+    ASSERT_EQ(r.contacts.size(), 1u);
+    EXPECT_NEAR(std::abs(r.contacts[0].resultant[1]), r.applied_force, kBalance * r.applied_force);
+  }
+  const ContactResult &a = runs[0].contacts[0], &b = runs[1].contacts[0];
+  EXPECT_LT(a.resultant[1] * b.resultant[1], 0.0) << "on the block, then on the roller";
+  EXPECT_NEAR(std::abs(a.resultant[1]), std::abs(b.resultant[1]), kForceDiscretisation * std::abs(a.resultant[1]));
+  EXPECT_NEAR(a.max_pressure_cauchy, b.max_pressure_cauchy, kPeakDiscretisation * a.max_pressure_cauchy);
 }
