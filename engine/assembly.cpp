@@ -172,7 +172,8 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
       const int patch = materials.size() > 1 || formulations.size() > 1 ? quad.patch_of(e) : 0;
       const LinearElastic& mat = materials[materials.size() == 1 ? 0 : patch];
       // mixed: the deviatoric part with lambda - K = -2 mu / 3, the volumetric
-      // part K Bbar^T W Bbar added per element (volumetric_projection.hpp)
+      // part K Bbar^T W Bbar and the stabilisation mu (B - Bbar)^T W (B - Bbar)
+      // added per element (volumetric_projection.hpp)
       const bool mixed = !formulations.empty() &&
                          formulations[formulations.size() == 1 ? 0 : patch] == Formulation::mixed;
       const double bulk = mat.lambda() + 2 * mat.mu() / 3;
@@ -203,13 +204,12 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
               Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
             }
         }
-      if (mixed) {  // + K Bbar^T W Bbar, B(q, a dim + i) = dN_a/dX_i: the projected divergence
+      if (mixed) {  // + K Bbar^T W Bbar + mu (B - Bbar)^T W (B - Bbar), B(q, a dim + i) = dN_a/dX_i
         projection.build(ed.xi, ed.JxW, k_pressure);
         B.resize(nq, nd);
         for (int q = 0; q < nq; ++q)
           for (int c = 0; c < nd; ++c) B(q, c) = ed.gradients(q)[c];
-        Bbar.noalias() = projection.matrix() * B;
-        Ke.noalias() += bulk * Bbar.transpose() * Eigen::Map<const Eigen::VectorXd>(ed.JxW.data(), nq).asDiagonal() * Bbar;
+        add_volumetric_tangent(projection.matrix(), ed.JxW, Eigen::VectorXd::Constant(nq, bulk), mu, B, Bbar, Ke);
       }
       dofs.element_equations(ed.cps, eq);
       for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side

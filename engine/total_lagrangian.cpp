@@ -44,10 +44,11 @@ struct Workspace {
 // Element internal force and (when `tangent`) the tangent at the Gauss
 // points of ws.geo; false when F is inadmissible at a point.
 // Mixed formulation, before the point loop: theta = Pi_e J and
-// p = Pi_e U'(theta) at the points (volumetric_projection.hpp); false when
-// the projected dilatation leaves U's domain.
+// p = Pi_e U'(theta) + mu_s (J - theta) at the points
+// (volumetric_projection.hpp); false when the projected dilatation leaves
+// U's domain.
 template <int dim>
-bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, Workspace<dim>& ws) {
+bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double stabilisation, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nq = geo.n_q;
   ws.projection.build(geo.xi, geo.JxW, pressure_degree);
@@ -69,6 +70,9 @@ bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, Worksp
     ws.d2U[q] = v.d2U;
   }
   ws.pressure.noalias() = Pi * ws.dU;
+  // the stabilisation's pressure mu_s (J - theta): the element's volume
+  // modes that the projection does not see (volumetric_projection.hpp)
+  ws.pressure += stabilisation * (ws.J - ws.theta);
   return true;
 }
 
@@ -88,7 +92,7 @@ void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, T
 }
 
 template <int dim>
-bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree,
+bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree, double stabilisation,
                     const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
@@ -110,7 +114,7 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
         for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
     if (!F.allFinite() || !(F.determinant() > 0)) return false;
   }
-  if (mixed && !condense_volumetric<dim>(law, pressure_degree, ws)) return false;
+  if (mixed && !condense_volumetric<dim>(law, pressure_degree, stabilisation, ws)) return false;
   if (mixed && tangent) ws.B.resize(nq, nd);
   DimMatrix<dim> P;
   TangentMatrix<dim> A;
@@ -171,12 +175,8 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
   if (tangent)
     for (int c = 0; c < nd; ++c)
       for (int r = (c / dim + 1) * dim; r < nd; ++r) ws.Ke(r, c) = ws.Ke(c, r);
-  if (mixed && tangent) {  // + Bbar^T diag(w U''(theta)) Bbar, Bbar = Pi_e B
-    ws.Bbar.noalias() = ws.projection.matrix() * ws.B;
-    const Eigen::VectorXd wd2U =
-        Eigen::Map<const Eigen::VectorXd>(geo.JxW.data(), nq).cwiseProduct(ws.d2U);
-    ws.Ke.noalias() += ws.Bbar.transpose() * wd2U.asDiagonal() * ws.Bbar;
-  }
+  if (mixed && tangent)  // + Bbar^T W U''(theta) Bbar + mu_s (B - Bbar)^T W (B - Bbar)
+    add_volumetric_tangent(ws.projection.matrix(), geo.JxW, ws.d2U, stabilisation, ws.B, ws.Bbar, ws.Ke);
   return true;
 }
 
@@ -185,6 +185,7 @@ constexpr int kElementsPerColourForThreads = 64;
 template <int dim>
 bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vector<const HyperelasticLaw*>& laws,
                   const std::vector<Formulation>& formulations, int pressure_degree,
+                  const std::vector<double>& stabilisations,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
                   const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
   const bool tangent = K != nullptr;
@@ -219,7 +220,8 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vec
         const int patch = laws.size() > 1 || formulations.size() > 1 ? quad.patch_of(colour[j]) : 0;
         const HyperelasticLaw& law = *laws[laws.size() == 1 ? 0 : patch];
         const Formulation formulation = formulations[formulations.size() == 1 ? 0 : patch];
-        if (!element_kernel<dim>(law, formulation, pressure_degree, u, tangent, ws)) {
+        const double stabilisation = stabilisations[stabilisations.size() == 1 ? 0 : patch];
+        if (!element_kernel<dim>(law, formulation, pressure_degree, stabilisation, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
         }
@@ -296,8 +298,13 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
-  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, colours_, pattern_, u, f_int, K)
-                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, colours_, pattern_, u, f_int, K);
+  // the mixed formulation's stabilisation modulus, per law (volumetric_projection.hpp)
+  std::vector<double> mu_s(std::max(laws_.size(), formulations_.size()), 0.0);
+  for (size_t k = 0; k < mu_s.size(); ++k)
+    if (formulations_[formulations_.size() == 1 ? 0 : k] == Formulation::mixed)
+      mu_s[k] = stabilisation_modulus(*laws_[laws_.size() == 1 ? 0 : k], dim);
+  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, mu_s, colours_, pattern_, u, f_int, K)
+                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, mu_s, colours_, pattern_, u, f_int, K);
 }
 
 }  // namespace igac

@@ -28,6 +28,27 @@ int pressure_degree(int displacement_degree) {
   return 0;
 }
 
+double stabilisation_modulus(const HyperelasticLaw& law, int dim) {
+  if (!law.has_volumetric_split()) return 0.0;
+  if (dim == 2) {
+    Eigen::Matrix2d P;
+    Eigen::Matrix4d A;
+    return law.evaluate_isochoric(Eigen::Matrix2d::Identity(), P, &A) ? A(1, 1) : 0.0;
+  }
+  Eigen::Matrix3d P;
+  Eigen::Matrix<double, 9, 9> A;
+  return law.evaluate_isochoric(Eigen::Matrix3d::Identity(), P, &A) ? A(1, 1) : 0.0;
+}
+
+void add_volumetric_tangent(const Eigen::MatrixXd& Pi, const std::vector<double>& JxW, const Eigen::VectorXd& d2U,
+                            double mu_s, const Eigen::MatrixXd& B, Eigen::MatrixXd& Bbar, Eigen::MatrixXd& Ke) {
+  const Eigen::Map<const Eigen::VectorXd> w(JxW.data(), Eigen::Index(JxW.size()));
+  Bbar.noalias() = Pi * B;
+  const Eigen::VectorXd bar = w.cwiseProduct((d2U.array() - mu_s).matrix());
+  Ke.noalias() += Bbar.transpose() * bar.asDiagonal() * Bbar;
+  if (mu_s != 0.0) Ke.noalias() += mu_s * (B.transpose() * w.asDiagonal() * B);
+}
+
 template <int pd>
 void ElementProjection::build(const std::vector<Eigen::Matrix<double, pd, 1>>& xi, const std::vector<double>& JxW,
                               int degree) {
