@@ -14,7 +14,9 @@
 //    (cases/cattaneo_mindlin_two_bodies.toml): the stick half width is
 //    c = a sqrt(1 - Q / (f N)) within one multiplier spacing, a Hertz's
 //    half width for the pair's modulus; swapping slave and master gives
-//    the same stick zone within a multiplier spacing.
+//    the same stick zone within a multiplier spacing;
+//  - 3D: a box dragged on an elastic box slides on the disc, f N along the
+//    motion, the forces on the two boxes opposite to round-off.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,18 +76,19 @@ std::string blocks_case(double motion, int steps) {
 // The contact's force on each body, -(G^T lambda + T^T lambda_t) summed over
 // the free dofs of its patches (patch 0 the slave's body, 1 the master's in
 // the cases here), per component.
-std::array<Eigen::Vector2d, 2> contact_forces(const PairRun& run) {
+std::array<Eigen::VectorXd, 2> contact_forces(const PairRun& run) {
   const ContactSolve& c = *run.result.contact;
   const Eigen::VectorXd force = -(c.op.G.transpose() * c.solution.lambda + c.op.T.transpose() * c.solution.lambda_t);
   const Model& m = run.model;
+  const int dim = m.body.space_dim();
   const std::vector<int> part = m.body.parts();
-  std::array<Eigen::Vector2d, 2> out{Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  std::array<Eigen::VectorXd, 2> out{Eigen::VectorXd::Zero(dim), Eigen::VectorXd::Zero(dim)};
   std::vector<char> seen(m.body.num_control_points(), 0);  // (joined patches share their interface's points)
   for (int k = 0; k < m.body.num_patches(); ++k)
     for (int a : m.body.body_cps(k)) {
       if (seen[a]++) continue;
-      for (int i = 0; i < 2; ++i)
-        if (const int eq = m.dofs->equation(a * 2 + i); eq >= 0) out[part[k] == part[0] ? 0 : 1][i] += force[eq];
+      for (int i = 0; i < dim; ++i)
+        if (const int eq = m.dofs->equation(a * dim + i); eq >= 0) out[part[k] == part[0] ? 0 : 1][i] += force[eq];
     }
   return out;
 }
@@ -119,6 +122,51 @@ TEST(TwoBodyFriction, BlockBelowSlidingOnAnElasticBlockSticks) {
   const ObstacleReaction& r = run.result.reactions.at(0);
   EXPECT_GT(r.tangential_force[0], 0.0);
   EXPECT_LT(r.tangential_force[0], kF * r.normal_force);
+}
+
+// 3D: a box [0, 1]^2 x [0.25, 0.5] (4 x 4 elements across) pressed by 0.01
+// on a box [0, 1]^2 x [0, 0.25] (3 x 3), its top held in x and y; the lower
+// box moved along (3, 4, 0) with its support: every multiplier slides on the
+// disc |lambda_t| = -f lambda_n, and the forces on the two boxes are opposite.
+TEST(TwoBodyFriction, SlidingBoxOnAnElasticBoxForceIsOnTheDisc) {
+  auto body = [](const char* name, double z0, int n) {
+    return std::string("[[body]]\nname = \"") + name + "\"\n[body.geometry]\nshape = \"box\"\n"
+           "size = [1.0, 1.0, 0.25]\ntranslate = [0.0, 0.0, " + std::to_string(z0) + "]\n[body.mesh]\ndegree = 2\n"
+           "elements = [" + std::to_string(n) + ", " + std::to_string(n) + ", 2]\n[body.material]\nE = 1.0\nnu = 0.0\n";
+  };
+  const std::string text = body("upper", 0.25, 4) + body("lower", 0.0, 3) +
+                           "[[dirichlet]]\nfaces = [\"upper:top\"]\ncomponent = \"x\"\n"
+                           "[[dirichlet]]\nfaces = [\"upper:top\"]\ncomponent = \"y\"\n"
+                           "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"x\"\n"
+                           "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"y\"\n"
+                           "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"z\"\n"
+                           "[[pressure]]\nfaces = [\"upper:top\"]\nvalue = 0.01\n"
+                           "[[contact]]\nface = \"upper:bottom\"\nmaster = \"lower:top\"\nfriction = 0.3\n"
+                           "master_motion = [0.03, 0.04, 0.0]\n[loading]\nsteps = 2\n";
+  const PairRun run = run_text("slide3d", text);
+  ASSERT_EQ(run.result.status, "converged");
+  const ContactSolution& s = run.result.contact->solution;
+  for (size_t K = 0; K < s.friction_state.size(); ++K) {
+    EXPECT_EQ(s.friction_state[K], kSlip) << "multiplier " << K;
+    EXPECT_NEAR(s.lambda_t.segment(2 * K, 2).norm(), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
+  }
+  const ObstacleReaction& r = run.result.reactions.at(0);
+  ASSERT_EQ(r.tangential_force.size(), 2);
+  EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);
+  // As on a rigid plane (tests/unit/model/test_friction.cpp): each
+  // multiplier slides along its own slip, so the force is f N along the
+  // motion to kDirection, its size f N to kSize from below.
+  constexpr double kDirection = 1e-3, kSize = 1e-5;
+  EXPECT_LE(r.tangential_force.norm(), kF * r.normal_force * (1 + kRoundOff));
+  EXPECT_GE(r.tangential_force.norm(), kF * r.normal_force * (1 - kSize));
+  EXPECT_NEAR(r.tangential_force[0] / r.tangential_force.norm(), 0.6, kDirection);
+  EXPECT_NEAR(r.tangential_force[1] / r.tangential_force.norm(), 0.8, kDirection);
+  const auto f = contact_forces(run);
+  std::printf("3D sliding box on a box: tangential force %.10g (f N = %.10g), direction (%.6f, %.6f); slave + master "
+              "forces %.3g\n", r.tangential_force.norm(), kF * r.normal_force, r.tangential_force[0] / r.tangential_force.norm(),
+              r.tangential_force[1] / r.tangential_force.norm(), (f[0] + f[1]).norm());
+  EXPECT_NEAR((f[0] + f[1]).norm(), 0.0, kRoundOff * f[0].norm());
+  EXPECT_NEAR(f[0][2], 0.01, kRoundOff * 0.01);
 }
 
 // cases/cattaneo_mindlin_two_bodies.toml with slave and master swapped
