@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The stick zone of a 2D frictional contact (Cattaneo-Mindlin tests against
 // a rigid plane and between two bodies), read from the multipliers' states,
-// and the stuck multipliers' slip.
+// the stuck multipliers' slip, and a 3D face dragged until it slides.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,6 +12,7 @@
 
 #include "contact/small_strain_friction.hpp"
 #include "contact/weighted_gap.hpp"
+#include "model/run_result.hpp"
 
 namespace igac_test {
 
@@ -55,6 +56,25 @@ inline int stuck_without_slip(const igac::ContactSolution& s, double tolerance) 
       EXPECT_LE(std::abs(s.slip[Eigen::Index(K)]), tolerance) << "multiplier " << K;
     }
   return stuck;
+}
+
+// A 3D face dragged along (3, 4, 0) until it slides: every multiplier slips
+// on the disc |lambda_t| = -f lambda_n (to round_off of the largest
+// pressure); the tangential force is f N along (0.6, 0.8) to `direction`,
+// its size f N to `size` relative, from below (each multiplier slides along
+// its own slip, which the body's elastic shear makes vary over the face).
+inline void expect_sliding_on_the_disc(const igac::ContactSolution& s, const igac::ObstacleReaction& r, double f,
+                                       double round_off, double direction, double size) {
+  for (size_t K = 0; K < s.friction_state.size(); ++K) {
+    EXPECT_EQ(s.friction_state[K], igac::kSlip) << "multiplier " << K;
+    EXPECT_NEAR(s.lambda_t.segment(2 * Eigen::Index(K), 2).norm(), -f * s.lambda[Eigen::Index(K)],
+                round_off * -s.lambda.minCoeff());
+  }
+  ASSERT_EQ(r.tangential_force.size(), 2);
+  EXPECT_LE(r.tangential_force.norm(), f * r.normal_force * (1 + round_off));
+  EXPECT_GE(r.tangential_force.norm(), f * r.normal_force * (1 - size));
+  EXPECT_NEAR(r.tangential_force[0] / r.tangential_force.norm(), 0.6, direction);
+  EXPECT_NEAR(r.tangential_force[1] / r.tangential_force.norm(), 0.8, direction);
 }
 
 }  // namespace igac_test

@@ -145,22 +145,12 @@ TEST(TwoBodyFriction, SlidingBoxOnAnElasticBoxForceIsOnTheDisc) {
                            "master_motion = [0.03, 0.04, 0.0]\n[loading]\nsteps = 2\n";
   const PairRun run = run_text("slide3d", text);
   ASSERT_EQ(run.result.status, "converged");
-  const ContactSolution& s = run.result.contact->solution;
-  for (size_t K = 0; K < s.friction_state.size(); ++K) {
-    EXPECT_EQ(s.friction_state[K], kSlip) << "multiplier " << K;
-    EXPECT_NEAR(s.lambda_t.segment(2 * K, 2).norm(), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
-  }
   const ObstacleReaction& r = run.result.reactions.at(0);
-  ASSERT_EQ(r.tangential_force.size(), 2);
   EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);
-  // As on a rigid plane (tests/unit/model/test_friction.cpp): each
-  // multiplier slides along its own slip, so the force is f N along the
-  // motion to kDirection, its size f N to kSize from below.
+  // As on a rigid plane (tests/unit/model/test_friction.cpp), with wider
+  // bounds (measured: direction 1.2e-4, size 2.2e-6).
   constexpr double kDirection = 1e-3, kSize = 1e-5;
-  EXPECT_LE(r.tangential_force.norm(), kF * r.normal_force * (1 + kRoundOff));
-  EXPECT_GE(r.tangential_force.norm(), kF * r.normal_force * (1 - kSize));
-  EXPECT_NEAR(r.tangential_force[0] / r.tangential_force.norm(), 0.6, kDirection);
-  EXPECT_NEAR(r.tangential_force[1] / r.tangential_force.norm(), 0.8, kDirection);
+  igac_test::expect_sliding_on_the_disc(run.result.contact->solution, r, kF, kRoundOff, kDirection, kSize);
   const auto f = contact_forces(run);
   std::printf("3D sliding box on a box: tangential force %.10g (f N = %.10g), direction (%.6f, %.6f); slave + master "
               "forces %.3g\n", r.tangential_force.norm(), kF * r.normal_force, r.tangential_force[0] / r.tangential_force.norm(),
