@@ -157,12 +157,16 @@ MortarIntegration default_mortar_integration(int dim) {
 }
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
-                                         MortarIntegration integration) {
-  const int m = slave.num_multipliers();
+                                         MortarIntegration integration, double friction, const Eigen::VectorXd& shift) {
+  const int m = slave.num_multipliers(), nt = dofs.dim() - 1;
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
-  std::vector<Eigen::Triplet<double>> trip;
+  if (friction > 0) {
+    op.t0 = Eigen::VectorXd::Zero(m * nt);
+    op.friction = Eigen::VectorXd::Constant(m, friction);
+  }
+  std::vector<Eigen::Triplet<double>> trip, ttrip;
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
   Eigen::MatrixXd master_derivs;
@@ -171,21 +175,37 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     master.side_patch(mp->side).rational_basis(mp->xi, master_local, master_values, master_derivs);
     const std::vector<int>& master_cps = master.side_control_points(mp->side);
+    const Eigen::MatrixXd t = friction > 0 ? tangent_basis(mp->normal) : Eigen::MatrixXd();
+    const double gap = shift.size() ? mp->gap - shift.dot(mp->normal) : mp->gap;
     for (size_t k = 0; k < sp.K.size(); ++k) {
       const double bw = sp.B[k] * sp.JxW;
       if (bw == 0.0) continue;
       op.weights[sp.K[k]] += bw;
-      op.g0[sp.K[k]] += mp->gap * bw;
+      op.g0[sp.K[k]] += gap * bw;
       for (size_t a = 0; a < sp.cps.size(); ++a)
         add_gap_coupling(dofs, sp.K[k], sp.cps[a], bw * sp.N[Eigen::Index(a)], mp->normal, trip, op.g0);
       for (size_t a = 0; a < master_local.size(); ++a)
         add_gap_coupling(dofs, sp.K[k], master_cps[master_local[a]], -bw * master_values[Eigen::Index(a)], mp->normal,
                          trip, op.g0);
+      for (int j = 0; j < t.cols(); ++j) {  // friction: the same couplings along the master's tangents
+        const int row = sp.K[k] * nt + j;
+        if (shift.size()) op.t0[row] -= bw * shift.dot(t.col(j));
+        for (size_t a = 0; a < sp.cps.size(); ++a)
+          add_gap_coupling(dofs, row, sp.cps[a], bw * sp.N[Eigen::Index(a)], t.col(j), ttrip, op.t0);
+        for (size_t a = 0; a < master_local.size(); ++a)
+          add_gap_coupling(dofs, row, master_cps[master_local[a]], -bw * master_values[Eigen::Index(a)], t.col(j),
+                           ttrip, op.t0);
+      }
     }
   });
   op.G.resize(m, dofs.num_free());
   op.G.setFromTriplets(trip.begin(), trip.end());
   op.G.prune(0.0);
+  if (friction > 0) {
+    op.T.resize(m * nt, dofs.num_free());
+    op.T.setFromTriplets(ttrip.begin(), ttrip.end());
+    op.T.prune(0.0);
+  }
   return op;
 }
 

@@ -80,8 +80,19 @@ struct MortarSlavePoint {
 void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
                            const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit);
 
+// With friction > 0 also the tangential rows (Coulomb friction between the
+// two bodies, contact/small_strain_friction.hpp), in the same loop: the
+// weighted tangential displacement of the slave relative to the master
+// along the master's tangents t_j at the projection (tangent_basis of its
+// normal there),
+//   T_{(K,j),(A,i)} = int B_K N_A (t_j)_i  (slave A),  - int B_K N_A(X') (t_j)_i  (master A),
+// so that the tangential forces on the two bodies are opposite, as the
+// normal ones.  `shift` (empty: none) translates the master body rigidly
+// with its supports ([[contact]] master_motion): g0 and t0 lose
+// int B_K shift . n and int B_K shift . t_j.
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
-                                         MortarIntegration integration);
+                                         MortarIntegration integration, double friction = 0,
+                                         const Eigen::VectorXd& shift = {});
 
 // Weighted gaps of the exact gap in the displaced configuration, u per body
 // control point (n_cp x dim): each slave point X + u(X) projected on the

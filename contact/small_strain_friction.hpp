@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Small-deformation Coulomb friction against rigid obstacles: the
-// frictionless active-set solve (contact/small_strain_contact.hpp) with, per
-// multiplier K, dim-1 tangential multipliers lambda_t,K in the same space
-// S^{p-2} and the weighted tangential slip increment over the load step
-//     s_K = (T (u - u_prev))_K + t0_K - t0_prev,K      (T: contact/weighted_gap.hpp)
-// (the body's tangential displacement relative to the obstacle's, weighted
-// by B_K).  Coulomb per multiplier, lambda_n <= 0 the normal one:
+// Small-deformation Coulomb friction against rigid obstacles and between
+// two bodies: the frictionless active-set solve
+// (contact/small_strain_contact.hpp) with, per multiplier K, dim-1
+// tangential multipliers lambda_t,K in the same space S^{p-2} and the
+// weighted tangential slip increment over the load step
+//     s_K = (T (u - u_prev))_K + t0_K - t0_prev,K
+// (T: contact/weighted_gap.hpp for an obstacle, contact/mortar_gap.hpp for
+// a master body; the body's tangential displacement relative to the
+// obstacle's or the master's, weighted by B_K).  Coulomb per multiplier, lambda_n <= 0 the normal one:
 //     |lambda_t| <= -f lambda_n,  s = 0 where |lambda_t| < -f lambda_n,
 //     s = a lambda_t (a >= 0) where |lambda_t| = -f lambda_n.
 // Primal-dual active set (Hueber, Stadler & Wohlmuth 2008): with

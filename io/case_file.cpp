@@ -39,7 +39,7 @@ const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
 const std::set<std::string> kPressureKeys{"faces", "value"};
 const std::set<std::string> kBodyForceKeys{"value"};
-const std::set<std::string> kContactKeys{"face", "obstacle", "master", "friction"};
+const std::set<std::string> kContactKeys{"face", "obstacle", "master", "master_motion", "friction"};
 const std::set<std::string> kObstacleKeys{"type", "motion"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -264,7 +264,16 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
       cs.master = s.string("master");
       if (cs.master.empty()) s.fail("master", "empty: name the face of the second body");  // ("" means no master)
       if (cs.master == cs.face) s.fail("master", "the master face is the contact face itself");
+      if (s.has("master_motion")) {
+        if (c.finite_strain())
+          s.fail("master_motion", fmt::format("moves the master body in small deformation only (material model "
+                                              "\"linear_elastic\"), not with model \"{}\"", c.model));
+        cs.master_motion = s.loads("master_motion", dim);
+      }
     } else {
+      if (s.has("master_motion"))
+        s.fail("master_motion", "moves the master body of a contact between two bodies; an obstacle moves by "
+                                "[contact.obstacle] motion");
       const toml::table& ot = s.sub("obstacle");
       const std::string type = ot["type"].value_or(std::string());
       const ObstacleType* kind = find_obstacle_type(type);
@@ -303,8 +312,6 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     if (s.has("friction")) {  // Coulomb (contact/small_strain_friction.hpp)
       cs.friction = s.number("friction");  // finite
       if (!(cs.friction >= 0 && cs.friction <= 10)) s.fail("friction", "must lie in [0, 10] (a Coulomb coefficient)");
-      if (cs.friction > 0 && s.has("master"))
-        s.fail("friction", "friction between two deformable bodies is not implemented (rigid obstacles only)");
       if (cs.friction > 0 && c.finite_strain())
         s.fail("friction", fmt::format("friction runs in small deformation only (model \"linear_elastic\"), not with "
                                        "model \"{}\"", c.model));

@@ -428,6 +428,12 @@ Model build_model(const CaseSpec& spec) {
                                          "joined): the master is a face of a second body", spec.path, cs.master,
                                          cs.face, m.body.describe(s), m.body.describe(f)));
       c.master_name = cs.master;
+      c.friction = cs.friction;
+      // The master body moved rigidly with its supports: its motion enters
+      // the gaps (assemble_contact_operator) and, after the solve, its
+      // displacement (add_master_motions).
+      if (!cs.master_motion.empty())
+        c.motion = Eigen::Map<const Eigen::VectorXd>(cs.master_motion.data(), Eigen::Index(cs.master_motion.size()));
       c.master = std::make_unique<MasterSurface>(m.body, master);
       // The reports read the master as an obstacle at its reference position.
       c.obstacle = std::make_unique<MasterAsObstacle>(*c.master, cs.master);

@@ -49,7 +49,8 @@ struct ContactSpec {
   std::string face;      // the slave face: the multipliers live on it
   ObstacleSpec obstacle;  // a rigid obstacle, or:
   std::string master;     // the face of a second deformable body (empty: the obstacle)
-  double friction = 0;    // Coulomb coefficient (rigid obstacles, small deformation); 0: frictionless
+  std::vector<double> master_motion;  // a rigid translation of the master body with its supports (as an obstacle's motion)
+  double friction = 0;    // Coulomb coefficient (small deformation); 0: frictionless
 };
 
 // Large deformation (hyperelastic models): how the load is applied.

@@ -66,8 +66,9 @@ struct Model {
     std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion); or
     std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (obstacle null)
     std::string master_name;
-    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
-    double friction = 0;                 // Coulomb coefficient (small deformation, rigid obstacle)
+    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion; a master
+                                         // body: moved rigidly with its supports (small deformation)
+    double friction = 0;                 // Coulomb coefficient (small deformation)
   };
   std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter

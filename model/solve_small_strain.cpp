@@ -43,8 +43,10 @@ double pressure_resultant(const Model& m) {
 WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
   std::vector<WeightedGapOperator> ops;
   for (const auto& c : m.contacts) {
-    if (c.master) {
-      ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim())));
+    if (c.master) {  // a master body moved (master_motion) by t * motion
+      const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
+      ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim()),
+                                         c.friction, shift));
       continue;
     }
     const bool moved = t != 1.0 && c.motion.size() > 0;
@@ -58,6 +60,21 @@ WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
 }
 
 namespace {
+// A master body moved rigidly with its supports ([[contact]] master_motion):
+// the solve has its displacement relative to the moved supports; the
+// motion added to every control point of that body gives its displacement.
+// A rigid translation strains nothing (K r = 0): the reactions are those of u.
+void add_master_motions(const Model& m, Eigen::MatrixXd& u) {
+  const std::vector<int> part = m.body.parts();
+  for (const auto& c : m.contacts) {
+    if (!c.master || c.motion.size() == 0) continue;
+    const int moved = part[find_faces(m, c.master_name)->front().patch];
+    for (int k = 0; k < m.body.num_patches(); ++k)
+      if (part[k] == moved)
+        for (int a : m.body.body_cps(k)) u.row(a) += c.motion.transpose();
+  }
+}
+
 // Which patches the rigid motions `free` (free numbering, one per column)
 // move, said when the body is several bodies (patches no interface joins):
 // the patch that came loose is the one to look at.
@@ -295,6 +312,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     if (c->solution.u.size() != m.dofs->num_free())
       throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
     r.u = m.dofs->expand(c->solution.u);
+    add_master_motions(m, r.u);
     t0.restart();
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active, c->solution.lambda_t);
     r.contacts = report_contacts(m, *c);

@@ -95,8 +95,23 @@ INSTANTIATE_TEST_SUITE_P(
         // and a master on the slave's own body "converged" to displacements
         // of 1e30: the mortar gap of a body with itself holds nothing.
         BadMaster{"same_body", "master = \"0:north\"", "master = \"1:north\"",
-                  "master '1:north' is on the same body as the face '1:south'"}),
+                  "master '1:north' is on the same body as the face '1:south'"},
+        // master_motion moves a master body: three entries in 2D, or on a
+        // contact with an obstacle, are one line naming the key.
+        BadMaster{"master_motion_length", "master = \"0:north\"", "master = \"0:north\"\nmaster_motion = [0.1, 0.0, 0.0]",
+                  "[contact] master_motion"},
+        BadMaster{"master_motion_on_obstacle", "master = \"0:north\"",
+                  "master_motion = [0.1, 0.0]\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]",
+                  "[contact] master_motion: moves the master body of a contact between two bodies"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
+
+// Large deformation between two bodies runs; moving the master body there
+// is not implemented, and says so in one line.
+TEST(TwoBodiesBadInput, MasterMotionInLargeDeformationIsOneLine) {
+  const BadMaster b{"master_motion_large", "master = \"block:top\"", "master = \"block:top\"\nmaster_motion = [0.1, 0.0]",
+                    "[contact] master_motion: moves the master body in small deformation only"};
+  expect_one_line_error(edited("roller_on_block_neohookean.toml", b), b.expected);
+}
 
 // [[body]] tables (cases/roller_on_block.toml): a case of several bodies
 // the reader or the model cannot use is one line and exit 2.

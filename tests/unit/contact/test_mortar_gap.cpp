@@ -6,6 +6,7 @@
 //    when the meshes match, to the element-based quadrature's error when
 //    they do not (measured below, both degrees);
 //  - the force on the slave is minus the force on the master to round-off;
+//  - friction's tangential rows are the relative tangential displacement;
 //  - a body held only by the contact with the other body (its own rigid
 //    motion: engine/linear_static.hpp counts each body's).
 #include <gtest/gtest.h>
@@ -197,6 +198,45 @@ TEST(MortarGap, OperatorIsTheDerivativeOfTheExactGaps) {
     }
     EXPECT_LT(worst, 1e-6 * J.cwiseAbs().maxCoeff());
     EXPECT_GT(J.cwiseAbs().maxCoeff(), 0.1);
+  }
+}
+
+// Friction's tangential rows T (the slave's tangential displacement
+// relative to the master's, along the master's tangent at the projection,
+// here the block's top: t = (1, 0)): a translation d of both bodies slips
+// nothing, T d = 0; of the slave alone it slips d . t on every multiplier,
+// (T d)_K = K_K d_x; a master moved by `shift` (master_motion) gives
+// t0_K = -K_K shift_x and g0 loses K_K shift_y.  Round-off identities (the
+// bases are partitions of unity), element-based and segmented.
+TEST(MortarGap, TangentialRowsAreTheRelativeTangentialDisplacement) {
+  NurbsPatch disc = elevate_to(quarter_disc(1.0).patch, 2);
+  disc = refine_to(disc, 0, KnotVector::uniform(2, 6));
+  disc = refine_to(disc, 1, KnotVector::uniform(2, 2));
+  const Body body({disc, block(2, 5, 2, -1.6, 0.5)}, {});
+  const DofMap dofs(body, {});
+  const ContactFace slave(body, PatchSide{0, Face{1, false}});
+  const MasterSurface master(body, {PatchSide{1, kTop}});
+  const Eigen::Vector2d d(0.3, -0.2), shift(0.05, 0.01);
+  for (MortarIntegration integration : {MortarIntegration::element, MortarIntegration::segmented}) {
+    SCOPED_TRACE(integration == MortarIntegration::element ? "element-based" : "segmented");
+    const WeightedGapOperator plain = assemble_mortar_gaps(dofs, slave, master, integration);
+    const WeightedGapOperator op = assemble_mortar_gaps(dofs, slave, master, integration, 0.3);
+    const WeightedGapOperator moved = assemble_mortar_gaps(dofs, slave, master, integration, 0.3, shift);
+    ASSERT_EQ(op.T.rows(), op.G.rows());
+    EXPECT_EQ(plain.T.rows(), 0);
+    EXPECT_EQ(Eigen::MatrixXd(op.G), Eigen::MatrixXd(plain.G));  // friction adds rows, changes none
+    EXPECT_EQ(op.g0, plain.g0);
+    Eigen::VectorXd both(dofs.num_free()), slave_only = Eigen::VectorXd::Zero(dofs.num_free());
+    for (int a = 0; a < body.num_control_points(); ++a)
+      for (int i = 0; i < 2; ++i) {
+        both[dofs.equation(2 * a + i)] = d[i];
+        if (a < disc.num_control_points()) slave_only[dofs.equation(2 * a + i)] = d[i];
+      }
+    const double scale = op.weights.maxCoeff();
+    EXPECT_LT((op.T * both).cwiseAbs().maxCoeff(), 1e-14 * scale);
+    EXPECT_LT((op.T * slave_only - d[0] * op.weights).cwiseAbs().maxCoeff(), 1e-14 * scale);
+    EXPECT_LT((moved.t0 + shift[0] * op.weights).cwiseAbs().maxCoeff(), 1e-14 * scale);
+    EXPECT_LT((moved.g0 - op.g0 + shift[1] * op.weights).cwiseAbs().maxCoeff(), 1e-14 * scale);
   }
 }
 

@@ -27,6 +27,7 @@
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "tests/support/stick_zone.hpp"
 
 namespace igac {
 namespace {
@@ -71,14 +72,7 @@ std::string block_case(double friction, double motion, int steps) {
 // How many multipliers stick; each of them has not slipped (to round-off
 // of the displacements).
 int stuck_without_slip(const FrictionRun& run) {
-  const ContactSolution& s = run.result.contact->solution;
-  int stuck = 0;
-  for (size_t K = 0; K < s.friction_state.size(); ++K)
-    if (s.friction_state[K] == kStick) {
-      ++stuck;
-      EXPECT_LE(std::abs(s.slip[K]), kRoundOff * run.result.u.cwiseAbs().maxCoeff()) << "multiplier " << K;
-    }
-  return stuck;
+  return igac_test::stuck_without_slip(run.result.contact->solution, kRoundOff * run.result.u.cwiseAbs().maxCoeff());
 }
 
 TEST(Friction, ZeroIsTheFrictionlessSolveBitForBit) {
@@ -210,23 +204,14 @@ TEST(Friction, SlidingBlock3DForceIsOnTheDisc) {
   const std::string text = box_case("[6, 6, 2]", 0.0, "0.03, 0.04", 2);
   const FrictionRun run = run_spec(read_case(write_case("slide3d", text).string()));
   ASSERT_EQ(run.result.status, "converged");
-  const ContactSolution& s = run.result.contact->solution;
-  for (size_t K = 0; K < s.friction_state.size(); ++K) EXPECT_EQ(s.friction_state[K], kSlip) << "multiplier " << K;
-  // Every multiplier on the disc |lambda_t| = -f lambda_n, to round-off.
-  for (size_t K = 0; K < s.friction_state.size(); ++K)
-    EXPECT_NEAR(s.lambda_t.segment(2 * K, 2).norm(), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
   const ObstacleReaction& r = run.result.reactions.at(0);
-  ASSERT_EQ(r.tangential_force.size(), 2);
   EXPECT_NEAR(r.normal_force, 0.01, kRoundOff * 0.01);
   // Each multiplier slides along its own slip, the plane's motion less the
   // block's elastic shear, which varies over the face (the corners): the
   // force's direction is the motion's to kDirection, and its size f N to
   // kSize relative, from below (measured: 3.4e-5 and 9.4e-8).
   constexpr double kDirection = 1e-4, kSize = 1e-6;
-  EXPECT_LE(r.tangential_force.norm(), kF * r.normal_force * (1 + kRoundOff));
-  EXPECT_GE(r.tangential_force.norm(), kF * r.normal_force * (1 - kSize));
-  EXPECT_NEAR(r.tangential_force[0] / r.tangential_force.norm(), 0.6, kDirection);
-  EXPECT_NEAR(r.tangential_force[1] / r.tangential_force.norm(), 0.8, kDirection);
+  igac_test::expect_sliding_on_the_disc(run.result.contact->solution, r, kF, kRoundOff, kDirection, kSize);
 }
 
 // 3D partial slip: the block dragged a tenth of the way to sliding (nu =
@@ -255,32 +240,17 @@ TEST(Friction, Block3DPartialSlipSettles) {
   EXPECT_LT(r.tangential_force.norm(), kF * r.normal_force);
 }
 
-// The stick zone's half width: half the extent in x of the stuck
-// multipliers' anchors, plus half a spacing (degree 2: each multiplier is
-// constant on its element, its anchor the element's middle); the spacing:
-// the largest distance between the anchors of neighbouring multipliers of
-// the zone.
+// The stick zone's half width (tests/support/stick_zone.hpp) against
+// c = a sqrt(1 - Q / (f N)).
 TEST(Friction, CattaneoMindlinStickZone) {
   const FrictionRun run = run_spec(read_case(kSourceDir + "/cases/cattaneo_mindlin.toml"));
   ASSERT_EQ(run.result.status, "converged");
   const ContactSolution& s = run.result.contact->solution;
-  const ContactFace& face = *run.model.contacts[0].face;
-  std::vector<double> stick_x, zone_x;
-  for (const ContactSide& side : face.sides)
-    for (int k = 0; k < side.space.size(); ++k) {
-      const int K = side.first_multiplier + k;
-      const double x = side.face_patch.point(side.space.anchor(k))[0];
-      if (s.friction_state[K] != kOpen) zone_x.push_back(x);
-      if (s.friction_state[K] == kStick) stick_x.push_back(x);
-      if (s.friction_state[K] == kSlip)  // on the cone
-        EXPECT_NEAR(std::abs(s.lambda_t[K]), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
-    }
-  ASSERT_GE(stick_x.size(), 3u);
-  std::sort(zone_x.begin(), zone_x.end());
-  double spacing = 0;
-  for (size_t i = 1; i < zone_x.size(); ++i) spacing = std::max(spacing, zone_x[i] - zone_x[i - 1]);
-  const auto [lo, hi] = std::minmax_element(stick_x.begin(), stick_x.end());
-  const double c_h = 0.5 * (*hi - *lo) + 0.5 * spacing;
+  for (size_t K = 0; K < s.friction_state.size(); ++K)
+    if (s.friction_state[K] == kSlip)  // on the cone
+      EXPECT_NEAR(std::abs(s.lambda_t[K]), -kF * s.lambda[K], kRoundOff * -s.lambda.minCoeff());
+  const igac_test::StickZone z = igac_test::stick_zone(*run.model.contacts[0].face, s.friction_state);
+  ASSERT_GE(z.stuck, 3);
   const ObstacleReaction& r = run.result.reactions.at(0);
   const double N = r.normal_force, Q = r.tangential_force[0];
   const double E = run.model.spec.E, nu = run.model.spec.nu, R = 1.0;
@@ -290,8 +260,8 @@ TEST(Friction, CattaneoMindlinStickZone) {
   const double c = a * std::sqrt(1 - Q / (kF * N));
   std::printf("Cattaneo-Mindlin: N = %.6g, Q = %.6g (Q/fN = %.4f), a = %.5f, c = %.5f, c_h = %.5f, spacing = %.5f, "
               "zone half width %.5f\n",
-              N, Q, Q / (kF * N), a, c, c_h, spacing, 0.5 * (zone_x.back() - zone_x.front()));
-  EXPECT_NEAR(c_h, c, spacing);
+              N, Q, Q / (kF * N), a, c, z.half_width, z.spacing, z.zone_half_width);
+  EXPECT_NEAR(z.half_width, c, z.spacing);
 }
 
 TEST(Friction, BadCoefficientIsOneLine) {
