@@ -253,9 +253,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
     series.write_step(model, undeformed, 0.0);
   }
-  // Large deformation: one ParaView step per converged load step.
+  // Large deformation and load curves: one ParaView step per converged load
+  // step, at its time.
+  const bool stepped = spec.finite_strain() || spec.has_load_curves();
   StepObserver observer;
-  if (vtk && spec.finite_strain())
+  if (vtk && stepped)
     observer = [&](const RunResult& step, double t) {
       if (step.u.allFinite()) series.write_step(model, step, t);
     };
@@ -285,10 +287,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       std::vector<std::string> faces;
       if (r.contacts.size() > 1)
         for (const ContactResult& c : r.contacts) faces.push_back(c.face);
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim())));
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim(),
+                                                                        spec.has_load_curves())));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
-    if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);
+    if (vtk && !stepped && finite) series.write_step(model, r, 1.0);
     write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
     folder->commit();
   }

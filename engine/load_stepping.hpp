@@ -16,7 +16,8 @@
 // K's skew part (a follower load); UMFPACK on the whole matrix is the
 // fallback when K's symmetric part is not positive definite.
 //
-// Steps: the case gives a number of steps (or a first increment).  A step
+// Steps: the case gives a number of steps (or a first increment); with load
+// curves t is their time and steps end on every corner (LoadSteppingOptions::corners).  A step
 // that fails — no convergence within the iteration limit, an inadmissible
 // state (det F <= 0) in the residual, an active set that cycles — is cut
 // back (increment halved) and retried from the last converged state; a step
@@ -77,10 +78,17 @@ struct LoadSteppingOptions {
   bool line_search = true;         // KINSOL's KIN_LINESEARCH, else KIN_NONE
   bool tangent_predictor = true;   // a step without history starts from x - J^{-1} dR/dt dt
   bool quiet = false;
+  // Load curves (engine/load_curve.hpp): the times t runs through, the
+  // curves' corners in increasing order, the last where the run ends.  A
+  // step never straddles one: it is cut to end on it (and the next step
+  // starts from the increment before that cut, with the tangent predictor
+  // rather than extrapolating across the corner).  Empty: t runs from 0 to
+  // 1, the load factor.
+  std::vector<double> corners;
 };
 
 struct LoadStepRecord {
-  double load_factor = 0;
+  double load_factor = 0;  // the time t (with load curves, the curves' abscissa)
   int newton_iterations = 0;
   std::vector<double> residual_norms;  // relative, per Newton iteration, last = converged
   std::vector<int> active_set_sizes;   // per Newton iteration
@@ -96,8 +104,8 @@ struct LoadSteppingSummary {
   SaddleSolverStats linear;                           // the linear solves, ditto
 };
 
-// Runs from x (the state at t = 0) to t = 1; x holds the last converged
-// state on return.  `on_step` is called after each converged step.
+// Runs from x (the state at t = 0) to t = 1 (with corners, to the last);
+// x holds the last converged state on return.  `on_step` is called after each converged step.
 LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& options,
                                    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step);
 

@@ -182,6 +182,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     for (const auto& st : r.load_steps->steps) {
       Json step;
       step["load_factor"] = finite_or_null(st.load_factor);
+      if (m.spec.has_load_curves()) step["time"] = finite_or_null(st.load_factor);  // (the load factor is the time)
       step["newton_iterations"] = st.newton_iterations;
       Json norms = Json::array();
       for (double v : st.residual_norms) norms.push_back(finite_or_null(v));
@@ -286,12 +287,19 @@ std::string csv_number(double v, int digits) {
 std::string load_curve_csv(const Model& m, const RunResult& r) {
   // One contact: contact_force.  Several: contact_force_<face> for each.
   const std::vector<std::string> tags = contact_file_tags(m);
-  std::string s = "load_factor";
+  // With load curves the first column is their time, and the reactions of
+  // the [[dirichlet]] face sets follow, a column per component.
+  const bool history = m.spec.has_load_curves();
+  std::string s = history ? "time" : "load_factor";
   if (tags.size() > 1)
     for (const std::string& tag : tags) s += fmt::format(",contact_force_{}", tag);
   else
     s += ",contact_force";
-  s += ",face_displacement,obstacle_displacement\n";
+  s += ",face_displacement,obstacle_displacement";
+  if (history && !r.load_curve.empty())
+    for (const FaceReaction& f : r.load_curve.front().dirichlet_reactions)
+      for (int c = 0; c < f.force.size(); ++c) s += fmt::format(",reaction_{}_{}", f.face, "xyz"[c]);
+  s += "\n";
   for (const auto& p : r.load_curve) {
     s += csv_number(p.load_factor);
     if (tags.size() > 1)
@@ -299,7 +307,11 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
         s += fmt::format(",{}", csv_number(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan("")));
     else
       s += fmt::format(",{}", csv_number(p.contact_force()));
-    s += fmt::format(",{},{}\n", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+    s += fmt::format(",{},{}", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+    if (history)
+      for (const FaceReaction& f : p.dirichlet_reactions)
+        for (int c = 0; c < f.force.size(); ++c) s += "," + csv_number(f.force[c]);
+    s += "\n";
   }
   return s;
 }

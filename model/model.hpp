@@ -66,7 +66,8 @@ struct Model {
     std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion); or
     std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (obstacle null)
     std::string master_name;
-    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion
+    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by curve(t) * motion
+    LoadCurve curve;                     // of the motion (no points: the factor is t)
     double friction = 0;                 // Coulomb coefficient (small deformation, rigid obstacle)
   };
   std::vector<Contact> contacts;

@@ -6,13 +6,14 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "model/model.hpp"
 #include "model/run_result.hpp"
 
 namespace igac {
 
-// `on_step` (large deformation) sees the state after each converged load step.
+// `on_step` (large deformation, load curves) sees the state after each converged load step.
 using StepObserver = std::function<void(const RunResult&, double load_factor)>;
 // The same case one refinement below, already solved (a study's previous
 // level): where a contact run at --refine r >= 1 starts from (nested
@@ -37,6 +38,8 @@ void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen
 // with the tangential rows of the frictional ones; `motion_factor` t puts
 // each moving obstacle at t * motion (1: where the case has it).
 WeightedGapOperator assemble_contact_operator(const Model& model, double motion_factor = 1.0);
+// The same at time t of the load curves: each moving obstacle at curve(t) * motion.
+WeightedGapOperator assemble_contact_operator_at_time(const Model& model, double time);
 // Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
 // With friction (lambda_t not empty) also the tangential force -sum lambda_t,K K_K along the obstacle's tangents.
 std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
@@ -46,7 +49,8 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen
 // the pressure files, the reports, ParaView), from the stacked s.solution
 // and s.op.weights.
 std::vector<ContactResult> report_contacts(const Model& model, const ContactSolve& s);
-// |int P n dGamma| summed over the pressure loads (the modelled part).
-double pressure_resultant(const Model& model);
+// |int P n dGamma| summed over the pressure loads (the modelled part), at
+// their values or (`time`) at their curves' factors at that time.
+double pressure_resultant(const Model& model, std::optional<double> time = {});
 
 }  // namespace igac

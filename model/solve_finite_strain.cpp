@@ -12,6 +12,7 @@
 #include "engine/face_quadrature.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/linear_static.hpp"
+#include "model/load_history.hpp"
 #include "model/progress.hpp"
 #include "model/reactions.hpp"
 #include "model/references.hpp"
@@ -19,21 +20,6 @@
 
 namespace igac {
 namespace {
-
-// Mean of the last displacement component over faces (reference measure).
-double mean_face_displacement(const Body& body, const std::vector<PatchSide>& faces, const Eigen::MatrixXd& u) {
-  const int dim = body.space_dim();
-  double s = 0, area = 0;
-  FaceQuadrature(body, faces, gauss_points_for(body.degree())).for_each_element([&](int, const auto& v) {
-    for (int k = 0; k < v.n_q; ++k) {
-      double value = 0;
-      for (int a = 0; a < v.n_loc; ++a) value += v.N(k, a) * u(v.cps[a], dim - 1);
-      s += value * v.JxW[k];
-      area += v.JxW[k];
-    }
-  });
-  return area > 0 ? s / area : 0.0;
-}
 
 // The deformed extent and the Cauchy peak of contact `c` (face `cf`) for
 // the displacement u (n_cp x dim).
@@ -127,9 +113,10 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   setup.dofs = m.dofs.get();
   setup.law = m.law.get();
   setup.formulation = m.spec.formulation;
-  for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value});
+  for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve});
+  setup.prescribed_curves = prescribed_curves(m);
   setup.follower_pressure = m.spec.loading.follower_pressure;
-  for (const auto& c : m.contacts) setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion});
+  for (const auto& c : m.contacts) setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.curve});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   FiniteStrainProblem problem(setup);
 
@@ -143,25 +130,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   problem.activate_nearest(x, int(modes.modes.cols()));
   r.applied_force = pressure_resultant(m);
 
-  // the face whose displacement the load curve follows
-  std::vector<PatchSide> loaded;
-  for (const auto& p : m.spec.pressure) {
-    const auto f = resolve_faces(m, p.faces, "pressure");
-    loaded.insert(loaded.end(), f.begin(), f.end());
-  }
-  // Driven by a moving obstacle: follow the face it pushes, and how far it moved.
-  const Model::Contact* mover = nullptr;
-  for (const auto& c : m.contacts)
-    if (c.motion.size() > 0 && !mover) mover = &c;
-  if (loaded.empty() && mover)
-    for (const ContactSide& side : mover->face->sides) loaded.push_back(side.side);
-  if (loaded.empty())
-    for (const auto& d : m.spec.dirichlet)
-      if (d.value != 0) {
-        const auto f = resolve_faces(m, d.faces, "dirichlet");
-        loaded.insert(loaded.end(), f.begin(), f.end());
-      }
-
+  const LoadCurveProbe probe(m);  // the face whose displacement the load curve follows, the moving obstacle
   LoadSteppingOptions opt;
   opt.steps = m.spec.loading.steps;
   opt.first_increment = m.spec.loading.first_increment;
@@ -171,6 +140,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.line_search = m.spec.loading.line_search;
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.quiet = m.quiet;
+  const bool curves = m.spec.has_load_curves();
+  if (curves) opt.corners = curve_corners(m.spec.load_curves());
   const ReactionEvaluator reactions(m);
   auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
     out.u = problem.displacement(t, xs);
@@ -178,8 +149,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
-    p.face_displacement = mean_face_displacement(body, loaded, out.u);
-    p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
+    p.face_displacement = probe.face_displacement(body, out.u);
+    p.obstacle_displacement = probe.obstacle_displacement(t);
     p.dirichlet_reactions = reactions(out.u, t);
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
@@ -225,11 +196,12 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   if (summary.steps.empty()) x.setZero();
   snapshot(t_final, x, r);
   if (summary.steps.empty()) r.contacts.clear();
+  if (curves) r.applied_force = pressure_resultant(m, t_final);  // (the follower's, below, when it applies)
   if (!r.contacts.empty() && setup.follower_pressure && !setup.pressures.empty()) {
     // the follower load's resultant along the obstacle normal, on the deformed faces
     Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());
     for (const auto& p : setup.pressures)
-      add_follower_pressure(body, *m.dofs, p.faces, t_final * p.value, r.u, f_ext, nullptr);
+      add_follower_pressure(body, *m.dofs, p.faces, p.curve(t_final) * p.value, r.u, f_ext, nullptr);
     const int dim = body.space_dim();
     std::vector<int> component(problem.num_displacements(), 0);
     for (int i = 0; i < m.dofs->num_dofs(); ++i)
