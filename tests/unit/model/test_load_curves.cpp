@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <regex>
 #include <string>
 
 #include "engine/load_curve.hpp"
@@ -31,8 +32,7 @@ struct History {
   std::vector<Frame> frames;
 };
 
-History run_text(const std::string& text) {
-  Model m = build_model(read_case_text(text, "curve_case.toml"));
+History run(Model& m) {
   m.quiet = true;
   History h;
   h.result = solve_model(m, [&](const RunResult& step, double t) {
@@ -44,6 +44,11 @@ History run_text(const std::string& text) {
     h.frames.push_back(std::move(f));
   });
   return h;
+}
+
+History run_text(const std::string& text) {
+  Model m = build_model(read_case_text(text, "curve_case.toml"));
+  return run(m);
 }
 
 const Frame& at(const History& h, double t) {
@@ -149,37 +154,9 @@ TEST(LoadCurves, LargeDeformationUnloadedReturnsToZero) {
 // the disc presses on the plane, unloaded the gap is open again and no
 // multiplier is active (the active set is decided anew at every step).
 TEST(LoadCurves, SmallStrainContactUnloadedReleases) {
-  const History h = run_text(R"(
-name = "curve_contact"
-[geometry]
-shape = "quarter_disc"
-radius = 1.0
-[mesh]
-degree = 2
-elements = [16, 4]
-[material]
-model = "linear_elastic"
-E = 1.0
-nu = 0.3
-[[dirichlet]]
-faces = ["left"]
-component = "x"
-[[dirichlet]]
-faces = ["top"]
-component = "y"
-value = -0.05
-curve = [[0, 0], [1, 1], [2, 0]]
-[contact]
-face = "curved"
-[contact.obstacle]
-type = "plane"
-point = [0.0, -1.01]
-normal = [0.0, 1.0]
-[loading]
-steps = 2
-[output]
-vtk = false
-)");
+  Model m = build_model(read_case(std::string(IGAC_SOURCE_DIR) + "/tests/data/curve_contact.toml"));
+  const History h = run(m);
+
   ASSERT_EQ(h.result.status, "converged");
   const Frame& peak = at(h, 1.0);
   EXPECT_GT(peak.active, 0);
@@ -189,6 +166,37 @@ vtk = false
   EXPECT_EQ(end.contact_force, 0.0);
   EXPECT_EQ(end.u.cwiseAbs().maxCoeff(), 0.0);  // no load, no contact: u = 0 exactly
   EXPECT_EQ(h.result.contacts.front().report.total_force, 0.0);
+}
+
+// What curves do not run with, and a curve on a motion that is not there:
+// an InputError naming the key (the command line makes it one line, exit 2:
+// tests/cli/test_bad_input.cpp).
+TEST(LoadCurves, RefusedWhereTheyDoNotApply) {
+  const std::string base = block("model = \"linear_elastic\"\nE = 1.0\nnu = 0.3", "[[0, 0], [1, 1]]");
+  auto message = [](const std::string& text) {
+    try {
+      read_case_text(text, "curve_case.toml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string obstacle = R"(
+[contact]
+face = "bottom"
+[contact.obstacle]
+type = "plane"
+point = [0.0, -0.1]
+normal = [0.0, 1.0]
+)";
+  EXPECT_NE(message(base + obstacle + "curve = [[0, 0], [1, 1]]\n").find("[contact.obstacle] curve: the obstacle has no motion"),
+            std::string::npos);
+  const std::string with_friction = std::regex_replace(obstacle, std::regex("face = \"bottom\""),
+                                                      "face = \"bottom\"\nfriction = 0.3");
+  EXPECT_NE(message(base + with_friction).find("[contact] friction: load curves do not run with friction"),
+            std::string::npos);
+  EXPECT_NE(message(base + "[reference]\nsolution = \"lame\"\n").find("[reference] solution"), std::string::npos);
+  EXPECT_EQ(message(base), "accepted");
 }
 
 }  // namespace
