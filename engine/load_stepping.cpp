@@ -267,6 +267,14 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   Eigen::VectorXd x_old = x;
   double dt_old = 0;
   int cut_backs = 0;
+  if (opt.start) {
+    t = opt.start->t;
+    dt = opt.start->dt;
+    dt_old = opt.start->dt_old;
+    x = opt.start->x;
+    x_old = opt.start->x_old;
+  }
+  int steps_done = opt.steps_done;
   // Without curves the one corner is t = 1 and nothing below differs from
   // a plain ramp to 1 (the same increments, bit for bit); with them a step
   // that reaches a corner ends on it exactly.
@@ -276,6 +284,10 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   while (true) {
     while (next < corners.size() && !(t < corners[next] - 1e-12)) ++next;
     if (next == corners.size()) break;
+    if (opt.max_steps > 0 && steps_done >= opt.max_steps) {
+      summary.status = fmt::format("stopped after step {} (as asked)", steps_done);
+      break;
+    }
     const double corner = corners[next];
     dt = std::min(dt, opt.max_increment);
     const double h = std::min(dt, corner - t);  // this step's increment
@@ -300,19 +312,21 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
         dt_old = h;
         t = t_new;
         summary.steps.push_back(a.record);
-        if (!opt.quiet)
-          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}\n",
-                     summary.steps.size(), curves ? "time" : "load factor", t, h, a.record.newton_iterations,
-                     a.record.residual_norms.back(), a.record.active_set_sizes.back(),
-                     cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
-        if (on_step) on_step(summary.steps.back(), x);
-        // A corner of a curve: the load turns there, so the next step is
-        // predicted by the tangent, not extrapolated from this one; it
-        // starts from the increment this one had before it was cut to the
-        // corner.
+        ++steps_done;
+        // The next step's start: a corner of a curve turns the load, so the
+        // next step is predicted by the tangent, not extrapolated from this
+        // one, and starts from the increment this one had before it was cut
+        // to the corner.
         if (curves && t == corner) dt_old = 0;
         if (!(curves && h < dt)) dt = h;
         if (a.record.newton_iterations <= opt.fast_iterations) dt *= opt.growth;
+        if (opt.on_state) opt.on_state({t, dt, dt_old, x, x_old});
+        if (!opt.quiet)
+          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}\n",
+                     steps_done, curves ? "time" : "load factor", t, h, a.record.newton_iterations,
+                     a.record.residual_norms.back(), a.record.active_set_sizes.back(),
+                     cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
+        if (on_step) on_step(summary.steps.back(), x);
         cut_backs = 0;
         done = true;
       } else {

@@ -33,6 +33,7 @@
 
 #include <Eigen/Sparse>
 #include <functional>
+#include <optional>
 
 #include "engine/saddle_solver.hpp"
 #include <string>
@@ -66,6 +67,16 @@ class NonlinearProblem {
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
 };
 
+// Where the driver stands between two steps: everything the next step
+// depends on, so that a run continued from it (a restart) takes the same
+// steps, bit for bit, as one that never stopped.
+struct LoadSteppingState {
+  double t = 0;       // the time reached
+  double dt = 0;      // the increment the next step tries
+  double dt_old = 0;  // the last increment (0: none to extrapolate; the tangent predictor)
+  Eigen::VectorXd x, x_old;  // the converged state at t, and the one before
+};
+
 struct LoadSteppingOptions {
   int steps = 10;                  // initial increment 1/steps ...
   double first_increment = 0;      // ... unless this is > 0
@@ -85,6 +96,16 @@ struct LoadSteppingOptions {
   // rather than extrapolating across the corner).  Empty: t runs from 0 to
   // 1, the load factor.
   std::vector<double> corners;
+  // A restart: start from this state instead of (t = 0, x); `steps_done`
+  // steps count as done (for max_steps).
+  std::optional<LoadSteppingState> start;
+  int steps_done = 0;
+  // Stop once this many steps are done (0: no limit), with the status
+  // "stopped after step N (as asked)".
+  int max_steps = 0;
+  // Called after each converged step, before on_step, with the state to
+  // continue from.
+  std::function<void(const LoadSteppingState&)> on_state;
 };
 
 struct LoadStepRecord {

@@ -98,8 +98,8 @@ Json reactions_json(const std::vector<FaceReaction>& reactions) {
   }
   return out;
 }
-// FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
-// summary came from (not a cryptographic hash).  Empty when unreadable.
+}  // namespace
+
 std::string fnv1a64_of_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return "";
@@ -114,8 +114,6 @@ std::string fnv1a64_of_file(const std::string& path) {
   }
   return fmt::format("{:016x}", h);
 }
-
-}  // namespace
 
 Json run_summary(const Model& m, const RunResult& r) {
   const Body& body = m.body;

@@ -148,8 +148,23 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
       if (m.dofs->equation(i) < 0) u(i / dim, i % dim) = (*curve_of[size_t(i)])(t) * m.dofs->prescribed_value(i);
     return u;
   };
+  // A restart: the earlier steps are taken as they were recorded (each
+  // step is solved afresh, so none depends on the one before); the last of
+  // them is solved again for the run's final state when nothing follows it.
+  const size_t resumed = std::min(m.resume.size(), times.size());
+  for (size_t i = 0; i < resumed; ++i) {
+    steps.steps.push_back(m.resume[i].record);
+    r.load_curve.push_back(m.resume[i].point);
+  }
   RunResult last;
-  for (const double t : times) {
+  for (size_t i = resumed > 0 ? resumed - 1 : 0; i < times.size(); ++i) {
+    const double t = times[i];
+    const bool again = resumed > 0 && i == resumed - 1;  // (its record is in already)
+    if (again && i + 1 < times.size()) continue;
+    if (!again && m.stop_after_step > 0 && int(i) >= m.stop_after_step) {
+      steps.status = fmt::format("stopped after step {} (as asked)", i);
+      break;
+    }
     clock.restart();
     RunResult step;
     const Eigen::VectorXd f = load_at(t);
@@ -174,14 +189,31 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     }
     clock.restart();
     step.dirichlet_reactions = reactions(step.u, t);
+    if (again) {
+      last = std::move(step);
+      continue;
+    }
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : step.contacts) p.contact_forces.push_back(c.report.total_force);
     p.face_displacement = probe.face_displacement(body, step.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
     p.dirichlet_reactions = step.dirichlet_reactions;
-    r.load_curve.push_back(std::move(p));
+    r.load_curve.push_back(p);
     steps.steps.push_back(record);
+    // what a restart needs of the step: its time and solution x = [u_free; lambda]
+    Eigen::VectorXd xs = step.contact ? Eigen::VectorXd(step.contact->solution.u.size() + step.contact->solution.lambda.size())
+                                      : Eigen::VectorXd(m.dofs->num_free());
+    if (step.contact) xs << step.contact->solution.u, step.contact->solution.lambda;
+    else for (int d = 0; d < m.dofs->num_dofs(); ++d)
+      if (m.dofs->equation(d) >= 0) xs[m.dofs->equation(d)] = step.u(d / dim, d % dim);
+    StepState state;
+    state.step = int(steps.steps.size());
+    state.driver.t = t;
+    state.driver.x = std::move(xs);
+    state.record = record;
+    state.point = std::move(p);
+    step.step_state = std::move(state);
     r.timing.postprocess += clock.seconds();
     if (!m.quiet)
       progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s)", steps.steps.size(), t,

@@ -22,6 +22,7 @@
 #include "materials/hyperelastic.hpp"
 #include "materials/linear_elastic.hpp"
 #include "model/case_spec.hpp"
+#include "model/run_result.hpp"
 
 namespace igac {
 
@@ -84,6 +85,10 @@ struct Model {
   // breakpoints (engine/geometry/conforming_interfaces.hpp).
   std::vector<InsertedKnots> interface_knots;
   bool quiet = false;    // no progress lines
+  // A restart (app: igac run --restart): the steps an earlier run of the
+  // same case completed, in order; the solve continues after the last.
+  std::vector<StepState> resume;
+  int stop_after_step = 0;  // > 0: stop once this many steps are done (igac run --stop-after-step)
   // Called by solve_model once it has checked what only a solve can (the
   // body is held, something loads it), before the long work: the console's
   // header, so that bad input stays one line.

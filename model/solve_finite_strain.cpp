@@ -156,10 +156,25 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     return p;
   };
   std::optional<Progress> progress;  // the heartbeat of a long load step (the step lines are load_stepping's)
+  // A restart: the earlier steps' records and load-curve points, and the
+  // driver continues from the state after the last of them.
+  std::vector<LoadStepRecord> earlier;
+  for (const StepState& st : m.resume) {
+    earlier.push_back(st.record);
+    r.load_curve.push_back(st.point);
+  }
+  if (!m.resume.empty()) {
+    opt.start = m.resume.back().driver;
+    opt.steps_done = int(m.resume.size());
+  }
+  opt.max_steps = m.stop_after_step;
+  LoadSteppingState latest;  // the driver's state after the step record_step sees
+  opt.on_state = [&latest](const LoadSteppingState& s) { latest = s; };
   const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
     if (progress) progress->now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
+    step.step_state = StepState{int(r.load_curve.size()), latest, rec, r.load_curve.back()};
     if (on_step) on_step(step, rec.load_factor);
   };
   // Nothing loads the body: u = 0 is the solution (Newton, measuring its
@@ -185,6 +200,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     record_step(summary.steps.back(), x);
   } else {
     summary = run_load_steps(problem, x, opt, record_step);
+    summary.steps.insert(summary.steps.begin(), earlier.begin(), earlier.end());
   }
   r.load_steps = summary;
   r.status = summary.status;
