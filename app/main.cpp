@@ -247,7 +247,10 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
   if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)
     throw InputError(fmt::format("{}: --restart and --stop-after-step need a run in steps (large deformation or load "
-                                 "curves); this case is solved in one step", path));
+                                 "curves); {}", path,
+                                 std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; })
+                                     ? "a frictional case's steps (and its slip history) are not restarted"
+                                     : "this case is solved in one step"));
   if (!restart.dir.empty()) model.resume = read_earlier_steps(path, restart);
   model.stop_after_step = restart.stop_after_step;
   const std::string case_hash = fnv1a64_of_file(path);
