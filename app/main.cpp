@@ -29,6 +29,8 @@
 #include "io/gismo_xml.hpp"
 #include "io/json_out.hpp"
 #include "app/output_folder.hpp"
+#include "app/restart.hpp"
+#include "io/state_file.hpp"
 #include "io/plots.hpp"
 #include "app/study.hpp"
 #include "io/vtk_output.hpp"
@@ -220,7 +222,7 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
 
 int run_command(const std::string& path, std::string out, std::optional<int> refine, std::optional<int> degree,
                 bool quiet, bool no_output, const std::string& solver, const std::string& petsc_options,
-                const std::string& preconditioner, char** argv) {
+                const std::string& preconditioner, const RestartOptions& restart, char** argv) {
   const Stopwatch wall;  // the "time ... in all" of the console
   CaseSpec spec = read_case(path);
 #ifndef IGAC_WITH_PETSC
@@ -246,6 +248,18 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!out.empty()) folder.emplace(out);
   Model model = build_model(spec);
   model.quiet = quiet;
+  // A run in steps writes its state after each one (state_NNNN.bin, beside
+  // the step's .vtu); --restart continues from there (app/restart.hpp).
+  const bool stepped = spec.finite_strain() || spec.has_load_curves();
+  if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)
+    throw InputError(fmt::format("{}: --restart and --stop-after-step need a run in steps (large deformation or load "
+                                 "curves); {}", path,
+                                 std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; })
+                                     ? "a frictional case's steps (and its slip history) are not restarted"
+                                     : "this case is solved in one step"));
+  if (!restart.dir.empty()) model.resume = read_earlier_steps(path, restart);
+  model.stop_after_step = restart.stop_after_step;
+  const std::string case_hash = fnv1a64_of_file(path);
   bool header = false;  // printed once the solve accepts the case (bad input stays one line)
   if (!quiet) model.on_solve_start = [&] { print_header(model), header = true; };
   if (!quiet)
@@ -254,16 +268,22 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   const std::string dir = folder ? folder->staging() : std::string();
   const bool vtk = folder && spec.write_vtk;
   VtkSeries series(dir);
-  if (vtk) {  // step 0: the undeformed body, at load factor 0
+  if (folder && !model.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
+    series.resume(adopt_earlier_steps(restart.dir, dir, int(model.resume.size()), vtk));
+    if (vtk) write_pvd(dir, series.steps());
+  } else if (vtk) {  // step 0: the undeformed body, at load factor 0
     RunResult undeformed;
     undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
     series.write_step(model, undeformed, 0.0);
   }
-  // Large deformation: one ParaView step per converged load step.
+  // Large deformation and load curves: one ParaView step per converged load
+  // step, at its time, and the state to restart from.
   StepObserver observer;
-  if (vtk && spec.finite_strain())
+  if (folder && stepped)
     observer = [&](const RunResult& step, double t) {
-      if (step.u.allFinite()) series.write_step(model, step, t);
+      if (vtk && step.u.allFinite()) series.write_step(model, step, t);
+      if (step.step_state)
+        write_state_file(dir + "/" + state_file_name(step.step_state->step), case_hash, *step.step_state);
     };
   RunResult r = solve_model(model, observer);
   if (!quiet)
@@ -291,16 +311,19 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       std::vector<std::string> faces;
       if (r.contacts.size() > 1)
         for (const ContactResult& c : r.contacts) faces.push_back(c.face);
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim())));
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim(),
+                                                                        spec.has_load_curves())));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
-    if (vtk && !spec.finite_strain() && finite) series.write_step(model, r, 1.0);
+    if (vtk && !stepped && finite) series.write_step(model, r, 1.0);
     write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
     folder->commit();
   }
   if (!quiet && !header) print_header(model);
   if (!quiet) print_summary(model, r, folder ? folder->target() : std::string(), wall.seconds());
-  return r.status == "converged" ? 0 : 1;
+  // (a run stopped where --stop-after-step asked has done what it was asked)
+  const bool asked = restart.stop_after_step > 0 && r.status.starts_with("stopped after step");
+  return r.status == "converged" || asked ? 0 : 1;
 }
 
 }  // namespace
@@ -336,6 +359,14 @@ int main(int argc, char** argv) {
   run->add_option("--petsc-options", petsc_options, "PETSc options, e.g. \"-ksp_type fgmres -pc_type fieldsplit\"");
   run->add_option("--preconditioner", preconditioner,
                   "PETSc: options (as the PETSc options say; default MUMPS) or spline_multigrid");
+  RestartOptions restart;
+  run->add_option("--restart", restart.dir,
+                  "continue the run whose output is in this folder (same case file) after its last step");
+  run->add_option("--from-step", restart.from_step, "with --restart: continue after this step instead of the last")
+      ->needs("--restart")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--stop-after-step", restart.stop_after_step, "stop once this many load steps are done")
+      ->check(CLI::PositiveNumber);
 
   auto* study = app.add_subcommand("study", "refinement study on nested meshes");
   study->add_option("case", case_path, "case file (TOML)")->required();
@@ -392,7 +423,7 @@ int main(int argc, char** argv) {
     }
   try {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options,
-                                          preconditioner, argv);
+                                          preconditioner, restart, argv);
     if (geometry->parsed()) {
       check_geometry_destination(out, case_path);
       const MultiPatch body = case_body(read_case(case_path));

@@ -39,7 +39,7 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
   const int dim = d.dim();
   Eigen::MatrixXd u(d.num_dofs() / dim, dim);
   for (int i = 0; i < d.num_dofs(); ++i)
-    u(i / dim, i % dim) = d.equation(i) >= 0 ? x[d.equation(i)] : t * d.prescribed_value(i);
+    u(i / dim, i % dim) = d.equation(i) >= 0 ? x[d.equation(i)] : (s_.prescribed_curves.empty() ? t : (*s_.prescribed_curves[i])(t)) * d.prescribed_value(i);
   return u;
 }
 
@@ -66,7 +66,7 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
     }
     // A moving obstacle stands at its reference position moved by t * motion.
     std::optional<TranslatedObstacle> moved;
-    if (contact.motion.size() > 0) moved.emplace(*contact.obstacle, t * contact.motion);
+    if (contact.motion.size() > 0) moved.emplace(*contact.obstacle, contact.curve(t) * contact.motion);
     const Obstacle& obstacle = moved ? static_cast<const Obstacle&>(*moved) : *contact.obstacle;
     contact_quadratures_[c].for_each_point([&](const auto& v, int q, const std::vector<int>& Ks,
                                                const std::vector<double>& B) {
@@ -114,8 +114,8 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   if (!tl_->assemble(u, f_int, nullptr)) return false;
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(n_);
   for (const auto& p : s_.pressures) {
-    if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, u, f_ext, nullptr);
-    else add_dead_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, f_ext);
+    if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
+    else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   }
   r.resize(n_ + m_);
   r.head(n_) = f_int - f_ext;
@@ -166,7 +166,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   if (follower) {
     if (J.K_factor.nonZeros() != J.K.nonZeros()) J.K_factor = J.K;
     else std::copy(J.K.valuePtr(), J.K.valuePtr() + J.K.nonZeros(), J.K_factor.valuePtr());
-    for (const auto& p : s_.pressures) add_follower_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, u, f_ext, &J.K);
+    for (const auto& p : s_.pressures) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, &J.K);
   } else {
     J.K_factor.resize(0, 0);
   }
@@ -201,7 +201,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
   double scale = 0;
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
-  for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, t * p.value, f_ext);
+  for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
   // At rest with no load the forces are zero, or round-off (the mixed
   // formulation's isochoric stress at F = I is 1e-17, not 0): no scale then.

@@ -23,6 +23,7 @@
 #include "contact/finite_strain_mortar.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/linear_static.hpp"
+#include "engine/load_curve.hpp"
 #include "engine/load_stepping.hpp"
 #include "engine/total_lagrangian.hpp"
 #include "materials/hyperelastic.hpp"
@@ -32,11 +33,15 @@ namespace igac {
 struct PressureLoad {
   std::vector<PatchSide> faces;
   double value = 0;
+  LoadCurve curve;  // the pressure at t is curve(t) * value (engine/load_curve.hpp; no points: t)
 };
 
 struct FiniteStrainSetup {
   const Body* body = nullptr;
   const DofMap* dofs = nullptr;               // prescribed values at full load (ramped with t)
+  // With load curves, per dof: the curve of the condition that prescribes
+  // it (its value at t is curve(t) * value); empty: t * value.
+  std::vector<const LoadCurve*> prescribed_curves;
   const HyperelasticLaw* law = nullptr;
   Formulation formulation = Formulation::displacement;  // engine/volumetric_projection.hpp
   // Several bodies (or materials): the law and formulation of each patch of
@@ -56,6 +61,7 @@ struct FiniteStrainSetup {
     Eigen::VectorXd motion;              // empty, or its translation at full load (ramped with t)
     const MasterSurface* master = nullptr;
     MortarIntegration integration = MortarIntegration::element;
+    LoadCurve curve;                     // the translation at t is curve(t) * motion (no points: t)
   };
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length

@@ -267,34 +267,66 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   Eigen::VectorXd x_old = x;
   double dt_old = 0;
   int cut_backs = 0;
-  while (t < 1.0 - 1e-12) {
-    dt = std::min({dt, 1.0 - t, opt.max_increment});
+  if (opt.start) {
+    t = opt.start->t;
+    dt = opt.start->dt;
+    dt_old = opt.start->dt_old;
+    x = opt.start->x;
+    x_old = opt.start->x_old;
+  }
+  int steps_done = opt.steps_done;
+  // Without curves the one corner is t = 1 and nothing below differs from
+  // a plain ramp to 1 (the same increments, bit for bit); with them a step
+  // that reaches a corner ends on it exactly.
+  const bool curves = !opt.corners.empty();
+  const std::vector<double> corners = curves ? opt.corners : std::vector<double>{1.0};
+  size_t next = 0;  // the first corner ahead of t
+  while (true) {
+    while (next < corners.size() && !(t < corners[next] - 1e-12)) ++next;
+    if (next == corners.size()) break;
+    if (opt.max_steps > 0 && steps_done >= opt.max_steps) {
+      summary.status = fmt::format("stopped after step {} (as asked)", steps_done);
+      break;
+    }
+    const double corner = corners[next];
+    dt = std::min(dt, opt.max_increment);
+    const double h = std::min(dt, corner - t);  // this step's increment
+    const double t_new = curves && h == corner - t ? corner : t + h;
     bool done = false;
     std::string why;
     // First try from a predicted state: extrapolated from the last
     // increment, or (no history yet) the tangent predictor; then from the
     // last converged state as it is.
     std::optional<Eigen::VectorXd> predicted;
-    if (dt_old > 0) predicted = Eigen::VectorXd(x + (x - x_old) * (dt / dt_old));
-    else if (opt.tangent_predictor) predicted = tangent_predictor(problem, x, t, dt, J, solver);
+    if (dt_old > 0) predicted = Eigen::VectorXd(x + (x - x_old) * (h / dt_old));
+    else if (opt.tangent_predictor) predicted = tangent_predictor(problem, x, t, h, J, solver);
     for (int attempt = 0; attempt < 2 && !done; ++attempt) {
       if (attempt == 0 && !predicted) continue;
       Eigen::VectorXd x_try = attempt == 0 ? *predicted : x;
-      Attempt a{problem, t + dt, 1.0, J, solver, summary, {}, {}, {}, {}};
-      a.record.load_factor = t + dt;
+      Attempt a{problem, t_new, 1.0, J, solver, summary, {}, {}, {}, {}};
+      a.record.load_factor = t_new;
       if (solve_step(a, x_try, ctx, opt)) {
         a.record.cut_backs = cut_backs;
         x_old = x;
         x = x_try;
-        dt_old = dt;
-        t += dt;
+        dt_old = h;
+        t = t_new;
         summary.steps.push_back(a.record);
-        if (!opt.quiet)
-          fmt::print(stderr, "step {:3d}: load factor {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}\n",
-                     summary.steps.size(), t, dt, a.record.newton_iterations, a.record.residual_norms.back(),
-                     a.record.active_set_sizes.back(), cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
-        if (on_step) on_step(summary.steps.back(), x);
+        ++steps_done;
+        // The next step's start: a corner of a curve turns the load, so the
+        // next step is predicted by the tangent, not extrapolated from this
+        // one, and starts from the increment this one had before it was cut
+        // to the corner.
+        if (curves && t == corner) dt_old = 0;
+        if (!(curves && h < dt)) dt = h;
         if (a.record.newton_iterations <= opt.fast_iterations) dt *= opt.growth;
+        if (opt.on_state) opt.on_state({t, dt, dt_old, x, x_old});
+        if (!opt.quiet)
+          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}\n",
+                     steps_done, curves ? "time" : "load factor", t, h, a.record.newton_iterations,
+                     a.record.residual_norms.back(), a.record.active_set_sizes.back(),
+                     cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
+        if (on_step) on_step(summary.steps.back(), x);
         cut_backs = 0;
         done = true;
       } else {
@@ -303,11 +335,13 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     }
     if (done) continue;
     ++cut_backs;
-    dt *= 0.5;
-    if (!opt.quiet) fmt::print(stderr, "         load factor {:.4f} failed ({}): cut back to increment {:.3g}\n", t + 2 * dt, why, dt);
+    dt = h * 0.5;
+    if (!opt.quiet)
+      fmt::print(stderr, "         {} {:.4f} failed ({}): cut back to increment {:.3g}\n", curves ? "time" : "load factor",
+                 t + 2 * dt, why, dt);
     if (dt < opt.min_increment) {
-      summary.status = fmt::format("stopped at load factor {:.6g}: {} even with an increment below {:.3g}", t, why,
-                                   opt.min_increment);
+      summary.status = fmt::format("stopped at {} {:.6g}: {} even with an increment below {:.3g}",
+                                   curves ? "time" : "load factor", t, why, opt.min_increment);
       summary.unfinished_cut_backs = cut_backs;
       break;
     }

@@ -16,7 +16,8 @@
 // K's skew part (a follower load); UMFPACK on the whole matrix is the
 // fallback when K's symmetric part is not positive definite.
 //
-// Steps: the case gives a number of steps (or a first increment).  A step
+// Steps: the case gives a number of steps (or a first increment); with load
+// curves t is their time and steps end on every corner (LoadSteppingOptions::corners).  A step
 // that fails — no convergence within the iteration limit, an inadmissible
 // state (det F <= 0) in the residual, an active set that cycles — is cut
 // back (increment halved) and retried from the last converged state; a step
@@ -32,6 +33,7 @@
 
 #include <Eigen/Sparse>
 #include <functional>
+#include <optional>
 
 #include "engine/saddle_solver.hpp"
 #include <string>
@@ -65,6 +67,16 @@ class NonlinearProblem {
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
 };
 
+// Where the driver stands between two steps: everything the next step
+// depends on, so that a run continued from it (a restart) takes the same
+// steps, bit for bit, as one that never stopped.
+struct LoadSteppingState {
+  double t = 0;       // the time reached
+  double dt = 0;      // the increment the next step tries
+  double dt_old = 0;  // the last increment (0: none to extrapolate; the tangent predictor)
+  Eigen::VectorXd x, x_old;  // the converged state at t, and the one before
+};
+
 struct LoadSteppingOptions {
   int steps = 10;                  // initial increment 1/steps ...
   double first_increment = 0;      // ... unless this is > 0
@@ -77,10 +89,27 @@ struct LoadSteppingOptions {
   bool line_search = true;         // KINSOL's KIN_LINESEARCH, else KIN_NONE
   bool tangent_predictor = true;   // a step without history starts from x - J^{-1} dR/dt dt
   bool quiet = false;
+  // Load curves (engine/load_curve.hpp): the times t runs through, the
+  // curves' corners in increasing order, the last where the run ends.  A
+  // step never straddles one: it is cut to end on it (and the next step
+  // starts from the increment before that cut, with the tangent predictor
+  // rather than extrapolating across the corner).  Empty: t runs from 0 to
+  // 1, the load factor.
+  std::vector<double> corners;
+  // A restart: start from this state instead of (t = 0, x); `steps_done`
+  // steps count as done (for max_steps).
+  std::optional<LoadSteppingState> start;
+  int steps_done = 0;
+  // Stop once this many steps are done (0: no limit), with the status
+  // "stopped after step N (as asked)".
+  int max_steps = 0;
+  // Called after each converged step, before on_step, with the state to
+  // continue from.
+  std::function<void(const LoadSteppingState&)> on_state;
 };
 
 struct LoadStepRecord {
-  double load_factor = 0;
+  double load_factor = 0;  // the time t (with load curves, the curves' abscissa)
   int newton_iterations = 0;
   std::vector<double> residual_norms;  // relative, per Newton iteration, last = converged
   std::vector<int> active_set_sizes;   // per Newton iteration
@@ -96,8 +125,8 @@ struct LoadSteppingSummary {
   SaddleSolverStats linear;                           // the linear solves, ditto
 };
 
-// Runs from x (the state at t = 0) to t = 1; x holds the last converged
-// state on return.  `on_step` is called after each converged step.
+// Runs from x (the state at t = 0) to t = 1 (with corners, to the last);
+// x holds the last converged state on return.  `on_step` is called after each converged step.
 LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x, const LoadSteppingOptions& options,
                                    const std::function<void(const LoadStepRecord&, const Eigen::VectorXd&)>& on_step);
 

@@ -36,11 +36,11 @@ const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", 
                                      "pressure", "body_force", "contact", "reference", "output", "loading",
                                      "faces", "solver", "body", "units"};
 const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
-const std::set<std::string> kDirichletKeys{"faces", "component", "value"};
-const std::set<std::string> kPressureKeys{"faces", "value"};
-const std::set<std::string> kBodyForceKeys{"value"};
+const std::set<std::string> kDirichletKeys{"faces", "component", "value", "curve"};
+const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
+const std::set<std::string> kBodyForceKeys{"value", "curve"};
 const std::set<std::string> kContactKeys{"face", "obstacle", "master", "master_motion", "friction"};
-const std::set<std::string> kObstacleKeys{"type", "motion"};  // and the obstacle type's own
+const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
                                          "max_newton_iterations", "line_search", "predictor", "pressure"};
@@ -179,6 +179,27 @@ void read_bodies(const std::string& path, const toml::table& root, CaseSpec& c) 
   for (const BodySpec& b : c.bodies) c.degree = std::min(c.degree, b.degree);
 }
 
+// A case with load curves: what they do not run with, one line; then every
+// load without a curve of its own ramps to its value over [0, 1] and keeps it.
+void check_load_curves(CaseSpec& c) {
+  if (!c.has_load_curves()) return;
+  for (const ContactSpec& cs : c.contacts)
+    if (cs.friction > 0)
+      throw InputError(fmt::format("{}: [contact] friction: load curves do not run with friction (its path-dependent "
+                                   "stepping moves the obstacle in [loading] steps); give no curve or no friction",
+                                   c.path));
+  if (c.reference != "none")
+    throw InputError(fmt::format("{}: [reference] solution: a reference solution is compared with the loads at their "
+                                 "values, not along load curves; give solution = \"none\"", c.path));
+  auto hold = [](LoadCurve& curve) {
+    if (!curve.has_points()) curve = LoadCurve::ramp_and_hold();
+  };
+  for (DirichletSpec& d : c.dirichlet) hold(d.curve);
+  for (PressureSpec& p : c.pressure) hold(p.curve);
+  hold(c.body_force_curve);
+  for (ContactSpec& cs : c.contacts) hold(cs.obstacle.curve);
+}
+
 }  // namespace
 
 CaseSpec read_case(const std::string& path) {
@@ -239,15 +260,22 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
 
   for (const auto* t : tables(path, root, "dirichlet")) {
     const Section s(path, "dirichlet", *t, kDirichletKeys);
-    c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.load("value", 0.0)});
+    c.dirichlet.push_back({s.strings("faces"), component_index(s, "component", dim), s.load("value", 0.0), {}});
+    if (s.has("curve")) {
+      if (c.dirichlet.back().value == 0)
+        s.fail("curve", "the condition holds the faces at 0: there is no prescribed value for the curve to scale");
+      c.dirichlet.back().curve = s.curve("curve");
+    }
   }
   for (const auto* t : tables(path, root, "pressure")) {
     const Section s(path, "pressure", *t, kPressureKeys);
-    c.pressure.push_back({s.strings("faces"), s.load("value")});
+    c.pressure.push_back({s.strings("faces"), s.load("value"), {}});
+    if (s.has("curve")) c.pressure.back().curve = s.curve("curve");
   }
   if (root.contains("body_force")) {
     const Section s(path, "body_force", top.sub("body_force"), kBodyForceKeys);
     c.body_force = s.loads("value", dim);
+    if (s.has("curve")) c.body_force_curve = s.curve("curve");
   }
   for (const auto* contact_table : tables(path, root, "contact")) {  // [contact] or [[contact]]
     const Section s(path, "contact", *contact_table, kContactKeys);
@@ -308,6 +336,10 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
         }
       }
       if (o.has("motion")) cs.obstacle.motion = o.loads("motion", dim);
+      if (o.has("curve")) {
+        if (!o.has("motion")) o.fail("curve", "the obstacle has no motion for the curve to scale");
+        cs.obstacle.curve = o.curve("curve");
+      }
     }
     if (s.has("friction")) {  // Coulomb (contact/small_strain_friction.hpp)
       cs.friction = s.number("friction");  // finite
@@ -335,9 +367,9 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
   if (root.contains("loading")) {
     const Section s(path, "loading", top.sub("loading"), kLoadingKeys);
     const bool friction = std::any_of(c.contacts.begin(), c.contacts.end(), [](const auto& x) { return x.friction > 0; });
-    if (!c.finite_strain() && !friction)
-      s.fail("steps", "[loading] drives the large-deformation models and friction; linear_elastic without friction is "
-                      "solved in one linear step");
+    if (!c.finite_strain() && !friction && !c.has_load_curves())
+      s.fail("steps", "[loading] drives the large-deformation models, friction and load curves; linear_elastic "
+                      "without friction or a curve is solved in one linear step");
     LoadingSpec& l = c.loading;
     l.steps = s.integer("steps", 10);
     if (l.steps < 1 || l.steps > 100000) s.fail("steps", "must lie in 1..100000");
@@ -394,6 +426,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     u.force = s.string("force", u.force);
     u.stress = s.string("stress", u.stress);
   }
+  check_load_curves(c);
   apply_overrides(c, {}, {});
   return c;
 }

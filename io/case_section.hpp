@@ -5,6 +5,7 @@
 // describe one body.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -148,6 +149,32 @@ class Section {
       out.push_back(*v);
     }
     return out;
+  }
+  // A load curve: [[t0, f0], [t1, f1], ...], at least two pairs, t0 = 0,
+  // the times increasing, every number finite (engine/load_curve.hpp).
+  LoadCurve curve(const std::string& key) const {
+    const auto* n = t_.get(key);
+    const char* form = "must be a list of [time, factor] pairs, e.g. [[0, 0], [1, 1], [2, 0]]";
+    if (!n || !n->as_array()) fail(key, form);
+    std::vector<std::array<double, 2>> points;
+    for (const auto& e : *n->as_array()) {
+      const auto* pair = e.as_array();
+      if (!pair || pair->size() != 2) fail(key, form);
+      std::array<double, 2> p{};
+      for (size_t i = 0; i < 2; ++i) {
+        const auto v = (*pair)[i].value<double>();
+        if (!v) fail(key, form);
+        if (!std::isfinite(*v)) fail(key, fmt::format("point {} holds a non-finite number", points.size() + 1));
+        if (std::abs(*v) > kLargestLoad) fail(key, fmt::format("{:g} is larger than 1e100 in size", *v));
+        p[i] = *v;
+      }
+      if (points.empty() && p[0] != 0) fail(key, fmt::format("must start at time 0, where the run starts (not {:g})", p[0]));
+      if (!points.empty() && !(p[0] > points.back()[0]))
+        fail(key, fmt::format("the times must increase: {:g} follows {:g}", p[0], points.back()[0]));
+      points.push_back(p);
+    }
+    if (points.size() < 2) fail(key, fmt::format("{} (at least two)", form));
+    return LoadCurve(std::move(points));
   }
   const toml::table& sub(const std::string& key) const {
     const auto* n = t_.get(key);

@@ -103,8 +103,8 @@ Json reactions_json(const std::vector<FaceReaction>& reactions) {
   }
   return out;
 }
-// FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
-// summary came from (not a cryptographic hash).  Empty when unreadable.
+}  // namespace
+
 std::string fnv1a64_of_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return "";
@@ -119,8 +119,6 @@ std::string fnv1a64_of_file(const std::string& path) {
   }
   return fmt::format("{:016x}", h);
 }
-
-}  // namespace
 
 Json run_summary(const Model& m, const RunResult& r) {
   const Body& body = m.body;
@@ -187,6 +185,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     for (const auto& st : r.load_steps->steps) {
       Json step;
       step["load_factor"] = finite_or_null(st.load_factor);
+      if (m.spec.has_load_curves()) step["time"] = finite_or_null(st.load_factor);  // (the load factor is the time)
       step["newton_iterations"] = st.newton_iterations;
       Json norms = Json::array();
       for (double v : st.residual_norms) norms.push_back(finite_or_null(v));
@@ -291,12 +290,19 @@ std::string csv_number(double v, int digits) {
 std::string load_curve_csv(const Model& m, const RunResult& r) {
   // One contact: contact_force.  Several: contact_force_<face> for each.
   const std::vector<std::string> tags = contact_file_tags(m);
-  std::string s = "load_factor";
+  // With load curves the first column is their time, and the reactions of
+  // the [[dirichlet]] face sets follow, a column per component.
+  const bool history = m.spec.has_load_curves();
+  std::string s = history ? "time" : "load_factor";
   if (tags.size() > 1)
     for (const std::string& tag : tags) s += fmt::format(",contact_force_{}", tag);
   else
     s += ",contact_force";
-  s += ",face_displacement,obstacle_displacement\n";
+  s += ",face_displacement,obstacle_displacement";
+  if (history && !r.load_curve.empty())
+    for (const FaceReaction& f : r.load_curve.front().dirichlet_reactions)
+      for (int c = 0; c < f.force.size(); ++c) s += fmt::format(",reaction_{}_{}", f.face, "xyz"[c]);
+  s += "\n";
   for (const auto& p : r.load_curve) {
     s += csv_number(p.load_factor);
     if (tags.size() > 1)
@@ -304,7 +310,11 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
         s += fmt::format(",{}", csv_number(i < p.contact_forces.size() ? p.contact_forces[i] : std::nan("")));
     else
       s += fmt::format(",{}", csv_number(p.contact_force()));
-    s += fmt::format(",{},{}\n", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+    s += fmt::format(",{},{}", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+    if (history)
+      for (const FaceReaction& f : p.dirichlet_reactions)
+        for (int c = 0; c < f.force.size(); ++c) s += "," + csv_number(f.force[c]);
+    s += "\n";
   }
   return s;
 }

@@ -18,6 +18,9 @@ using Json = nlohmann::ordered_json;
 
 // Writes text to path atomically (temporary file in the same folder, rename).
 void write_file_atomically(const std::string& path, const std::string& text);
+// FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
+// summary came from (not a cryptographic hash).  Empty when unreadable.
+std::string fnv1a64_of_file(const std::string& path);
 // A number, or null when it is not finite.
 Json finite_or_null(double v);
 // A number for a CSV cell: 10 significant digits, or an empty cell where it

@@ -88,7 +88,7 @@ svg::Figure pressure_figure(const RunResult& r, const std::string& title, size_t
 }
 
 svg::Figure load_curve_figure(const RunResult& r, const std::string& title, const std::vector<std::string>& faces,
-                              const UnitsSpec& units, int dim) {
+                              const UnitsSpec& units, int dim, bool history) {
   const std::string force_unit = UnitsSpec::bracket(units.force_of_model(dim)), length_unit = UnitsSpec::bracket(units.length);
   std::vector<double> t{0}, force{0}, disp{0}, moved{0};
   std::vector<std::vector<double>> forces(faces.size(), std::vector<double>{0});  // several contacts: each one's
@@ -105,7 +105,8 @@ svg::Figure load_curve_figure(const RunResult& r, const std::string& title, cons
   // A moving obstacle drives the run: the force against how far it has moved.
   const bool driven = travel > 0;
   const svg::Series style{.marker = svg::Marker::circle, .marker_size = 3};
-  svg::Panel by_load{.x = {.label = "load factor"}, .y = {.label = "total contact force (modelled part)" + force_unit}};
+  svg::Panel by_load{.x = {.label = history ? "time (load curves)" : "load factor"},
+                     .y = {.label = "total contact force (modelled part)" + force_unit}};
   by_load.series.push_back(style);
   by_load.series.back().x = t;
   by_load.series.back().y = force;
@@ -115,6 +116,26 @@ svg::Figure load_curve_figure(const RunResult& r, const std::string& title, cons
   by_motion.series.push_back(style);
   by_motion.series.back().x = driven ? moved : disp;
   by_motion.series.back().y = force;
+  if (history && faces.empty()) {  // loading and unloading: the steps where the displacement grows, and the others
+    const std::vector<double>& x = driven ? moved : disp;
+    svg::Series up = style, down = style;
+    up.label = "loading";
+    down.label = "unloading";
+    down.dashed = true;
+    down.color = kPalette[1];
+    down.marker = svg::Marker::square;
+    for (size_t i = 1; i < x.size(); ++i) {
+      svg::Series& s = std::abs(x[i]) >= std::abs(x[i - 1]) ? up : down;
+      if (s.x.empty() || s.x.back() != x[i - 1] || s.y.back() != force[i - 1]) {
+        if (!s.x.empty()) s.x.push_back(std::nan("")), s.y.push_back(std::nan(""));  // a break in the line
+        s.x.push_back(x[i - 1]), s.y.push_back(force[i - 1]);
+      }
+      s.x.push_back(x[i]), s.y.push_back(force[i]);
+    }
+    by_motion.series.clear();
+    for (svg::Series* s : {&up, &down})
+      if (!s->x.empty()) by_motion.series.push_back(std::move(*s));
+  }
   if (!faces.empty()) {  // a curve per contact, in the legend by its face
     by_load.series.clear();
     by_motion.series.clear();

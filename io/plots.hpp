@@ -8,8 +8,8 @@
 //                   and, when the case has Hertz, p/p0 = sqrt(1 - (r/a)^2)
 //                   against r/a, like Figure 1(b) of Antolin, Buffa & Fabre
 //                   (2018); otherwise p = -lambda against r.
-//   load_curve.svg  large deformation: the contact force (each contact's,
-//                   when there are several) against the load factor, and
+//   load_curve.svg  large deformation and load curves: the contact force (each contact's,
+//                   when there are several) against the load factor (the time), and
 //                   against the loaded face's displacement (or how far a
 //                   moving obstacle has moved).
 //   study.svg       a refinement study: errors against h, log-log, with the
@@ -32,8 +32,12 @@ svg::Figure pressure_figure(const RunResult& result, const std::string& title, s
                             const UnitsSpec& units = {});
 // Needs result.load_curve (the origin is added as its first point).  With
 // `faces` (several contacts), a curve per contact labelled with its face.
+// `history` (load curves): the first panel against the curves' time, and
+// with one contact the second panel draws the steps where the displacement
+// decreases (unloading) as a series of their own.
 svg::Figure load_curve_figure(const RunResult& result, const std::string& title,
-                              const std::vector<std::string>& faces = {}, const UnitsSpec& units = {}, int dim = 2);
+                              const std::vector<std::string>& faces = {}, const UnitsSpec& units = {}, int dim = 2,
+                              bool history = false);
 
 // One error of a study, per level (aligned with the levels' h).
 struct StudyError {

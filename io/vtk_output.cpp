@@ -234,8 +234,14 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
   auto a_cell = make_array("active", 1, ne);
 
   const Model::Contact& contact = model.contacts[i];
-  const Eigen::VectorXd shift = model.spec.finite_strain() && contact.motion.size() > 0
-                                    ? Eigen::VectorXd(load_factor * contact.motion) : Eigen::VectorXd();
+  // Where the obstacle stands at this step: large deformation, its
+  // reference position moved by curve(t) motion; small deformation, where
+  // its whole motion puts it (c.obstacle), moved back by (curve(t) - 1) motion
+  // along load curves.
+  Eigen::VectorXd shift;
+  if (contact.motion.size() > 0 && model.spec.finite_strain()) shift = contact.curve(load_factor) * contact.motion;
+  else if (contact.motion.size() > 0 && model.spec.has_load_curves())
+    shift = (contact.curve(load_factor) - 1.0) * contact.motion;
   const ContactPartFields fields =
       recover_contact_fields(mesh, side_of, sol, r.contact->op.weights.segment(r.contacts[i].first_multiplier, cf.num_multipliers()),
                              contact.obstacle.get(), shift);

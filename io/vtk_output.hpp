@@ -125,6 +125,8 @@ class VtkSeries {
   explicit VtkSeries(std::string dir) : dir_(std::move(dir)) {}
   const VtkStep& write_step(const Model& model, const RunResult& result, double load_factor);
   const std::vector<VtkStep>& steps() const { return steps_; }
+  // A restart: the series goes on after `earlier` (files already in dir).
+  void resume(std::vector<VtkStep> earlier) { steps_ = std::move(earlier); }
 
  private:
   std::string dir_;

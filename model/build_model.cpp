@@ -463,6 +463,7 @@ Model build_model(const CaseSpec& spec) {
     }
     if (!o.motion.empty()) {
       c.motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
+      c.curve = o.curve;
       // Small deformation: the obstacle stands where its motion puts it.
       if (!spec.finite_strain()) c.obstacle = std::make_unique<TranslatedObstacle>(std::move(c.obstacle), c.motion);
     }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/geometry/multipatch.hpp"
+#include "engine/load_curve.hpp"
 #include "engine/volumetric_projection.hpp"
 #include "materials/hyperelastic.hpp"
 
@@ -28,21 +29,28 @@ struct GradingSpec {
   bool geometric_coarse = false;  // coarse = "geometric": the other spans grow from the fine size
 };
 
+// Every load (a prescribed value, a pressure, the body force, an obstacle's
+// motion) is its value times the factor its curve gives at the time t
+// (engine/load_curve.hpp): without curves in the case, t itself, ramped from
+// 0 to 1; with curves, a load without one follows LoadCurve::ramp_and_hold().
 struct DirichletSpec {
   std::vector<std::string> faces;
   int component = 0;
   double value = 0;
+  LoadCurve curve;
 };
 
 struct PressureSpec {
   std::vector<std::string> faces;
   double value = 0;
+  LoadCurve curve;
 };
 
 struct ObstacleSpec {
   std::string type;  // a registered obstacle type (contact/obstacle.hpp): plane | sphere | cylinder
   std::map<std::string, std::vector<double>, std::less<>> values;  // its declared keys (scalars as one entry)
   std::vector<double> motion;  // rigid translation: applied with the load factor (large deformation) or whole
+  LoadCurve curve;             // of the motion
 };
 
 struct ContactSpec {
@@ -146,11 +154,29 @@ struct CaseSpec : BodySpec {
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;
   std::vector<double> body_force;
+  LoadCurve body_force_curve;
   std::vector<ContactSpec> contacts;  // [contact] or [[contact]]: each face with its rigid obstacle
   std::string reference = "none";  // hertz | lame | none
   bool write_vtk = true;
   SolverSpec solver;
   UnitsSpec units;
+
+  // Every load's curve (dirichlet, pressure, body force, obstacles), in that order.
+  std::vector<const LoadCurve*> load_curves() const {
+    std::vector<const LoadCurve*> out;
+    for (const auto& d : dirichlet) out.push_back(&d.curve);
+    for (const auto& p : pressure) out.push_back(&p.curve);
+    out.push_back(&body_force_curve);
+    for (const auto& c : contacts) out.push_back(&c.obstacle.curve);
+    return out;
+  }
+  // Does some load follow a curve of its own (then the run is a load
+  // history, its time running to the curves' last corner)?
+  bool has_load_curves() const {
+    for (const LoadCurve* c : load_curves())
+      if (c->has_points()) return true;
+    return false;
+  }
 
   // Every body as build_model refines it: the case itself, or each [[body]]
   // with the case's added refinement.

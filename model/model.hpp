@@ -22,6 +22,7 @@
 #include "materials/hyperelastic.hpp"
 #include "materials/linear_elastic.hpp"
 #include "model/case_spec.hpp"
+#include "model/run_result.hpp"
 
 namespace igac {
 
@@ -66,8 +67,9 @@ struct Model {
     std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion); or
     std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (obstacle null)
     std::string master_name;
-    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by t * motion; a master
+    Eigen::VectorXd motion;              // large deformation: the obstacle is moved by curve(t) * motion; a master
                                          // body: moved rigidly with its supports (small deformation)
+    LoadCurve curve;                     // of the motion (no points: the factor is t)
     double friction = 0;                 // Coulomb coefficient (small deformation)
   };
   std::vector<Contact> contacts;
@@ -84,6 +86,10 @@ struct Model {
   // breakpoints (engine/geometry/conforming_interfaces.hpp).
   std::vector<InsertedKnots> interface_knots;
   bool quiet = false;    // no progress lines
+  // A restart (app: igac run --restart): the steps an earlier run of the
+  // same case completed, in order; the solve continues after the last.
+  std::vector<StepState> resume;
+  int stop_after_step = 0;  // > 0: stop once this many steps are done (igac run --stop-after-step)
   // Called by solve_model once it has checked what only a solve can (the
   // body is held, something loads it), before the long work: the console's
   // header, so that bad input stays one line.

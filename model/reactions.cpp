@@ -61,14 +61,15 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
   }
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(all_free_.num_free());
   for (size_t i = 0; i < pressure_faces_.size(); ++i) {
-    const double p = t * m.spec.pressure[i].value;
+    const double p = m.spec.pressure[i].curve(t) * m.spec.pressure[i].value;
     if (m.spec.finite_strain() && m.spec.loading.follower_pressure)
       add_follower_pressure(m.body, all_free_, pressure_faces_[i], p, u, f_ext, nullptr);
     else
       add_dead_pressure(m.body, all_free_, pressure_faces_[i], p, f_ext);
   }
   if (!m.spec.finite_strain() && !m.spec.body_force.empty())  // (large deformation has none)
-    f_ext += body_force_load(m.body, all_free_, Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim));
+    f_ext += m.spec.body_force_curve(t) *
+             body_force_load(m.body, all_free_, Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim));
   residual -= f_ext;
   for (size_t k = 0; k < faces_.size(); ++k) {
     FaceReaction r{faces_[k], Eigen::VectorXd::Zero(dim)};

@@ -33,7 +33,8 @@ class ReactionEvaluator {
  public:
   explicit ReactionEvaluator(const Model& model);
   // The reactions for the displacement u (n_cp x dim) at load factor t
-  // (small deformation: 1), one per face set, in the order of first mention.
+  // (small deformation: 1; with load curves the time, each load at its
+  // curve's factor), one per face set, in the order of first mention.
   std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t) const;
 
  private:

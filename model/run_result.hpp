@@ -82,6 +82,18 @@ struct LoadCurvePoint {
   std::vector<FaceReaction> dirichlet_reactions;  // every [[dirichlet]] face set's, at this step
 };
 
+// One converged step of a run in steps, as a restart needs it
+// (io/state_file.hpp writes one per step next to its .vtu): the driver's
+// state after it (large deformation; along load curves in small
+// deformation t and x = [u_free; lambda], the steps being independent),
+// and what the step added to the summary and the load curve.
+struct StepState {
+  int step = 0;  // from 1
+  LoadSteppingState driver;
+  LoadStepRecord record;
+  LoadCurvePoint point;
+};
+
 // Who solved the linear systems, and how (summary.json "solver").
 struct LinearSolverRecord {
   std::string type = "direct";        // direct | petsc
@@ -112,6 +124,7 @@ struct RunResult {
   std::vector<FaceReaction> dirichlet_reactions;            // every [[dirichlet]] face set's
   std::optional<LoadSteppingSummary> load_steps;            // large deformation only
   std::vector<LoadCurvePoint> load_curve;
+  std::optional<StepState> step_state;  // a step handed to the StepObserver: what a restart needs of it
   Timing timing;
   LinearSolverRecord linear_solver;
   std::vector<std::string> warnings;  // what the solve found doubtful (printed unless quiet; summary.json)

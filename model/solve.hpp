@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "contact/finite_strain_problem.hpp"
 #include "model/model.hpp"
@@ -13,7 +14,7 @@
 
 namespace igac {
 
-// `on_step` (large deformation) sees the state after each converged load step.
+// `on_step` (large deformation, load curves) sees the state after each converged load step.
 using StepObserver = std::function<void(const RunResult&, double load_factor)>;
 // The same case one refinement below, already solved (a study's previous
 // level): where a contact run at --refine r >= 1 starts from (nested
@@ -42,6 +43,8 @@ void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen
 // with the tangential rows of the frictional ones; `motion_factor` t puts
 // each moving obstacle at t * motion (1: where the case has it).
 WeightedGapOperator assemble_contact_operator(const Model& model, double motion_factor = 1.0);
+// The same at time t of the load curves: each moving obstacle at curve(t) * motion.
+WeightedGapOperator assemble_contact_operator_at_time(const Model& model, double time);
 // Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
 // With friction (lambda_t not empty) also the tangential force -sum lambda_t,K K_K along the obstacle's tangents.
 std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
@@ -51,7 +54,8 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen
 // the pressure files, the reports, ParaView), from the stacked s.solution
 // and s.op.weights.
 std::vector<ContactResult> report_contacts(const Model& model, const ContactSolve& s);
-// |int P n dGamma| summed over the pressure loads (the modelled part).
-double pressure_resultant(const Model& model);
+// |int P n dGamma| summed over the pressure loads (the modelled part), at
+// their values or (`time`) at their curves' factors at that time.
+double pressure_resultant(const Model& model, std::optional<double> time = {});
 
 }  // namespace igac

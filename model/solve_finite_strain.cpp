@@ -12,6 +12,7 @@
 #include "engine/face_quadrature.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/linear_static.hpp"
+#include "model/load_history.hpp"
 #include "model/progress.hpp"
 #include "model/reactions.hpp"
 #include "model/references.hpp"
@@ -19,21 +20,6 @@
 
 namespace igac {
 namespace {
-
-// Mean of the last displacement component over faces (reference measure).
-double mean_face_displacement(const Body& body, const std::vector<PatchSide>& faces, const Eigen::MatrixXd& u) {
-  const int dim = body.space_dim();
-  double s = 0, area = 0;
-  FaceQuadrature(body, faces, gauss_points_for(body.degree())).for_each_element([&](int, const auto& v) {
-    for (int k = 0; k < v.n_q; ++k) {
-      double value = 0;
-      for (int a = 0; a < v.n_loc; ++a) value += v.N(k, a) * u(v.cps[a], dim - 1);
-      s += value * v.JxW[k];
-      area += v.JxW[k];
-    }
-  });
-  return area > 0 ? s / area : 0.0;
-}
 
 // The deformed extent and the Cauchy peak of contact `c` (face `cf`) for
 // the displacement u (n_cp x dim).
@@ -132,11 +118,12 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
     setup.patch_formulations = m.patch_formulations();
     for (const Model::Part& p : m.parts) setup.patch_laws.insert(setup.patch_laws.end(), size_t(p.num_patches), p.law.get());
   }
-  for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value});
+  for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve});
+  setup.prescribed_curves = prescribed_curves(m);
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
-                              default_mortar_integration(body.space_dim())});
+                              default_mortar_integration(body.space_dim()), c.curve});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   return setup;
 }
@@ -158,25 +145,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   problem.activate_nearest(x, int(modes.modes.cols()));
   r.applied_force = pressure_resultant(m);
 
-  // the face whose displacement the load curve follows
-  std::vector<PatchSide> loaded;
-  for (const auto& p : m.spec.pressure) {
-    const auto f = resolve_faces(m, p.faces, "pressure");
-    loaded.insert(loaded.end(), f.begin(), f.end());
-  }
-  // Driven by a moving obstacle: follow the face it pushes, and how far it moved.
-  const Model::Contact* mover = nullptr;
-  for (const auto& c : m.contacts)
-    if (c.motion.size() > 0 && !mover) mover = &c;
-  if (loaded.empty() && mover)
-    for (const ContactSide& side : mover->face->sides) loaded.push_back(side.side);
-  if (loaded.empty())
-    for (const auto& d : m.spec.dirichlet)
-      if (d.value != 0) {
-        const auto f = resolve_faces(m, d.faces, "dirichlet");
-        loaded.insert(loaded.end(), f.begin(), f.end());
-      }
-
+  const LoadCurveProbe probe(m);  // the face whose displacement the load curve follows, the moving obstacle
   LoadSteppingOptions opt;
   opt.steps = m.spec.loading.steps;
   opt.first_increment = m.spec.loading.first_increment;
@@ -186,6 +155,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.line_search = m.spec.loading.line_search;
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.quiet = m.quiet;
+  const bool curves = m.spec.has_load_curves();
+  if (curves) opt.corners = curve_corners(m.spec.load_curves());
   const ReactionEvaluator reactions(m);
   auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
     out.u = problem.displacement(t, xs);
@@ -193,17 +164,32 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
-    p.face_displacement = mean_face_displacement(body, loaded, out.u);
-    p.obstacle_displacement = mover ? t * mover->motion.norm() : 0.0;
+    p.face_displacement = probe.face_displacement(body, out.u);
+    p.obstacle_displacement = probe.obstacle_displacement(t);
     p.dirichlet_reactions = reactions(out.u, t);
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
   };
   std::optional<Progress> progress;  // the heartbeat of a long load step (the step lines are load_stepping's)
+  // A restart: the earlier steps' records and load-curve points, and the
+  // driver continues from the state after the last of them.
+  std::vector<LoadStepRecord> earlier;
+  for (const StepState& st : m.resume) {
+    earlier.push_back(st.record);
+    r.load_curve.push_back(st.point);
+  }
+  if (!m.resume.empty()) {
+    opt.start = m.resume.back().driver;
+    opt.steps_done = int(m.resume.size());
+  }
+  opt.max_steps = m.stop_after_step;
+  LoadSteppingState latest;  // the driver's state after the step record_step sees
+  opt.on_state = [&latest](const LoadSteppingState& s) { latest = s; };
   const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
     if (progress) progress->now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
+    step.step_state = StepState{int(r.load_curve.size()), latest, rec, r.load_curve.back()};
     if (on_step) on_step(step, rec.load_factor);
   };
   // Nothing loads the body: u = 0 is the solution (Newton, measuring its
@@ -229,6 +215,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     record_step(summary.steps.back(), x);
   } else {
     summary = run_load_steps(problem, x, opt, record_step);
+    summary.steps.insert(summary.steps.begin(), earlier.begin(), earlier.end());
   }
   r.load_steps = summary;
   r.status = summary.status;
@@ -240,11 +227,12 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   if (summary.steps.empty()) x.setZero();
   snapshot(t_final, x, r);
   if (summary.steps.empty()) r.contacts.clear();
+  if (curves) r.applied_force = pressure_resultant(m, t_final);  // (the follower's, below, when it applies)
   if (!r.contacts.empty() && setup.follower_pressure && !setup.pressures.empty()) {
     // the follower load's resultant along the obstacle normal, on the deformed faces
     Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());
     for (const auto& p : setup.pressures)
-      add_follower_pressure(body, *m.dofs, p.faces, t_final * p.value, r.u, f_ext, nullptr);
+      add_follower_pressure(body, *m.dofs, p.faces, p.curve(t_final) * p.value, r.u, f_ext, nullptr);
     const int dim = body.space_dim();
     std::vector<int> component(problem.num_displacements(), 0);
     for (int i = 0; i < m.dofs->num_dofs(); ++i)

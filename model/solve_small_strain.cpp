@@ -15,6 +15,7 @@
 #include "engine/face_quadrature.hpp"
 #include "engine/prolongation.hpp"
 #include "model/deformation_check.hpp"
+#include "model/load_history.hpp"
 #include "model/petsc_run.hpp"
 #include "model/progress.hpp"
 #include "model/reactions.hpp"
@@ -25,24 +26,30 @@
 
 namespace igac {
 
-double pressure_resultant(const Model& m) {
+double pressure_resultant(const Model& m, std::optional<double> time) {
   const int dim = m.body.space_dim();
   double total = 0;
-  for (const auto& p : m.spec.pressure)  // |int P n dGamma| per pressure load, on the reference faces
+  for (const auto& p : m.spec.pressure) {  // |int P n dGamma| per pressure load, on the reference faces
+    const double value = time ? p.curve(*time) * p.value : p.value;
     for (const auto& n : p.faces) {
       Eigen::VectorXd res = Eigen::VectorXd::Zero(dim);  // a face made of several sides sums them
       FaceQuadrature(m.body, *find_faces(m, n), gauss_points_for(m.body.degree()))
           .for_each_element([&](int, const auto& v) {
-            for (int k = 0; k < v.n_q; ++k) res += p.value * v.normal[k] * v.JxW[k];
+            for (int k = 0; k < v.n_q; ++k) res += value * v.normal[k] * v.JxW[k];
           });
       total += res.norm();
     }
+  }
   return total;
 }
 
-WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
+namespace {
+// The stacked operator with each moving obstacle at factor(contact) * motion.
+template <class Factor>
+WeightedGapOperator contact_operator(const Model& m, Factor&& factor) {
   std::vector<WeightedGapOperator> ops;
   for (const auto& c : m.contacts) {
+    const double t = factor(c);
     if (c.master) {  // a master body moved (master_motion) by t * motion
       const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
       ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim()),
@@ -57,6 +64,15 @@ WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
                                          c.friction, shift));
   }
   return stack(ops);
+}
+}  // namespace
+
+WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
+  return contact_operator(m, [t](const Model::Contact&) { return t; });
+}
+
+WeightedGapOperator assemble_contact_operator_at_time(const Model& m, double time) {
+  return contact_operator(m, [time](const Model::Contact& c) { return c.curve(time); });
 }
 
 namespace {
@@ -205,6 +221,7 @@ ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, con
 
 RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun coarser) {
   if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
+  if (m.spec.has_load_curves()) return solve_small_strain_history(m, on_step);
   RunResult r;
   Stopwatch t_start;
   const Body& body = m.body;

@@ -108,7 +108,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bulk_modulus_negative", "bad_bulk_negative.toml", "bulk_modulus =", {"[material] bulk_modulus:", "positive"}},
         BadCase{"bulk_modulus_nan", "bad_bulk_nan.toml", "bulk_modulus =", {"[material] bulk_modulus:"}},
         BadCase{"mixed_without_split", "bad_mixed_without_split.toml", "formulation =",
-                {"[material] formulation:", "'saint_venant_kirchhoff' declares none"}}),
+                {"[material] formulation:", "'saint_venant_kirchhoff' declares none"}},
+        BadCase{"curve_times_not_increasing", "bad_curve_times_not_increasing.toml", "curve =",
+                {"[pressure] curve:", "the times must increase: 0.5 follows 1"}},
+        BadCase{"curve_not_finite", "bad_curve_nan.toml", "curve =", {"[pressure] curve:", "non-finite"}},
+        BadCase{"curve_not_pairs", "bad_curve_not_pairs.toml", "curve =",
+                {"[pressure] curve:", "must be a list of [time, factor] pairs"}},
+        BadCase{"curve_without_load", "bad_curve_no_load.toml", "curve =",
+                {"[dirichlet] curve:", "no prescribed value for the curve to scale"}}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
 TEST(BadInput, RefineOptionBeyondMemory) {

@@ -5,6 +5,7 @@
 // out of run_load_steps as itself, never as a "failed" status.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <stdexcept>
 
@@ -125,4 +126,36 @@ TEST(LoadStepping, NumericalFailureCutsTheStepBack) {
   for (const auto& step : s.steps) cut_backs += step.cut_backs;
   EXPECT_GT(cut_backs, 0);
   EXPECT_NEAR(x[0], 1.0, 1e-12);
+}
+
+// Load curves: with corners at t = 1 and 2 (the scripted R = x - t stands
+// for any load) the run goes to 2, every corner is a step's end exactly,
+// and a failure inside the second segment is cut back and retried there
+// without the steps leaving their segment.
+TEST(LoadStepping, StepsEndOnCornersAndCutBackInsideASegment) {
+  ScriptedProblem problem;
+  int thrown = 0;
+  problem.on_residual = [&](int, double t) {
+    if (t > 1.5 && thrown < 2) {  // both attempts of the step from 1 to 2
+      ++thrown;
+      throw NumericalFailure("not there");
+    }
+  };
+  LoadSteppingOptions opt = quiet_options();
+  opt.steps = 3;  // increments of 1/3, growing: a step would straddle t = 1 without the corner
+  opt.corners = {1.0, 2.0};
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  std::vector<double> times;
+  const LoadSteppingSummary s =
+      run_load_steps(problem, x, opt, [&](const LoadStepRecord& r, const Eigen::VectorXd&) { times.push_back(r.load_factor); });
+  EXPECT_EQ(s.status, "converged");
+  EXPECT_EQ(thrown, 2);
+  int cut_backs = 0;
+  for (const auto& step : s.steps) cut_backs += step.cut_backs;
+  EXPECT_GT(cut_backs, 0);
+  ASSERT_FALSE(times.empty());
+  EXPECT_NE(std::find(times.begin(), times.end(), 1.0), times.end()) << "a step ends on the corner t = 1";
+  EXPECT_EQ(times.back(), 2.0);
+  for (size_t i = 1; i < times.size(); ++i) EXPECT_GT(times[i], times[i - 1]);
+  EXPECT_NEAR(x[0], 2.0, 1e-12);
 }

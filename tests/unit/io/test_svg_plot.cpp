@@ -276,3 +276,33 @@ TEST(SvgPlot, Hertz2DPressurePlot) {
 
 }  // namespace
 }  // namespace igac
+
+// A load history (load curves): the first panel is against the time, and
+// the second draws the steps where the squeeze grows and those where it
+// shrinks as two series, joined at the turn, the unloading one dashed.
+TEST(SvgPlot, LoadHistoryDrawsLoadingAndUnloadingApart) {
+  igac::RunResult r;
+  const double squeeze[] = {0.1, 0.2, 0.3, 0.2, 0.1, 0.0};
+  for (int i = 0; i < 6; ++i) {
+    igac::LoadCurvePoint p;
+    p.load_factor = 0.5 * (i + 1);
+    p.obstacle_displacement = squeeze[i];
+    p.contact_forces = {10 * squeeze[i]};
+    r.load_curve.push_back(p);
+  }
+  const igac::svg::Figure f = igac::load_curve_figure(r, "history", {}, {}, 2, true);
+  ASSERT_EQ(f.panels.size(), 2u);
+  EXPECT_EQ(f.panels[0].x.label, "time (load curves)");
+  const auto& series = f.panels[1].series;
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0].label, "loading");
+  EXPECT_EQ(series[1].label, "unloading");
+  EXPECT_TRUE(series[1].dashed);
+  EXPECT_EQ(series[0].x, (std::vector<double>{0.0, 0.1, 0.2, 0.3}));  // from the origin to the turn
+  EXPECT_EQ(series[1].x, (std::vector<double>{0.3, 0.2, 0.1, 0.0}));  // from the turn back
+  EXPECT_EQ(series[1].y, (std::vector<double>{3.0, 2.0, 1.0, 0.0}));
+  // Without a history: one series, against the load factor, as before.
+  const igac::svg::Figure g = igac::load_curve_figure(r, "ramp");
+  EXPECT_EQ(g.panels[0].x.label, "load factor");
+  EXPECT_EQ(g.panels[1].series.size(), 1u);
+}

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "io/state_file.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <fmt/format.h>
+#include <fstream>
+#include <iterator>
+
+#include "io/json_out.hpp"
+
+namespace igac {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "state files are little-endian");
+constexpr char kMagic[8] = {'I', 'G', 'A', 'C', 'S', 'T', 'E', 'P'};
+constexpr int64_t kVersion = 1;
+
+struct Writer {
+  std::string bytes;
+  void raw(const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); }
+  void integer(int64_t v) { raw(&v, sizeof v); }
+  void real(double v) { raw(&v, sizeof v); }
+  void text(const std::string& s) {
+    integer(int64_t(s.size()));
+    raw(s.data(), s.size());
+  }
+  template <class V>
+  void reals(const V& v) {
+    integer(int64_t(v.size()));
+    for (auto x : v) real(double(x));
+  }
+};
+
+struct Reader {
+  const std::string& path;
+  std::string bytes;
+  size_t at = 0;
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError(fmt::format("{}: not a state file igac can restart from ({})", path, why));
+  }
+  void raw(void* p, size_t n) {
+    if (bytes.size() - at < n) fail("cut short");
+    std::memcpy(p, bytes.data() + at, n);
+    at += n;
+  }
+  int64_t integer() {
+    int64_t v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  double real() {
+    double v;
+    raw(&v, sizeof v);
+    return v;
+  }
+  size_t length() {
+    const int64_t n = integer();
+    if (n < 0 || uint64_t(n) > (bytes.size() - at)) fail("a length beyond the file");
+    return size_t(n);
+  }
+  std::string text() {
+    std::string s(length(), '\0');
+    raw(s.data(), s.size());
+    return s;
+  }
+  Eigen::VectorXd vector() {
+    Eigen::VectorXd v(static_cast<Eigen::Index>(length()));
+    for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = real();
+    return v;
+  }
+  std::vector<double> doubles() {
+    const Eigen::VectorXd v = vector();
+    return {v.begin(), v.end()};
+  }
+};
+
+}  // namespace
+
+std::string state_file_name(int step) { return fmt::format("state_{:04d}.bin", step); }
+
+void write_state_file(const std::string& path, const std::string& case_hash, const StepState& s) {
+  Writer w;
+  w.raw(kMagic, sizeof kMagic);
+  w.integer(kVersion);
+  w.text(case_hash);
+  w.integer(s.step);
+  w.real(s.driver.t);
+  w.real(s.driver.dt);
+  w.real(s.driver.dt_old);
+  w.reals(s.driver.x);
+  w.reals(s.driver.x_old);
+  w.real(s.record.load_factor);
+  w.integer(s.record.newton_iterations);
+  w.integer(s.record.cut_backs);
+  w.reals(s.record.residual_norms);
+  w.integer(int64_t(s.record.active_set_sizes.size()));
+  for (int a : s.record.active_set_sizes) w.integer(a);
+  w.real(s.point.load_factor);
+  w.reals(s.point.contact_forces);
+  w.real(s.point.face_displacement);
+  w.real(s.point.obstacle_displacement);
+  w.integer(int64_t(s.point.dirichlet_reactions.size()));
+  for (const FaceReaction& f : s.point.dirichlet_reactions) {
+    w.text(f.face);
+    w.reals(f.force);
+  }
+  write_file_atomically(path, w.bytes);
+}
+
+StepState read_state_file(const std::string& path, std::string& case_hash) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the state file (is the step there?)", path));
+  Reader r{path, std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
+  char magic[8];
+  r.raw(magic, sizeof magic);
+  if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no IGACSTEP magic");
+  if (const int64_t v = r.integer(); v != kVersion) r.fail(fmt::format("version {}, this igac reads {}", v, kVersion));
+  case_hash = r.text();
+  StepState s;
+  s.step = int(r.integer());
+  s.driver.t = r.real();
+  s.driver.dt = r.real();
+  s.driver.dt_old = r.real();
+  s.driver.x = r.vector();
+  s.driver.x_old = r.vector();
+  s.record.load_factor = r.real();
+  s.record.newton_iterations = int(r.integer());
+  s.record.cut_backs = int(r.integer());
+  s.record.residual_norms = r.doubles();
+  const size_t n = r.length();
+  for (size_t i = 0; i < n; ++i) s.record.active_set_sizes.push_back(int(r.integer()));
+  s.point.load_factor = r.real();
+  s.point.contact_forces = r.doubles();
+  s.point.face_displacement = r.real();
+  s.point.obstacle_displacement = r.real();
+  const size_t faces = r.length();
+  for (size_t i = 0; i < faces; ++i) {
+    FaceReaction f;
+    f.face = r.text();
+    f.force = r.vector();
+    s.point.dirichlet_reactions.push_back(std::move(f));
+  }
+  if (r.at != r.bytes.size()) r.fail("bytes after the end");
+  return s;
+}
+
+}  // namespace igac

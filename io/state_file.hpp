@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// state_NNNN.bin: the state after step NNNN of a run in steps, written next
+// to the step's .vtu, what `igac run CASE --restart DIR` continues from
+// (docs/design.md, "Restart").  A little binary file, little-endian, every
+// integer an int64 and every real an IEEE-754 double, in this order:
+//
+//   "IGACSTEP"                       8 bytes, the magic
+//   version                          1
+//   case hash                        length, then its bytes: summary.json's input.fnv1a64
+//   step                             from 1
+//   t, dt, dt_old                    the time reached, the next increment, the last one
+//   x                                length, then the doubles: [u_free; lambda]
+//   x_old                            length, then the doubles (the state one step before)
+//   record: load factor (t), Newton iterations, cut-backs,
+//           residual norms (length, doubles), active-set sizes (length, int64s)
+//   point:  load factor, contact forces (length, doubles), face displacement,
+//           obstacle displacement, reactions (count, then per face set:
+//           name (length, bytes), force (length, doubles))
+//
+// Written atomically (a temporary file renamed over the name), so a file
+// that exists is whole; read back it gives the same doubles, bit for bit.
+#pragma once
+
+#include <string>
+
+#include "model/case_spec.hpp"  // InputError
+#include "model/run_result.hpp"
+
+namespace igac {
+
+std::string state_file_name(int step);  // state_NNNN.bin
+void write_state_file(const std::string& path, const std::string& case_hash, const StepState& state);
+// Throws InputError naming the file when it is not a state file of this
+// version or is cut short; `case_hash` receives the hash it was written with.
+StepState read_state_file(const std::string& path, std::string& case_hash);
+
+}  // namespace igac
