@@ -389,6 +389,10 @@ int main(int argc, char** argv) {
   const auto say = [](const std::string& line) {
     if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
   };
+  // Input errors are met by every process alike: the first reports it and
+  // exits 2; the others end quietly with 0, or mpirun, seeing a process end
+  // with 2 first, may stop the first one before it has said why.
+  const auto input_error_status = [] { return process_rank() == 0 ? 2 : 0; };
   const auto say_any = [](const std::string& line) {
     if (process_rank() == 0) fmt::print(stderr, "{}\n", line);
     else fmt::print(stderr, "{} (process {})\n", line, process_rank());
@@ -453,13 +457,13 @@ int main(int argc, char** argv) {
     return run_study(spec, StudyOptions{levels, out.empty() ? "out/" + spec.name + "_study" : out, quiet});
   } catch (const InputError& e) {
     say(fmt::format("igac: error: {}", e.what()));
-    return 2;
+    return input_error_status();
   } catch (const SplineError& e) {
     say(fmt::format("igac: error: {}: {}", case_path, e.what()));
-    return 2;
+    return input_error_status();
   } catch (const MaterialError& e) {
     say(fmt::format("igac: error: {}: [material] {}", case_path, e.what()));
-    return 2;
+    return input_error_status();
   } catch (const std::bad_alloc&) {
     say_any(fmt::format("igac: error: {}: out of memory (reduce refine or degree)", case_path));
     return 1;
