@@ -45,8 +45,9 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
                                            Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling,
-                                           std::vector<Eigen::Triplet<double>>* K_coupling) const {
-  const DofMap& dofs = *s_.dofs;
+                                           std::vector<Eigen::Triplet<double>>* K_coupling,
+                                           const DofMap* numbering) const {
+  const DofMap& dofs = numbering ? *numbering : *s_.dofs;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
   out.resultants.assign(s_.contacts.size(), Eigen::VectorXd::Zero(dofs.dim()));
@@ -218,6 +219,18 @@ std::vector<Eigen::VectorXd> FiniteStrainProblem::contact_resultants(double t, c
   ContactEval ce;
   evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce);
   return ce.resultants;
+}
+
+Eigen::VectorXd FiniteStrainProblem::contact_forces_on_every_dof(double t, const Eigen::VectorXd& x) const {
+  const DofMap every(*s_.body, {});
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(every.num_free()), out = Eigen::VectorXd::Zero(every.num_dofs());
+  if (m_ == 0) return out;
+  const Eigen::VectorXd lambda = x.tail(m_);
+  ContactEval ce;
+  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, true, nullptr, &every);
+  for (const auto& g : ce.G) f[g.col()] += lambda[g.row()] * g.value();
+  for (int i = 0; i < every.num_dofs(); ++i) out[i] = f[every.equation(i)];
+  return out;
 }
 
 void FiniteStrainProblem::activate_nearest(Eigen::VectorXd& x, int count) const {

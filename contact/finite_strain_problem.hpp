@@ -94,6 +94,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // contact.  On a plane it is the total force along the normal; on a
   // surface that curves or deforms the resultant, what balances the loads.
   std::vector<Eigen::VectorXd> contact_resultants(double t, const Eigen::VectorXd& x) const;
+  // sum_K lambda_K dgamma_K/du on every dof (num_dofs, prescribed ones
+  // too): what the contact adds to the residual, and what a support holding
+  // a dof the contact pushes must also carry (model/reactions.hpp).
+  Eigen::VectorXd contact_forces_on_every_dof(double t, const Eigen::VectorXd& x) const;
   const Eigen::VectorXd& multiplier_weights() const { return weights_; }
   // First multiplier of contact k (k = number of contacts: the total).
   int multiplier_offset(int k) const { return offsets_[k]; }
@@ -112,9 +116,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // points); when K is not null, adds the curvature term (the obstacle's
   // int lambda B N_A N_B dn/dx, a master's lambda int B Delta delta g) to it,
   // and a master's slave-master blocks to K_coupling.
+  // `numbering`: the equations G's columns count (null: the problem's own).
   void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
                         Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true,
-                        std::vector<Eigen::Triplet<double>>* K_coupling = nullptr) const;
+                        std::vector<Eigen::Triplet<double>>* K_coupling = nullptr,
+                        const DofMap* numbering = nullptr) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;

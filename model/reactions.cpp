@@ -25,8 +25,13 @@ ReactionEvaluator::ReactionEvaluator(const Model& m) : model_(m), all_free_(m.bo
   if (!m.spec.finite_strain() && (m.parts.size() > 1 || mixed))
     linear_K_ = assemble_linear_elasticity(m.body, all_free_, m.patch_materials(),
                                            Eigen::VectorXd::Zero(m.body.space_dim()), {}, formulations).K;
-  else
+  else if (m.parts.size() > 1) {  // several hyperelastic bodies: each patch with its body's law
+    std::vector<const HyperelasticLaw*> laws;
+    for (const Model::Part& p : m.parts) laws.insert(laws.end(), size_t(p.num_patches), p.law.get());
+    assembler_ = std::make_unique<TotalLagrangianAssembler>(m.body, all_free_, laws, formulations, false);
+  } else {
     assembler_ = std::make_unique<TotalLagrangianAssembler>(m.body, all_free_, *law, m.spec.formulation, false);
+  }
   const int dim = m.body.space_dim();
   std::set<int> claimed;  // equations of all_free_ already some face set's
   for (const DirichletSpec& d : m.spec.dirichlet)
@@ -46,7 +51,8 @@ ReactionEvaluator::ReactionEvaluator(const Model& m) : model_(m), all_free_(m.bo
   for (const PressureSpec& p : m.spec.pressure) pressure_faces_.push_back(resolve_faces(m, p.faces, "pressure"));
 }
 
-std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u, double t) const {
+std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u, double t,
+                                                        const Eigen::VectorXd& contact_forces) const {
   std::vector<FaceReaction> out;
   if (faces_.empty()) return out;
   const Model& m = model_;
@@ -71,6 +77,7 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
     f_ext += m.spec.body_force_curve(t) *
              body_force_load(m.body, all_free_, Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim));
   residual -= f_ext;
+  for (int dof = 0; dof < int(contact_forces.size()); ++dof) residual[all_free_.equation(dof)] += contact_forces[dof];
   for (size_t k = 0; k < faces_.size(); ++k) {
     FaceReaction r{faces_[k], Eigen::VectorXd::Zero(dim)};
     for (const auto& [eq, c] : equations_[k]) r.force[c] += residual[eq];

@@ -35,7 +35,11 @@ class ReactionEvaluator {
   // The reactions for the displacement u (n_cp x dim) at load factor t
   // (small deformation: 1; with load curves the time, each load at its
   // curve's factor), one per face set, in the order of first mention.
-  std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t) const;
+  // contact_forces: what the contacts add to the residual on every dof
+  // (FiniteStrainProblem::contact_forces_on_every_dof; empty: none), which a
+  // support carries where it holds a dof the contact pushes.
+  std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t,
+                                       const Eigen::VectorXd& contact_forces = {}) const;
 
  private:
   const Model& model_;

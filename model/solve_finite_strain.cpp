@@ -166,7 +166,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
     p.face_displacement = probe.face_displacement(body, out.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
-    p.dirichlet_reactions = reactions(out.u, t);
+    p.dirichlet_reactions = reactions(out.u, t, problem.contact_forces_on_every_dof(t, xs));
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
   };

@@ -138,3 +138,26 @@ TEST(FiniteStrainTwoBodies, SwappingSlaveAndMasterGivesTheSameForce) {
   EXPECT_NEAR(std::abs(a.resultant[1]), std::abs(b.resultant[1]), kForceDiscretisation * std::abs(a.resultant[1]));
   EXPECT_NEAR(a.max_pressure_cauchy, b.max_pressure_cauchy, kPeakDiscretisation * a.max_pressure_cauchy);
 }
+
+TEST(FiniteStrainTwoBodies, EachBodysReactionComesFromItsOwnLaw) {
+  // The roller (E = 1) held sideways on x = 0, pressed by a dead vertical
+  // load into the block (E = 3): its symmetry reaction balances the contact
+  // force on it, -resultant (the resultant is the force on the slave, the
+  // block).  With the block's law for both bodies the roller's reaction was
+  // three times too large.
+  constexpr double kBalance = 1e-7;
+  CaseSpec spec = read_case(kData + "finite_strain_two_bodies.toml");
+  apply_overrides(spec, {}, 0);
+  spec.loading.follower_pressure = false;
+  Model m = build_model(spec);
+  m.quiet = true;
+  const RunResult r = solve_model(m);
+  ASSERT_EQ(r.status, "converged");
+  const FaceReaction* roller = nullptr;
+  for (const FaceReaction& f : r.dirichlet_reactions)
+    if (f.face == "roller:left") roller = &f;
+  ASSERT_NE(roller, nullptr);
+  const Eigen::VectorXd& on_block = r.contacts.at(0).resultant;
+  ASSERT_GT(std::abs(on_block[0]), 1e-4);
+  EXPECT_NEAR(roller->force[0], on_block[0], kBalance * std::abs(on_block[1]));
+}
