@@ -11,7 +11,6 @@ results/locking_study.png (relative L2 error against 0.5 - nu).
     /usr/bin/python3 bench/locking_study.py [--igac build/igac] [--degrees 2 3] [--refine 1 2 3]
 """
 import argparse
-import csv
 import json
 import subprocess
 import sys
@@ -22,6 +21,7 @@ from pathlib import Path
 here = Path(__file__).resolve().parent
 sys.path.insert(0, str(here))
 from case_toml import write_case  # noqa: E402
+from results_io import pyplot, write_rows  # noqa: E402
 
 NUS = [0.3, 0.49, 0.499, 0.4999, 0.49999]
 FORMULATIONS = ["displacement", "mixed"]
@@ -59,17 +59,9 @@ def main():
                         l2, h1 = run(args.igac, case, tmp, f"{f}_p{p}_r{r}_{nu}")
                         rows.append({"formulation": f, "degree": p, "refine": r, "nu": nu, "l2_rel": l2, "h1_rel": h1})
                         print(f"{f:12s} p={p} refine={r} nu={nu:<8} L2 {l2:.3e}  H1 {h1:.3e}", flush=True)
-    Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
-    with open(args.csv, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib missing: no plot")
+    write_rows(args.csv, rows)
+    plt = pyplot()
+    if plt is None:
         return
     fig, ax = plt.subplots(figsize=(7, 5))
     for f, style in zip(FORMULATIONS, ["--", "-"]):

@@ -15,13 +15,16 @@ of the two-body iteration per unknown (issue target: at most 1.5).  Writes
 the runs as CSV and a bar plot beside it (PNG, when matplotlib is there).
 """
 import argparse
-import csv
 import json
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from results_io import pyplot, write_rows  # noqa: E402
+
 CASES = {"two bodies": HERE.parent / "cases/roller_on_block_neohookean.toml",
          "one body on a plane": HERE.parent / "cases/hertz2d_neohookean_pressure.toml"}
 
@@ -52,17 +55,9 @@ def main():
     best = {name: min(r["us_per_iteration_per_dof"] for r in rows if r["problem"] == name) for name in CASES}
     ratio = best["two bodies"] / best["one body on a plane"]
     print(f"two bodies / one body, per iteration and unknown (best of {args.repeats}): {ratio:.2f}")
-    Path(args.csv).parent.mkdir(parents=True, exist_ok=True)
-    with open(args.csv, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib missing: no plot")
+    write_rows(args.csv, rows)
+    plt = pyplot()
+    if plt is None:
         return
     fig, ax = plt.subplots(figsize=(5, 4))
     ax.bar(list(best.keys()), list(best.values()))
