@@ -290,8 +290,8 @@ std::string csv_number(double v, int digits) {
 std::string load_curve_csv(const Model& m, const RunResult& r) {
   // One contact: contact_force.  Several: contact_force_<face> for each.
   const std::vector<std::string> tags = contact_file_tags(m);
-  // With load curves the first column is their time, and the reactions of
-  // the [[dirichlet]] face sets follow, a column per component.
+  // With load curves the first column is their time.  The reactions of
+  // the [[dirichlet]] face sets follow the other columns, one per component.
   const bool history = m.spec.has_load_curves();
   std::string s = history ? "time" : "load_factor";
   if (tags.size() > 1)
@@ -299,7 +299,7 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
   else
     s += ",contact_force";
   s += ",face_displacement,obstacle_displacement";
-  if (history && !r.load_curve.empty())
+  if (!r.load_curve.empty())
     for (const FaceReaction& f : r.load_curve.front().dirichlet_reactions)
       for (int c = 0; c < f.force.size(); ++c) s += fmt::format(",reaction_{}_{}", f.face, "xyz"[c]);
   s += "\n";
@@ -311,9 +311,8 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
     else
       s += fmt::format(",{}", csv_number(p.contact_force()));
     s += fmt::format(",{},{}", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
-    if (history)
-      for (const FaceReaction& f : p.dirichlet_reactions)
-        for (int c = 0; c < f.force.size(); ++c) s += "," + csv_number(f.force[c]);
+    for (const FaceReaction& f : p.dirichlet_reactions)
+      for (int c = 0; c < f.force.size(); ++c) s += "," + csv_number(f.force[c]);
     s += "\n";
   }
   return s;

@@ -161,9 +161,10 @@ TEST_F(TwoPlates, LoadCurveHasAForceColumnPerContact) {
   const auto rows = igac_test::csv_rows(out() / "load_curve.csv");
   ASSERT_GT(rows.size(), 1u);
   EXPECT_EQ(rows[0], (std::vector<std::string>{"load_factor", "contact_force_lower", "contact_force_upper",
-                                               "face_displacement", "obstacle_displacement"}));
+                                               "face_displacement", "obstacle_displacement", "reaction_axis_x",
+                                               "reaction_axis_y"}));
   for (size_t i = 1; i < rows.size(); ++i) {
-    ASSERT_EQ(rows[i].size(), 5u);
+    ASSERT_EQ(rows[i].size(), 7u);
     EXPECT_NEAR(std::stod(rows[i][1]) / std::stod(rows[i][2]), 1.0, 1e-8) << "row " << i;
   }
   for (size_t k = 0; k < 2; ++k) {
