@@ -274,6 +274,22 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   } else if (vtk) {  // step 0: the undeformed body, at load factor 0
     RunResult undeformed;
     undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
+    if (!model.contacts.empty()) {  // and its contact faces: no pressure, the initial gaps
+      // (the large-deformation obstacles stand at their reference position: factor 1 keeps them there)
+      ContactSolve& c = undeformed.contact.emplace();
+      c.op = assemble_contact_operator(model, model.spec.finite_strain() ? 1.0 : 0.0);
+      c.solution.lambda = Eigen::VectorXd::Zero(c.op.weights.size());
+      c.solution.weighted_gap = c.op.g0.cwiseQuotient(c.op.weights);
+      c.solution.active.assign(size_t(c.op.weights.size()), 0);
+      int first = 0;
+      for (const Model::Contact& mc : model.contacts) {
+        ContactResult& cr = undeformed.contacts.emplace_back();
+        cr.face = mc.face_name;
+        cr.first_multiplier = first;
+        cr.num_multipliers = mc.face->num_multipliers();
+        first += cr.num_multipliers;
+      }
+    }
     series.write_step(model, undeformed, 0.0);
   }
   // Large deformation and load curves: one ParaView step per converged load

@@ -236,11 +236,10 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
   const Model::Contact& contact = model.contacts[i];
   // Where the obstacle stands at this step: large deformation, its
   // reference position moved by curve(t) motion; small deformation, where
-  // its whole motion puts it (c.obstacle), moved back by (curve(t) - 1) motion
-  // along load curves.
+  // its whole motion puts it (c.obstacle), moved back by (curve(t) - 1) motion.
   Eigen::VectorXd shift;
   if (contact.motion.size() > 0 && model.spec.finite_strain()) shift = contact.curve(load_factor) * contact.motion;
-  else if (contact.motion.size() > 0 && model.spec.has_load_curves())
+  else if (contact.motion.size() > 0)  // (without curves: step 0 before the motion, step 1 after it)
     shift = (contact.curve(load_factor) - 1.0) * contact.motion;
   const ContactPartFields fields =
       recover_contact_fields(mesh, side_of, sol, r.contact->op.weights.segment(r.contacts[i].first_multiplier, cf.num_multipliers()),

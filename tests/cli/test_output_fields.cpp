@@ -70,6 +70,21 @@ TEST(VtkOutput, FieldsAnEngineerLooksFor) {
             std::string::npos) << pvd;
   EXPECT_NE(pvd.find("timestep=\"1\" part=\"1\" name=\"contact_face\" file=\"contact_0001.vtu\""), std::string::npos)
       << pvd;
+  // step 0 has the contact parts too: no pressure, the initial gap
+  EXPECT_NE(pvd.find("timestep=\"0\" part=\"1\" name=\"contact_face\" file=\"contact_0000.vtu\""), std::string::npos)
+      << pvd;
+  const auto contact0 = igac_test::read_vtu((out / "contact_0000.vtu").string());
+  vtkDataArray* p0 = contact0->GetPointData()->GetArray("pressure");
+  vtkDataArray* gap0 = contact0->GetPointData()->GetArray("normal_gap");
+  ASSERT_NE(p0, nullptr);
+  ASSERT_NE(gap0, nullptr);
+  double gap_max = 0;
+  for (vtkIdType i = 0; i < p0->GetNumberOfTuples(); ++i) {
+    EXPECT_EQ(p0->GetComponent(i, 0), 0.0);
+    EXPECT_GE(gap0->GetComponent(i, 0), -1e-12);  // the disc touches the plane at one point
+    gap_max = std::max(gap_max, gap0->GetComponent(i, 0));
+  }
+  EXPECT_GT(gap_max, 0.1);  // the quarter disc's far end stands off the plane
   const auto undeformed = igac_test::read_vtu((out / "solution_0000.vtu").string());
   for (const char* a : {"displacement", "stress", "von_mises"}) {
     vtkDataArray* arr = undeformed->GetPointData()->GetArray(a);
