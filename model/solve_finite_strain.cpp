@@ -25,6 +25,7 @@ namespace {
 // the displacement u (n_cp x dim).
 void deformed_report(const Model& m, const ContactFace& cf, const Eigen::VectorXd& lambda, const Eigen::MatrixXd& u,
                      ContactResult& c) {
+  if (c.report.active == 0) return;  // released (or never touched): no zone, no peak
   // Deformed extent: the face point at the reference half width, displaced.
   double best = std::numeric_limits<double>::infinity();
   int K_max = 0;  // the most pressed multiplier, numbered on the face
