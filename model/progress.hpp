@@ -4,10 +4,17 @@
 // as it goes (an active-set iteration), and while one call runs long (a
 // factorisation of a minute) a heartbeat "... still <phase> (N s)" after
 // every `period` seconds without a line (4 s: a line at least every 5 s,
-// the bar, with room for a busy machine).  Plain lines, whatever stdout is.
+// the bar, with room for a busy machine).  Where the solve knows
+// how far it is (fraction(): the load steps' load factor over the last)
+// and stderr is a terminal, the heartbeat line ends with a bar
+// "[########------------] 40 %"; plain lines otherwise (a log, a pipe).
 // Quiet: nothing, and no thread.
 #pragma once
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
 #include <condition_variable>
 #include <mutex>
 #include <string>
@@ -66,6 +73,18 @@ class Progress {
     held_ = held;
     since_line_.restart();
   }
+  // How much of the whole is done, in [0, 1] (negative: not known).
+  void fraction(double done) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    fraction_ = done;
+  }
+  // The heartbeat's bar at fraction `done` (clamped to [0, 1]), `width` cells.
+  static std::string bar(double done, int width = 20) {
+    const double f = std::clamp(std::isfinite(done) ? done : 0.0, 0.0, 1.0);
+    const int full = int(std::floor(f * width + 1e-9));
+    return fmt::format("[{}{}] {:.0f} %", std::string(size_t(full), '#'), std::string(size_t(width - full), '-'),
+                       std::floor(100 * f + 1e-9));
+  }
   double seconds() const { return offset_ + clock_.seconds(); }
   bool quiet() const { return quiet_; }
 
@@ -80,7 +99,9 @@ class Progress {
     while (!stop_) {
       const double left = period_ - since_line_.seconds();
       if (left <= 0) {  // (held or without a phase: nothing printed, but the period starts again)
-        if (!phase_.empty()) print(fmt::format("  ... still {} ({:.0f} s)", phase_, seconds()));
+        if (!phase_.empty())
+          print(fmt::format("  ... still {} ({:.0f} s){}", phase_, seconds(),
+                            terminal_ && fraction_ >= 0 ? "  " + bar(fraction_) : std::string()));
         since_line_.restart();
         continue;
       }
@@ -92,6 +113,8 @@ class Progress {
   double offset_, period_;
   Stopwatch clock_, since_line_;
   std::string phase_;
+  double fraction_ = -1;                             // not known
+  const bool terminal_ = isatty(STDERR_FILENO) == 1;  // a bar only where a person watches
   bool stop_ = false, held_ = false;
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -187,7 +187,10 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   LoadSteppingState latest;  // the driver's state after the step record_step sees
   opt.on_state = [&latest](const LoadSteppingState& s) { latest = s; };
   const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
-    if (progress) progress->now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
+    if (progress) {
+      progress->now(fmt::format("in the load step after load factor {:.4f}", rec.load_factor));
+      progress->fraction(rec.load_factor / (opt.corners.empty() ? 1.0 : opt.corners.back()));
+    }
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
     step.step_state = StepState{int(r.load_curve.size()), latest, rec, r.load_curve.back()};

@@ -37,6 +37,14 @@ TEST(Progress, HeartbeatNamesWhatRunsLong) {
   EXPECT_NE(out.find("active set   1: 3 active, 0 changing\n"), std::string::npos) << out;
 }
 
+TEST(Progress, BarShowsTheFractionDone) {
+  EXPECT_EQ(Progress::bar(0.0), "[--------------------] 0 %");
+  EXPECT_EQ(Progress::bar(0.4), "[########------------] 40 %");
+  EXPECT_EQ(Progress::bar(1.0), "[####################] 100 %");
+  EXPECT_EQ(Progress::bar(1.7), Progress::bar(1.0));  // clamped
+  EXPECT_EQ(Progress::bar(-0.2, 4), "[----] 0 %");
+}
+
 TEST(Progress, QuietAndHeldPrintNothing) {
   EXPECT_EQ(run(true, false), "");
   EXPECT_EQ(run(false, true), "");
