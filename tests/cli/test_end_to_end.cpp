@@ -86,7 +86,9 @@ TEST(EndToEnd, NeoHookean3DContactSmoke) {
   EXPECT_NEAR(double(j["contact"]["total_force"]) / double(j["contact"]["applied_force"]), 1.0, 1e-6);
   const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
   ASSERT_GE(rows.size(), 2u);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"load_factor", "contact_force", "face_displacement", "obstacle_displacement"}));
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"load_factor", "contact_force", "face_displacement", "obstacle_displacement",
+                                               "reaction_left_x", "reaction_left_y", "reaction_left_z",
+                                               "reaction_back_x", "reaction_back_y", "reaction_back_z"}));
   EXPECT_DOUBLE_EQ(std::stod(rows.back()[0]), 1.0);
   for (size_t i = 2; i < rows.size(); ++i) EXPECT_GT(std::stod(rows[i][1]), std::stod(rows[i - 1][1])) << "force grows";
   expect_svg(tmp.path() / "out" / "load_curve.svg");
