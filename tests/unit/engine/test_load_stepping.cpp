@@ -165,47 +165,39 @@ TEST(LoadStepping, StepsEndOnCornersAndCutBackInsideASegment) {
 
 namespace {
 
-// R(x; t) = atan(x - 3 t): one unknown, solution x = 3 t.  From x = 0 to
-// t = 1 the full Newton step overshoots to 12.5 and the next to -120 (KINSOL
-// caps a step at 1000 |x_0|, at least 1; the halving search lifts the cap).
-// Inadmissible (false) beyond |x| = 50, as det F <= 0 is.
-class ArctanProblem final : public NonlinearProblem {
+// One unknown: R(x; t) = f(t, x) with dR/dx = df(t, x); f returns false
+// for an inadmissible state (as det F <= 0 is).
+class ScalarProblem final : public NonlinearProblem {
  public:
+  std::function<bool(double t, double x, double& r)> f;
+  std::function<double(double t, double x)> df;
   int size() const override { return 1; }
   bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
-    if (std::abs(x[0]) > 50) return false;
     r.resize(1);
-    r[0] = std::atan(x[0] - 3 * t);
-    return true;
+    return f(t, x[0], r[0]);
   }
   bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) override {
-    const double s = x[0] - 3 * t;
     J.resize(1, 1);
-    J.coeffRef(0, 0) = 1 / (1 + s * s);
+    J.coeffRef(0, 0) = df(t, x[0]);
     J.makeCompressed();
     return true;
   }
   double force_scale(double, const Eigen::VectorXd&) override { return 1; }
 };
 
-// R(x; t) = x - t^2: linear in x, so each step's first residual is what its
-// predictor missed by.
-class QuadraticLoadProblem final : public NonlinearProblem {
- public:
-  int size() const override { return 1; }
-  bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
-    r.resize(1);
-    r[0] = x[0] - t * t;
-    return true;
-  }
-  bool jacobian(double, const Eigen::VectorXd&, Eigen::SparseMatrix<double>& J) override {
-    J.resize(1, 1);
-    J.coeffRef(0, 0) = 1;
-    J.makeCompressed();
-    return true;
-  }
-  double force_scale(double, const Eigen::VectorXd&) override { return 1; }
-};
+// R(x; t) = atan(x - 3 t), solution x = 3 t.  From x = 0 to t = 1 the full
+// Newton step overshoots to 12.5 and the next to -120 (KINSOL caps a step
+// at 1000 |x_0|, at least 1; the halving search lifts the cap).
+// Inadmissible beyond |x| = 50.
+ScalarProblem arctan_problem() {
+  ScalarProblem p;
+  p.f = [](double t, double x, double& r) {
+    r = std::atan(x - 3 * t);
+    return std::abs(x) <= 50;
+  };
+  p.df = [](double t, double x) { return 1 / (1 + (x - 3 * t) * (x - 3 * t)); };
+  return p;
+}
 
 LoadSteppingOptions one_step_from_rest() {
   LoadSteppingOptions opt = quiet_options();
@@ -222,7 +214,7 @@ LoadSteppingOptions one_step_from_rest() {
 // The first step: d = atan(3) (1 + 9) = 12.49; s = 1 and 1/2 raise |R|
 // (atan(9.49), atan(3.24) > atan(3)), s = 1/4 lowers it: x = 3.1226.
 TEST(LoadStepping, HalvingLineSearchConvergesWhereTheFullStepOvershoots) {
-  ArctanProblem problem;
+  ScalarProblem problem = arctan_problem();
   LoadSteppingOptions halving = one_step_from_rest();
   halving.halving_line_search = true;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
@@ -237,26 +229,16 @@ TEST(LoadStepping, HalvingLineSearchConvergesWhereTheFullStepOvershoots) {
   EXPECT_NEAR(r[1], std::abs(std::atan(0.25 * 10 * std::atan(3.0) - 3)), 1e-14) << "s = 1/4 at the first iteration";
 }
 
-// The search never returns a state the problem refuses, and says why when
-// no step length decreases |R|: a residual that only grows along the
-// Newton step (a wrong Jacobian sign, as a bug would give).
+// The search says why when no step length decreases |R|: a residual that
+// only grows along the Newton step (a wrong Jacobian sign, as a bug would
+// give); the run stops there (no increment small enough helps).
 TEST(LoadStepping, HalvingLineSearchFailsWithAReason) {
-  class WrongSign final : public NonlinearProblem {
-   public:
-    int size() const override { return 1; }
-    bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
-      r.resize(1);
-      r[0] = x[0] - t;
-      return true;
-    }
-    bool jacobian(double, const Eigen::VectorXd&, Eigen::SparseMatrix<double>& J) override {
-      J.resize(1, 1);
-      J.coeffRef(0, 0) = -1;
-      J.makeCompressed();
-      return true;
-    }
-    double force_scale(double, const Eigen::VectorXd&) override { return 1; }
-  } problem;
+  ScalarProblem problem;
+  problem.f = [](double t, double x, double& r) {
+    r = x - t;
+    return true;
+  };
+  problem.df = [](double, double) { return -1.0; };
   LoadSteppingOptions opt = one_step_from_rest();
   opt.halving_line_search = true;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
@@ -265,11 +247,17 @@ TEST(LoadStepping, HalvingLineSearchFailsWithAReason) {
   EXPECT_EQ(x[0], 0.0) << "x keeps the last converged state";
 }
 
-// tangent_every_step: the second step starts from x - J^{-1} dR/dt h, off
-// by h^2 = 0.25 from t^2 (a forward difference in t adds 1e-6 h), not from
-// the last increment extrapolated, off by 2 h^2 = 0.5.
+// tangent_every_step on R(x; t) = x - t^2 (linear in x: a step's first
+// residual is what its predictor missed by): the second step starts from
+// x - J^{-1} dR/dt h, off by h^2 = 0.25 from t^2 (a forward difference in t
+// adds 1e-6 h), not from the last increment extrapolated, off by 2 h^2 = 0.5.
 TEST(LoadStepping, TangentPredictorAtEveryStep) {
-  QuadraticLoadProblem problem;
+  ScalarProblem problem;
+  problem.f = [](double t, double x, double& r) {
+    r = x - t * t;
+    return true;
+  };
+  problem.df = [](double, double) { return 1.0; };
   LoadSteppingOptions opt = quiet_options();
   opt.steps = 2;
   for (const bool every : {false, true}) {
