@@ -31,6 +31,12 @@ struct Attempt {
   std::vector<std::vector<char>> active_history;
   std::string failure;        // why the attempt failed (an expected, numerical reason)
   std::exception_ptr error;   // anything else thrown in a callback: rethrown once KINSOL returns
+  // The halving line search (LoadSteppingOptions::halving_line_search):
+  // KINSOL runs plain Newton and the linear solve returns the step the
+  // search accepted, from the state of the last Jacobian; its residual is
+  // kept for KINSOL's evaluation at the same state, which follows.
+  bool halving = false;
+  Eigen::VectorXd x_jacobian, x_accepted, r_accepted;
 };
 
 Eigen::Map<Eigen::VectorXd> view(N_Vector v) { return {N_VGetArrayPointer(v), N_VGetLength(v)}; }
@@ -92,8 +98,12 @@ int residual_fn(N_Vector u, N_Vector f, void* data) {
 }
 
 int residual_body(Attempt& a, N_Vector u, N_Vector f) {
-  const Stopwatch clock;
   Eigen::VectorXd x = view(u), r;
+  if (a.halving && a.x_accepted.size() == x.size() && x == a.x_accepted) {
+    view(f) = a.r_accepted;
+    return 0;
+  }
+  const Stopwatch clock;
   const bool ok = a.problem.residual(a.t, x, r);
   a.summary.residual_seconds += clock.seconds();
   if (!ok || !r.allFinite()) {
@@ -111,6 +121,7 @@ int jacobian_fn(N_Vector u, N_Vector fu, SUNMatrix, void* data, N_Vector, N_Vect
 
 int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
   const Eigen::VectorXd x = view(u);
+  if (a.halving) a.x_jacobian = x;
   a.record.residual_norms.push_back(view(fu).cwiseAbs().maxCoeff() / a.scale);
   const auto set = a.problem.active_set(a.t, x);
   a.record.active_set_sizes.push_back(int(std::count(set.begin(), set.end(), 1)));
@@ -154,6 +165,35 @@ int ls_solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype) {
   return guarded(a, [&] { return ls_solve_body(a, x, b); });
 }
 
+// The halving line search from a.x_jacobian along the Newton step d (the
+// residual there is -minus_r0): the step s d it accepts, or false (no
+// admissible decrease down to s = 2^-kHalvings).
+bool halving_search(Attempt& a, const Eigen::VectorXd& minus_r0, const Eigen::VectorXd& d, Eigen::VectorXd& step) {
+  constexpr int kHalvings = 30;
+  constexpr double kArmijo = 1e-4;  // KINSOL's alpha
+  const double f0 = minus_r0.norm();
+  double s = 1;
+  Eigen::VectorXd r;
+  for (int k = 0; k <= kHalvings; ++k, s *= 0.5) {
+    step = s * d;
+    Eigen::VectorXd x = a.x_jacobian + step;  // what KINSOL forms (u + step), bit for bit
+    const Stopwatch clock;
+    bool ok = false;
+    try {
+      ok = a.problem.residual(a.t, x, r) && r.allFinite();
+    } catch (const NumericalFailure&) {
+      ok = false;  // an inadmissible trial state: shorter
+    }
+    a.summary.residual_seconds += clock.seconds();
+    if (ok && r.norm() <= (1 - kArmijo * s) * f0) {
+      a.x_accepted = std::move(x);
+      a.r_accepted = r;
+      return true;
+    }
+  }
+  return false;
+}
+
 int ls_solve_body(Attempt& a, N_Vector x, N_Vector b) {
   const Eigen::VectorXd rhs = view(b);  // -R
   // Inexact Newton (only where the solver iterates): a linear residual below
@@ -163,6 +203,14 @@ int ls_solve_body(Attempt& a, N_Vector x, N_Vector b) {
   if (!a.solver.solve(rhs, sol, tolerance)) {
     a.failure = a.solver.why();
     return -1;
+  }
+  if (a.halving) {
+    Eigen::VectorXd step;
+    if (!halving_search(a, rhs, sol, step)) {
+      a.failure = "the line search found no decrease";
+      return -1;
+    }
+    sol = std::move(step);
   }
   view(x) = sol;
   return 0;
@@ -207,7 +255,9 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
   KINSetNumMaxIters(kin, opt.max_newton_iterations);
   KINSetFuncNormTol(kin, opt.tolerance);
   KINSetScaledStepTol(kin, 1e-15);
-  const int flag = KINSol(kin, u, opt.line_search ? KIN_LINESEARCH : KIN_NONE, us, fs);
+  a.halving = opt.halving_line_search;
+  if (a.halving) KINSetMaxNewtonStep(kin, 1e300);  // the search shortens the step, KINSOL must not
+  const int flag = KINSol(kin, u, opt.line_search && !a.halving ? KIN_LINESEARCH : KIN_NONE, us, fs);
   if (a.error) std::rethrow_exception(a.error);  // the SUNDIALS objects are freed on the way out
   long iterations = 0;
   KINGetNumNonlinSolvIters(kin, &iterations);
@@ -298,12 +348,12 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     // increment, or (no history yet) the tangent predictor; then from the
     // last converged state as it is.
     std::optional<Eigen::VectorXd> predicted;
-    if (dt_old > 0) predicted = Eigen::VectorXd(x + (x - x_old) * (h / dt_old));
+    if (dt_old > 0 && !opt.tangent_every_step) predicted = Eigen::VectorXd(x + (x - x_old) * (h / dt_old));
     else if (opt.tangent_predictor) predicted = tangent_predictor(problem, x, t, h, J, solver);
     for (int attempt = 0; attempt < 2 && !done; ++attempt) {
       if (attempt == 0 && !predicted) continue;
       Eigen::VectorXd x_try = attempt == 0 ? *predicted : x;
-      Attempt a{problem, t_new, 1.0, J, solver, summary, {}, {}, {}, {}};
+      Attempt a{problem, t_new, 1.0, J, solver, summary, {}, {}, {}, {}, false, {}, {}, {}};
       a.record.load_factor = t_new;
       if (solve_step(a, x_try, ctx, opt)) {
         a.record.cut_backs = cut_backs;

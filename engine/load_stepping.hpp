@@ -7,7 +7,8 @@
 // part of x and its active set is decided from x inside the residual and the
 // Jacobian: a semismooth Newton method), so engine/ never includes contact/.
 //
-// KINSOL runs Newton (with or without its line search) through a custom
+// KINSOL runs Newton (with its line search, without, or with the driver's
+// own halving one, LoadSteppingOptions::halving_line_search) through a custom
 // direct linear solver, SaddleSolver (engine/saddle_solver.hpp): the
 // problem hands over its Jacobian in blocks (the displacement block K, the
 // constraint rows), K's symmetric part is factorised by CHOLMOD with the
@@ -87,7 +88,19 @@ struct LoadSteppingOptions {
   double growth = 1.5;
   double tolerance = 1e-9;         // on |R|_inf / force scale
   bool line_search = true;         // KINSOL's KIN_LINESEARCH, else KIN_NONE
+  // The driver's own line search instead (line_search is then ignored):
+  // from the full Newton step, halve the step length s until the state is
+  // admissible and |R(x + s d)|_2 <= (1 - 1e-4 s) |R(x)|_2 (Armijo).  KINSOL's
+  // backtracking fits a quadratic to |R|^2 and takes s >= 0.1 of the last
+  // try: where the full step raises |R| tenfold (a nearly incompressible
+  // solid: the volumetric residual K (J - 1) is second order in the step,
+  // times K) it settles on s = 0.1 at every iteration, where s = 1/4 or 1/2
+  // would already decrease |R| (docs/benchmarks.md, "Real rubber").
+  bool halving_line_search = false;
   bool tangent_predictor = true;   // a step without history starts from x - J^{-1} dR/dt dt
+  // Every step starts from the tangent predictor, not from the last
+  // increment extrapolated (one more factorisation per step).
+  bool tangent_every_step = false;
   bool quiet = false;
   // Load curves (engine/load_curve.hpp): the times t runs through, the
   // curves' corners in increasing order, the last where the run ends.  A

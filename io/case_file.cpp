@@ -383,11 +383,20 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
       s.fail("max_increment", "must lie in [min_increment, 1]");
     l.max_newton_iterations = s.integer("max_newton_iterations", 30);
     if (l.max_newton_iterations < 1 || l.max_newton_iterations > 1000) s.fail("max_newton_iterations", "must lie in 1..1000");
-    l.line_search = s.boolean("line_search", true);
+    const auto* search = s.node("line_search");
+    if (search && search->is_string()) {
+      if (s.string("line_search") != "halving")
+        s.fail("line_search", "must be true (KINSOL's), false (none) or \"halving\" (the driver's own)");
+      l.halving_line_search = true;
+    } else {
+      l.line_search = s.boolean("line_search", true);
+    }
     const std::string predictor = s.string("predictor", "tangent");
-    if (predictor != "tangent" && predictor != "none")
-      s.fail("predictor", "must be \"tangent\" (the first step starts from x - J^-1 dR/dt dt) or \"none\"");
-    l.tangent_predictor = predictor == "tangent";
+    if (predictor != "tangent" && predictor != "tangent_every_step" && predictor != "none")
+      s.fail("predictor", "must be \"tangent\" (the first step starts from x - J^-1 dR/dt dt), "
+                          "\"tangent_every_step\" or \"none\"");
+    l.tangent_predictor = predictor != "none";
+    l.tangent_every_step = predictor == "tangent_every_step";
     const std::string pk = s.string("pressure", "follower");
     if (pk != "follower" && pk != "dead") s.fail("pressure", "must be \"follower\" or \"dead\"");
     l.follower_pressure = pk == "follower";

@@ -68,8 +68,10 @@ struct LoadingSpec {
   double min_increment = 1e-4;
   double max_increment = 1.0;  // caps the growth after fast steps
   int max_newton_iterations = 30;
-  bool line_search = true;
-  bool tangent_predictor = true;  // [loading] predictor = "tangent" | "none"
+  bool line_search = true;         // [loading] line_search = true | false | "halving"
+  bool halving_line_search = false;  // "halving": the driver's own (engine/load_stepping.hpp)
+  bool tangent_predictor = true;   // [loading] predictor = "tangent" | "tangent_every_step" | "none"
+  bool tangent_every_step = false;
   bool follower_pressure = true;  // false: dead load (reference normal)
 };
 

@@ -154,7 +154,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.max_increment = m.spec.loading.max_increment;
   opt.max_newton_iterations = m.spec.loading.max_newton_iterations;
   opt.line_search = m.spec.loading.line_search;
+  opt.halving_line_search = m.spec.loading.halving_line_search;
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
+  opt.tangent_every_step = m.spec.loading.tangent_every_step;
   opt.quiet = m.quiet;
   const bool curves = m.spec.has_load_curves();
   if (curves) opt.corners = curve_corners(m.spec.load_curves());

@@ -115,7 +115,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"curve_not_pairs", "bad_curve_not_pairs.toml", "curve =",
                 {"[pressure] curve:", "must be a list of [time, factor] pairs"}},
         BadCase{"curve_without_load", "bad_curve_no_load.toml", "curve =",
-                {"[dirichlet] curve:", "no prescribed value for the curve to scale"}}),
+                {"[dirichlet] curve:", "no prescribed value for the curve to scale"}},
+        BadCase{"line_search_unknown", "bad_line_search_unknown.toml", "line_search =",
+                {"[loading] line_search:", "\"halving\""}}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
 TEST(BadInput, RefineOptionBeyondMemory) {

@@ -6,6 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
 #include <functional>
 #include <stdexcept>
 
@@ -158,4 +161,112 @@ TEST(LoadStepping, StepsEndOnCornersAndCutBackInsideASegment) {
   EXPECT_EQ(times.back(), 2.0);
   for (size_t i = 1; i < times.size(); ++i) EXPECT_GT(times[i], times[i - 1]);
   EXPECT_NEAR(x[0], 2.0, 1e-12);
+}
+
+namespace {
+
+// One unknown: R(x; t) = f(t, x) with dR/dx = df(t, x); f returns false
+// for an inadmissible state (as det F <= 0 is).
+class ScalarProblem final : public NonlinearProblem {
+ public:
+  std::function<bool(double t, double x, double& r)> f;
+  std::function<double(double t, double x)> df;
+  int size() const override { return 1; }
+  bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
+    r.resize(1);
+    return f(t, x[0], r[0]);
+  }
+  bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) override {
+    J.resize(1, 1);
+    J.coeffRef(0, 0) = df(t, x[0]);
+    J.makeCompressed();
+    return true;
+  }
+  double force_scale(double, const Eigen::VectorXd&) override { return 1; }
+};
+
+// R(x; t) = atan(x - 3 t), solution x = 3 t.  From x = 0 to t = 1 the full
+// Newton step overshoots to 12.5 and the next to -120 (KINSOL caps a step
+// at 1000 |x_0|, at least 1; the halving search lifts the cap).
+// Inadmissible beyond |x| = 50.
+ScalarProblem arctan_problem() {
+  ScalarProblem p;
+  p.f = [](double t, double x, double& r) {
+    r = std::atan(x - 3 * t);
+    return std::abs(x) <= 50;
+  };
+  p.df = [](double t, double x) { return 1 / (1 + (x - 3 * t) * (x - 3 * t)); };
+  return p;
+}
+
+LoadSteppingOptions one_step_from_rest() {
+  LoadSteppingOptions opt = quiet_options();
+  opt.steps = 1;
+  opt.tangent_predictor = false;
+  opt.min_increment = 0.9;  // no cut-back: the attempt itself must converge
+  return opt;
+}
+
+}  // namespace
+
+// The halving line search: where the full Newton step overshoots it
+// converges, every accepted step decreasing |R| (Armijo), to the solution.
+// The first step: d = atan(3) (1 + 9) = 12.49; s = 1 and 1/2 raise |R|
+// (atan(9.49), atan(3.24) > atan(3)), s = 1/4 lowers it: x = 3.1226.
+TEST(LoadStepping, HalvingLineSearchConvergesWhereTheFullStepOvershoots) {
+  ScalarProblem problem = arctan_problem();
+  LoadSteppingOptions halving = one_step_from_rest();
+  halving.halving_line_search = true;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  const LoadSteppingSummary s = run_load_steps(problem, x, halving, {});
+  ASSERT_EQ(s.status, "converged");
+  ASSERT_EQ(s.steps.size(), 1u);
+  EXPECT_NEAR(x[0], 3.0, 1e-9);
+  const std::vector<double>& r = s.steps[0].residual_norms;
+  ASSERT_GE(r.size(), 3u);
+  for (size_t k = 1; k < r.size(); ++k) EXPECT_LT(r[k], r[k - 1]) << "iteration " << k;
+  EXPECT_NEAR(r[0], std::atan(3.0), 1e-15);
+  EXPECT_NEAR(r[1], std::abs(std::atan(0.25 * 10 * std::atan(3.0) - 3)), 1e-14) << "s = 1/4 at the first iteration";
+}
+
+// The search says why when no step length decreases |R|: a residual that
+// only grows along the Newton step (a wrong Jacobian sign, as a bug would
+// give); the run stops there (no increment small enough helps).
+TEST(LoadStepping, HalvingLineSearchFailsWithAReason) {
+  ScalarProblem problem;
+  problem.f = [](double t, double x, double& r) {
+    r = x - t;
+    return true;
+  };
+  problem.df = [](double, double) { return -1.0; };
+  LoadSteppingOptions opt = one_step_from_rest();
+  opt.halving_line_search = true;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  const LoadSteppingSummary s = run_load_steps(problem, x, opt, {});
+  EXPECT_NE(s.status.find("the line search found no decrease"), std::string::npos) << s.status;
+  EXPECT_EQ(x[0], 0.0) << "x keeps the last converged state";
+}
+
+// tangent_every_step on R(x; t) = x - t^2 (linear in x: a step's first
+// residual is what its predictor missed by): the second step starts from
+// x - J^{-1} dR/dt h, off by h^2 = 0.25 from t^2 (a forward difference in t
+// adds 1e-6 h), not from the last increment extrapolated, off by 2 h^2 = 0.5.
+TEST(LoadStepping, TangentPredictorAtEveryStep) {
+  ScalarProblem problem;
+  problem.f = [](double t, double x, double& r) {
+    r = x - t * t;
+    return true;
+  };
+  problem.df = [](double, double) { return 1.0; };
+  LoadSteppingOptions opt = quiet_options();
+  opt.steps = 2;
+  for (const bool every : {false, true}) {
+    opt.tangent_every_step = every;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+    const LoadSteppingSummary s = run_load_steps(problem, x, opt, {});
+    ASSERT_EQ(s.status, "converged");
+    ASSERT_EQ(s.steps.size(), 2u);
+    EXPECT_NEAR(s.steps[1].residual_norms.front(), every ? 0.25 : 0.5, 1e-5) << "tangent_every_step " << every;
+    EXPECT_NEAR(x[0], 1.0, 1e-12);
+  }
 }
