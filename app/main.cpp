@@ -251,6 +251,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // A run in steps writes its state after each one (state_NNNN.bin, beside
   // the step's .vtu); --restart continues from there (app/restart.hpp).
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
+  // Along load curves a frictional run is in steps, but its slip history is not in the state files.
+  if (!restart.dir.empty() && stepped &&
+      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; }))
+    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
+                                 path));
   if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)
     throw InputError(fmt::format("{}: --restart and --stop-after-step need a run in steps (large deformation or load "
                                  "curves); {}", path,

@@ -183,11 +183,6 @@ void read_bodies(const std::string& path, const toml::table& root, CaseSpec& c) 
 // load without a curve of its own ramps to its value over [0, 1] and keeps it.
 void check_load_curves(CaseSpec& c) {
   if (!c.has_load_curves()) return;
-  for (const ContactSpec& cs : c.contacts)
-    if (cs.friction > 0)
-      throw InputError(fmt::format("{}: [contact] friction: load curves do not run with friction (its path-dependent "
-                                   "stepping moves the obstacle in [loading] steps); give no curve or no friction",
-                                   c.path));
   if (c.reference != "none")
     throw InputError(fmt::format("{}: [reference] solution: a reference solution is compared with the loads at their "
                                  "values, not along load curves; give solution = \"none\"", c.path));
