@@ -238,7 +238,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     state.driver.x = std::move(xs);
     state.record = record;
     state.point = std::move(p);
-    step.step_state = std::move(state);
+    if (!frictional) step.step_state = std::move(state);  // (friction: the slip history is not in it, no restart)
     r.timing.postprocess += clock.seconds();
     if (!m.quiet)
       progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s)", steps.steps.size(), t,
