@@ -5,7 +5,8 @@
 // time and ends with the reactions of every [[dirichlet]] face set, which
 // balance the pressure at each step; summary.json gives each step its time.
 // With friction: load_curve.csv's tangential_force column and the loop's
-// panel in load_curve.svg; --restart refused in one line.
+// panel in load_curve.svg, the console's status line; --restart refused in
+// one line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -79,6 +80,14 @@ TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
   EXPECT_NEAR(std::stod(rows[6][tc]), -0.003, 1e-12);
   const std::string svg = igac_test::read_file(tmp.path() / "out" / "load_curve.svg");
   EXPECT_NE(svg.find("tangential force (first tangent)"), std::string::npos);
+  // The console of a small-deformation run in steps: active-set iterations,
+  // the small-deformation contact lines (no Newton, no Cauchy pressure).
+  const auto loud = igac_test::run_igac("run block.toml --out loud", tmp.path());
+  ASSERT_EQ(loud.exit_code, 0) << loud.output;
+  EXPECT_TRUE(std::regex_search(loud.output, std::regex("converged \\(6 load steps, [0-9]+ active-set iterations\\)")))
+      << loud.output;
+  EXPECT_EQ(loud.output.find("Newton"), std::string::npos) << loud.output;
+  EXPECT_EQ(loud.output.find("Cauchy"), std::string::npos) << loud.output;
   const auto restart = igac_test::run_igac("run block.toml --quiet --out again --restart out", tmp.path());
   EXPECT_EQ(restart.exit_code, 2) << restart.output;
   EXPECT_NE(restart.output.find("--restart: a frictional case's steps (and its slip history) are not restarted"),
