@@ -208,6 +208,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
         break;
       }
       step.u = expand(c.solution.u, t);
+      add_master_motions(m, step.u, t);
       step.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active, c.solution.lambda_t);
       step.contacts = report_contacts(m, c);
     }

@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 #include <fmt/format.h>
 
 #include "contact/small_strain_friction.hpp"
@@ -217,6 +218,45 @@ TEST(FrictionCycle, SlidingBlockDraggedAndBroughtBackEndsDisplaced) {
   const Cycle free = run_cycle(read_case(block_cycle_case(0.0).string()));
   ASSERT_EQ(free.result.status, "converged");
   for (const Frame& f : free.frames) EXPECT_EQ(f.Q, 0.0);
+}
+
+// Between two bodies (the blocks of tests/unit/model/test_two_body_friction.cpp:
+// an upper block pressed by 0.01 on a lower one, f = 0.3): the lower block
+// moved with its support by master_motion along master_curve, to +0.02 and
+// back to 0.  The tangential force is +f N there and -f N back; the lower
+// block's output displacement carries its motion at each step.
+TEST(FrictionCycle, TwoBodiesMasterCurveThereAndBack) {
+  auto body = [](const char* name, double y0, int nx) {
+    return fmt::format("[[body]]\nname = \"{}\"\n[body.geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n"
+                       "translate = [0.0, {}]\n[body.mesh]\ndegree = 2\nelements = [{}, 4]\n[body.material]\nE = 1.0\n"
+                       "nu = 0.0\n", name, y0, nx);
+  };
+  const fs::path dir = fs::temp_directory_path() / "igac_friction_cycle";
+  fs::create_directories(dir);
+  std::ofstream(dir / "blocks.toml") << body("upper", 0.25, 16) + body("lower", 0.0, 12) +
+      "[[dirichlet]]\nfaces = [\"upper:top\"]\ncomponent = \"x\"\n"
+      "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"x\"\n"
+      "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"y\"\n"
+      "[[pressure]]\nfaces = [\"upper:top\"]\nvalue = 0.01\n"
+      "[[contact]]\nface = \"upper:bottom\"\nmaster = \"lower:top\"\nfriction = 0.3\nmaster_motion = [0.02, 0.0]\n"
+      "master_curve = [[0, 0], [1, 0], [2, 1], [3, 0]]\n[loading]\nsteps = 2\n";
+  Cycle c{build_model(read_case((dir / "blocks.toml").string())), {}, {}};
+  c.model.quiet = true;
+  std::vector<double> Q, corner_x;
+  const int corner = c.model.body.body_cps(1).front();  // a control point of the lower block
+  c.result = solve_model(c.model, [&](const RunResult& step, double) {
+    Q.push_back(step.reactions.at(0).tangential_force[0]);
+    corner_x.push_back(step.u(corner, 0));
+  });
+  ASSERT_EQ(c.result.status, "converged");
+  ASSERT_EQ(Q.size(), 6u);  // t = 0.5, 1, 1.5, 2, 2.5, 3
+  const double fN = kF * 0.01, tol = 1e-11 * fN;
+  EXPECT_NEAR(Q[1], 0.0, tol);   // pressed (nu = 0: no friction needed)
+  EXPECT_NEAR(Q[3], fN, tol);    // dragged to +0.02: sliding
+  EXPECT_NEAR(Q[5], -fN, tol);   // brought back: sliding the other way
+  EXPECT_NEAR(corner_x[3], 0.02, 1e-15);  // (the corner on the support: its motion alone)
+  EXPECT_NEAR(corner_x[4], 0.01, 1e-15);
+  EXPECT_NEAR(corner_x[5], 0.0, 1e-15);
 }
 
 // --restart of a frictional run along curves is refused: its slip history
