@@ -121,7 +121,14 @@ void print_header(const Model& m) {
 void print_summary(const Model& m, const RunResult& r, const std::string& out, double wall_seconds) {
   const Body& b = m.body;
   std::string status = r.status;
-  if (r.load_steps) {
+  // Small deformation along load curves: steps of active-set iterations, no Newton.
+  const bool stepped_linear = r.load_steps && !m.spec.finite_strain();
+  if (stepped_linear) {
+    size_t iterations = 0;
+    for (const auto& st : r.load_steps->steps) iterations += st.active_set_sizes.size();
+    status += r.contact ? fmt::format(" ({} load steps, {} active-set iterations)", r.load_steps->steps.size(), iterations)
+                        : fmt::format(" ({} load steps)", r.load_steps->steps.size());
+  } else if (r.load_steps) {
     int newton = 0, cuts = r.load_steps->unfinished_cut_backs;  // (a failed run's last attempts too)
     for (const auto& st : r.load_steps->steps) {
       newton += st.newton_iterations;
@@ -160,7 +167,7 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     if (!c.has_half_width)
       fmt::print("  {}contact area  {:.6g}{}\n", in, c.contact_area,
                  b.space_dim() == 2 ? " (length per unit thickness)" : "");
-    if (r.load_steps) {
+    if (r.load_steps && !stepped_linear) {
       if (c.has_half_width)
         fmt::print("  {}half width    {:.6g} deformed, {:.6g} on the reference face\n", in, c.half_width_deformed,
                    rep.half_width);
@@ -169,7 +176,7 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     if (r.hertz) {
       fmt::print("  half width    {:.6g}  (Hertz {:.6g}, {})\n", rep.half_width, r.hertz->a, percent(rep.half_width, r.hertz->a));
       fmt::print("  max pressure  {:.6g}  (Hertz {:.6g}, {})\n", rep.max_pressure, r.hertz->p0, percent(rep.max_pressure, r.hertz->p0));
-    } else if (!r.load_steps) {
+    } else if (!r.load_steps || stepped_linear) {
       if (c.has_half_width) fmt::print("  {}half width    {:.6g}\n", in, rep.half_width);
       fmt::print("  {}max pressure  {:.6g}\n", in, rep.max_pressure);
     }
@@ -210,7 +217,7 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
                r.displacement_errors->h1, r.displacement_errors->l2 / r.displacement_errors->ref_l2,
                r.displacement_errors->h1 / r.displacement_errors->ref_h1);
   // The whole run (reading, building, solving, writing), then the solve's own split.
-  if (r.load_steps)
+  if (r.load_steps && !stepped_linear)
     fmt::print("  time          {:.3f} s in all; the solve {:.3f} (Newton and load steps {:.3f})\n", wall_seconds,
                r.timing.total, r.load_steps->newton_seconds);
   else
@@ -251,6 +258,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // A run in steps writes its state after each one (state_NNNN.bin, beside
   // the step's .vtu); --restart continues from there (app/restart.hpp).
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
+  // Along load curves a frictional run is in steps, but its slip history is not in the state files.
+  if (!restart.dir.empty() && stepped &&
+      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; }))
+    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
+                                 path));
   if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)
     throw InputError(fmt::format("{}: --restart and --stop-after-step need a run in steps (large deformation or load "
                                  "curves); {}", path,

@@ -107,6 +107,20 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   s.alpha = Eigen::VectorXd::Ones(s.m);
 }
 
+void SmallStrainFriction::set_load(const Eigen::VectorXd& f) {
+  Impl& s = *impl_;
+  s.fp = f;
+  for (int p : s.modes.pinned) s.fp[p] = 0.0;
+  s.Gvf = s.Gsp * Eigen::VectorXd(s.chol.solve(s.fp));  // G K^-1 f (the pinned K), as ActiveSchur::G_solve_f
+  s.Rf = s.modes.modes.transpose() * f;
+}
+
+void SmallStrainFriction::start_from(const WeightedGapOperator& op0) { impl_->tau_prev = op0.t0; }
+
+namespace {
+constexpr int kCycleRestarts = 4;
+}  // namespace
+
 ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   Impl& s = *impl_;
   const int m = s.m, nt = s.nt, k = s.k, rows_all = m * (1 + nt);
@@ -117,6 +131,10 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   r0.tail(m * nt) = op.t0 - s.tau_prev;
 
   std::set<std::vector<char>> seen;
+  // The tangential scale c_t of xi = lambda_t + c_t s (the normal one's
+  // unless the iteration cycles, below).
+  double ct = s.cn;
+  int restarts = 0;
   Eigen::VectorXd lam = Eigen::VectorXd::Zero(rows_all), c = Eigen::VectorXd::Zero(k), Gu(rows_all);
   Eigen::VectorXd gap(m), slip(m * nt);
   for (int it = 0; it < s.max_iterations; ++it) {
@@ -156,7 +174,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
           Unknown u;
           u.C = {{s.trow(K, 0), w0}, {s.trow(K, 1), w1}};
           u.H = u.C;
-          u.diagonal = op.weights[K] * slip_compliance(s.alpha[K], s.cn);
+          u.diagonal = op.weights[K] * slip_compliance(s.alpha[K], ct);
           unknowns.push_back(std::move(u));
         }
     sol.active_set_sizes.push_back(int(unknowns.size()));
@@ -216,7 +234,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
         next[K] = kSlip;
         continue;
       }
-      const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + s.cn * slip.segment(K * nt, nt);
+      const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + ct * slip.segment(K * nt, nt);
       const double b = std::max(0.0, -fr[K] * (lam_n[K] + s.cn * gap[K]));
       const double norm = xi.norm();
       if (std::abs(norm - b) <= tol && s.state[K] != kOpen) next[K] = s.state[K];  // on the cone to round-off
@@ -238,6 +256,20 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     if (nt == 1)
       for (int K = 0; K < m; ++K) key[K] += s.state[K] == kSlip && s.dir(K, 0) < 0 ? 1 : 0;
     if (nt == 1 || directions_settled) {
+      if (seen.count(key) && restarts < kCycleRestarts) {
+        // A cycle (seen when a step reverses the slip: slip one way, then
+        // the other, never stick, c_t s overshooting the cone): the
+        // iteration starts again from every closed multiplier stuck, the
+        // elastic predictor of a return mapping, and after the first time
+        // with c_t 10 times smaller (the solution does not depend on c_t).
+        // Runs that do not cycle never come here: their iterations are as before.
+        if (restarts++ > 0) ct *= 0.1;
+        seen.clear();
+        for (int K = 0; K < m; ++K)
+          if (next[K] != kOpen) next[K] = kStick;
+        s.state = next;
+        continue;
+      }
       if (seen.count(key)) {
         sol.status = fmt::format("active set cycling after {} iterations", it + 1);
         break;

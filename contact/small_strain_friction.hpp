@@ -68,6 +68,11 @@ class SmallStrainFriction {
   // obstacle where the step leaves it).  Updates the slip history; the
   // solution carries lambda_t, the state and the accumulated slip.
   ContactSolution step(const WeightedGapOperator& op);
+  // Along load curves (model/load_history.cpp): the load f of the next
+  // steps (K and its factor unchanged), and where the tangential positions
+  // count from, T u + t0 with u = 0 and op0's t0 (the obstacle at time 0).
+  void set_load(const Eigen::VectorXd& f);
+  void start_from(const WeightedGapOperator& op0);
 
  private:
   struct Impl;

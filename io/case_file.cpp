@@ -39,7 +39,7 @@ const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value", "curve"};
 const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
 const std::set<std::string> kBodyForceKeys{"value", "curve"};
-const std::set<std::string> kContactKeys{"face", "obstacle", "master", "master_motion", "friction"};
+const std::set<std::string> kContactKeys{"face", "obstacle", "master", "master_motion", "master_curve", "friction"};
 const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -183,11 +183,6 @@ void read_bodies(const std::string& path, const toml::table& root, CaseSpec& c) 
 // load without a curve of its own ramps to its value over [0, 1] and keeps it.
 void check_load_curves(CaseSpec& c) {
   if (!c.has_load_curves()) return;
-  for (const ContactSpec& cs : c.contacts)
-    if (cs.friction > 0)
-      throw InputError(fmt::format("{}: [contact] friction: load curves do not run with friction (its path-dependent "
-                                   "stepping moves the obstacle in [loading] steps); give no curve or no friction",
-                                   c.path));
   if (c.reference != "none")
     throw InputError(fmt::format("{}: [reference] solution: a reference solution is compared with the loads at their "
                                  "values, not along load curves; give solution = \"none\"", c.path));
@@ -298,7 +293,14 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
                                               "\"linear_elastic\"), not with model \"{}\"", c.model));
         cs.master_motion = s.loads("master_motion", dim);
       }
+      if (s.has("master_curve")) {  // (kept as the obstacle's curve: every load's curve is in CaseSpec::load_curves)
+        if (!s.has("master_motion")) s.fail("master_curve", "there is no master_motion for the curve to scale");
+        cs.obstacle.curve = s.curve("master_curve");
+      }
     } else {
+      if (s.has("master_curve"))
+        s.fail("master_curve", "is the curve of a master body's master_motion; an obstacle's motion has its curve in "
+                               "[contact.obstacle] curve");
       if (s.has("master_motion"))
         s.fail("master_motion", "moves the master body of a contact between two bodies; an obstacle moves by "
                                 "[contact.obstacle] motion");

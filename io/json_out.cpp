@@ -299,6 +299,14 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
   else
     s += ",contact_force";
   s += ",face_displacement,obstacle_displacement";
+  // Friction: each contact's tangential force, a column per tangent
+  // (tangential_force in 2D, tangential_force_1, _2 in 3D; _<face> with several contacts).
+  const std::vector<Eigen::VectorXd> no_tangents;
+  const std::vector<Eigen::VectorXd>& t0 = r.load_curve.empty() ? no_tangents : r.load_curve.front().tangential_forces;
+  for (size_t i = 0; i < t0.size(); ++i)
+    for (int j = 0; j < t0[i].size(); ++j)
+      s += fmt::format(",tangential_force{}{}", tags.size() > 1 ? "_" + tags[i] : "",
+                       t0[i].size() > 1 ? fmt::format("_{}", j + 1) : "");
   if (!r.load_curve.empty())
     for (const FaceReaction& f : r.load_curve.front().dirichlet_reactions)
       for (int c = 0; c < f.force.size(); ++c) s += fmt::format(",reaction_{}_{}", f.face, "xyz"[c]);
@@ -311,6 +319,10 @@ std::string load_curve_csv(const Model& m, const RunResult& r) {
     else
       s += fmt::format(",{}", csv_number(p.contact_force()));
     s += fmt::format(",{},{}", csv_number(p.face_displacement), csv_number(p.obstacle_displacement));
+    for (size_t i = 0; i < t0.size(); ++i)
+      for (int j = 0; j < t0[i].size(); ++j)
+        s += "," + csv_number(i < p.tangential_forces.size() && j < p.tangential_forces[i].size() ? p.tangential_forces[i][j]
+                                                                                                 : std::nan(""));
     for (const FaceReaction& f : p.dirichlet_reactions)
       for (int c = 0; c < f.force.size(); ++c) s += "," + csv_number(f.force[c]);
     s += "\n";

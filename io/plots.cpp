@@ -152,7 +152,26 @@ svg::Figure load_curve_figure(const RunResult& r, const std::string& title, cons
       by_motion.series.push_back(std::move(s));
     }
   }
-  return {.title = title, .panels = {std::move(by_load), std::move(by_motion)}, .panel_width = 500, .panel_height = 400};
+  svg::Figure figure{.title = title, .panels = {std::move(by_load), std::move(by_motion)}, .panel_width = 500,
+                     .panel_height = 400};
+  // Friction: the first contact's tangential force (first tangent) against
+  // the obstacle's displacement, the hysteresis loop of a load cycle.
+  if (!r.load_curve.empty() && !r.load_curve.front().tangential_forces.empty() &&
+      r.load_curve.front().tangential_forces.front().size() > 0) {
+    svg::Panel loop{.x = {.label = (driven ? "obstacle displacement" : "time (load curves)") + length_unit},
+                    .y = {.label = "tangential force (first tangent)" + force_unit}};
+    svg::Series s = style;
+    s.x = {0};
+    s.y = {0};
+    for (const auto& p : r.load_curve) {
+      s.x.push_back(driven ? p.obstacle_displacement : p.load_factor);
+      s.y.push_back(p.tangential_forces.empty() || p.tangential_forces.front().size() == 0 ? std::nan("")
+                                                                                             : p.tangential_forces.front()[0]);
+    }
+    loop.series.push_back(std::move(s));
+    figure.panels.push_back(std::move(loop));
+  }
+  return figure;
 }
 
 svg::Figure study_figure(const std::vector<double>& h, const std::vector<StudyError>& errors, const std::string& title) {

@@ -432,8 +432,10 @@ Model build_model(const CaseSpec& spec) {
       // The master body moved rigidly with its supports: its motion enters
       // the gaps (assemble_contact_operator) and, after the solve, its
       // displacement (add_master_motions).
-      if (!cs.master_motion.empty())
+      if (!cs.master_motion.empty()) {
         c.motion = Eigen::Map<const Eigen::VectorXd>(cs.master_motion.data(), Eigen::Index(cs.master_motion.size()));
+        c.curve = cs.obstacle.curve;  // master_curve (a case with curves: ramp and hold without one)
+      }
       c.master = std::make_unique<MasterSurface>(m.body, master);
       // The reports read the master as an obstacle at its reference position.
       c.obstacle = std::make_unique<MasterAsObstacle>(*c.master, cs.master);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "contact/small_strain_friction.hpp"
 #include "engine/assembly.hpp"
 #include "engine/cholesky.hpp"
 #include "engine/face_quadrature.hpp"
@@ -76,7 +77,7 @@ double LoadCurveProbe::face_displacement(const Body& body, const Eigen::MatrixXd
 }
 
 double LoadCurveProbe::obstacle_displacement(double t) const {
-  return mover ? std::abs(mover->curve(t)) * mover->motion.norm() : 0.0;
+  return mover ? mover->curve(t) * mover->motion.norm() : 0.0;  // (signed: a curve below 0 reverses the motion)
 }
 
 RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step) {
@@ -126,6 +127,16 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   for (const auto& c : m.contacts) moving = moving || c.motion.size() > 0;
   std::optional<WeightedGapOperator> fixed_op;
   if (!m.contacts.empty() && !moving) fixed_op = assemble_contact_operator(m);
+  // Friction depends on the path: one frictional solve (K factorised once)
+  // goes through the steps, each from the state and slip history where the
+  // last one ended (the slip counted from the obstacle at time 0).
+  bool frictional = false;
+  for (const auto& c : m.contacts) frictional = frictional || c.friction > 0;
+  if (frictional && !m.resume.empty())
+    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
+                                 m.spec.path));
+  std::optional<SmallStrainFriction> friction;
+  std::vector<int> friction_steps;  // active-set iterations per step
   SparseCholesky chol;
   if (m.contacts.empty()) {
     progress.phase(fmt::format("factorising K ({} equations)", m.dofs->num_free()));
@@ -175,7 +186,20 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     } else {
       ContactSolve& c = step.contact.emplace();
       c.op = fixed_op ? *fixed_op : assemble_contact_operator_at_time(m, t);
-      c.solution = solve_small_strain_contact(sys.K, f, c.op, modes, chol, opt);
+      if (frictional) {
+        if (!friction) {
+          friction.emplace(sys.K, f, c.op, modes, chol, opt);
+          friction->start_from(fixed_op ? *fixed_op : assemble_contact_operator_at_time(m, 0.0));
+          r.timing.factorization += clock.seconds();
+          clock.restart();
+        }
+        friction->set_load(f);
+        c.solution = friction->step(c.op);
+        friction_steps.push_back(int(c.solution.active_set_sizes.size()));
+        c.solution.step_iterations = friction_steps;
+      } else {
+        c.solution = solve_small_strain_contact(sys.K, f, c.op, modes, chol, opt);
+      }
       record.active_set_sizes = c.solution.active_set_sizes;
       r.timing.factorization += c.solution.factorize_s;
       r.timing.contact += clock.seconds() - c.solution.factorize_s;
@@ -184,7 +208,8 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
         break;
       }
       step.u = expand(c.solution.u, t);
-      step.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active);
+      add_master_motions(m, step.u, t);
+      step.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active, c.solution.lambda_t);
       step.contacts = report_contacts(m, c);
     }
     clock.restart();
@@ -196,6 +221,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : step.contacts) p.contact_forces.push_back(c.report.total_force);
+    for (const ObstacleReaction& rr : step.reactions) p.tangential_forces.push_back(rr.tangential_force);
     p.face_displacement = probe.face_displacement(body, step.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
     p.dirichlet_reactions = step.dirichlet_reactions;
@@ -213,7 +239,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     state.driver.x = std::move(xs);
     state.record = record;
     state.point = std::move(p);
-    step.step_state = std::move(state);
+    if (!frictional) step.step_state = std::move(state);  // (friction: the slip history is not in it, no restart)
     r.timing.postprocess += clock.seconds();
     if (!m.quiet)
       progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s)", steps.steps.size(), t,

@@ -38,7 +38,8 @@ struct LoadCurveProbe {
   explicit LoadCurveProbe(const Model& model);
   // Mean of the last displacement component over the faces (reference measure).
   double face_displacement(const Body& body, const Eigen::MatrixXd& u) const;
-  // How far the moving obstacle has moved at time t: |curve(t) motion|.
+  // How far the moving obstacle has moved at time t: curve(t) |motion|
+  // (negative where the curve reverses the motion).
   double obstacle_displacement(double t) const;
 };
 

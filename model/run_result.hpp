@@ -78,7 +78,9 @@ struct LoadCurvePoint {
   std::vector<double> contact_forces;  // sum_K -lambda_K K_K (modelled part) of every contact, in case order
   double contact_force() const { return contact_forces.empty() ? 0.0 : contact_forces.front(); }  // the first's
   double face_displacement = 0;  // mean displacement of the loaded face along the last axis
-  double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|)
+  double obstacle_displacement = 0;  // how far a moving obstacle has moved (t |motion|; along a curve curve(t) |motion|)
+  // Friction: each contact's tangential force (ObstacleReaction), in case order; empty without.
+  std::vector<Eigen::VectorXd> tangential_forces;
   std::vector<FaceReaction> dirichlet_reactions;  // every [[dirichlet]] face set's, at this step
 };
 

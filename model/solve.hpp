@@ -57,5 +57,9 @@ std::vector<ContactResult> report_contacts(const Model& model, const ContactSolv
 // |int P n dGamma| summed over the pressure loads (the modelled part), at
 // their values or (`time`) at their curves' factors at that time.
 double pressure_resultant(const Model& model, std::optional<double> time = {});
+// A master body moved rigidly with its supports ([[contact]] master_motion):
+// its motion (at time: curve(time) x motion) added to every control point of
+// that body, whose solved displacement is relative to the moved supports.
+void add_master_motions(const Model& model, Eigen::MatrixXd& u, std::optional<double> time = {});
 
 }  // namespace igac

@@ -75,21 +75,20 @@ WeightedGapOperator assemble_contact_operator_at_time(const Model& m, double tim
   return contact_operator(m, [time](const Model::Contact& c) { return c.curve(time); });
 }
 
-namespace {
-// A master body moved rigidly with its supports ([[contact]] master_motion):
-// the solve has its displacement relative to the moved supports; the
-// motion added to every control point of that body gives its displacement.
 // A rigid translation strains nothing (K r = 0): the reactions are those of u.
-void add_master_motions(const Model& m, Eigen::MatrixXd& u) {
+void add_master_motions(const Model& m, Eigen::MatrixXd& u, std::optional<double> time) {
   const std::vector<int> part = m.body.parts();
   for (const auto& c : m.contacts) {
     if (!c.master || c.motion.size() == 0) continue;
     const int moved = part[find_faces(m, c.master_name)->front().patch];
+    const Eigen::VectorXd motion = time ? Eigen::VectorXd(c.curve(*time) * c.motion) : c.motion;
     for (int k = 0; k < m.body.num_patches(); ++k)
       if (part[k] == moved)
-        for (int a : m.body.body_cps(k)) u.row(a) += c.motion.transpose();
+        for (int a : m.body.body_cps(k)) u.row(a) += motion.transpose();
   }
 }
+
+namespace {
 
 // Which patches the rigid motions `free` (free numbering, one per column)
 // move, said when the body is several bodies (patches no interface joins):

@@ -4,8 +4,13 @@
 // per step with the undeformed frame at 0; load_curve.csv starts with the
 // time and ends with the reactions of every [[dirichlet]] face set, which
 // balance the pressure at each step; summary.json gives each step its time.
+// With friction: load_curve.csv's tangential_force column and the loop's
+// panel in load_curve.svg, the console's status line; --restart refused in
+// one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -48,6 +53,46 @@ TEST(LoadHistory, PvdTimesCsvColumnsAndReactionsPerStep) {
   ASSERT_EQ(summary["load_steps"].size(), times.size());
   for (size_t i = 0; i < times.size(); ++i) EXPECT_EQ(summary["load_steps"][i]["time"].get<double>(), times[i]);
   EXPECT_EQ(summary["status"], "converged");
+}
+
+// The sliding block of tests/unit/model/test_friction_cycle.cpp: pressed
+// over t = 0 -> 1, its plane dragged to +0.01 (t = 2) and back (t = 3).
+TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
+  igac_test::TempDir tmp("friction_curves");
+  std::ofstream(tmp.path() / "block.toml")
+      << "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n[mesh]\ndegree = 2\nelements = [16, 4]\n"
+         "[material]\nE = 1.0\nnu = 0.0\n[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
+         "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n[contact]\nface = \"bottom\"\nfriction = 0.3\n"
+         "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nmotion = [0.01, 0.0]\n"
+         "curve = [[0, 0], [1, 0], [2, 1], [3, 0]]\n[loading]\nsteps = 2\n[output]\nvtk = false\n";
+  const auto o = igac_test::run_igac("run block.toml --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
+  ASSERT_EQ(rows.size(), 7u);  // the header and 6 steps
+  const auto column = std::find(rows[0].begin(), rows[0].end(), "tangential_force");
+  ASSERT_NE(column, rows[0].end());
+  const size_t tc = size_t(column - rows[0].begin()), oc = 3;
+  EXPECT_EQ(rows[0][oc], "obstacle_displacement");
+  // t = 2: dragged to +0.01, sliding: f N = 0.003; t = 3: back at 0, -f N.
+  EXPECT_EQ(std::stod(rows[4][oc]), 0.01);
+  EXPECT_NEAR(std::stod(rows[4][tc]), 0.003, 1e-12);
+  EXPECT_EQ(std::stod(rows[6][oc]), 0.0);
+  EXPECT_NEAR(std::stod(rows[6][tc]), -0.003, 1e-12);
+  const std::string svg = igac_test::read_file(tmp.path() / "out" / "load_curve.svg");
+  EXPECT_NE(svg.find("tangential force (first tangent)"), std::string::npos);
+  // The console of a small-deformation run in steps: active-set iterations,
+  // the small-deformation contact lines (no Newton, no Cauchy pressure).
+  const auto loud = igac_test::run_igac("run block.toml --out loud", tmp.path());
+  ASSERT_EQ(loud.exit_code, 0) << loud.output;
+  EXPECT_TRUE(std::regex_search(loud.output, std::regex("converged \\(6 load steps, [0-9]+ active-set iterations\\)")))
+      << loud.output;
+  EXPECT_EQ(loud.output.find("Newton"), std::string::npos) << loud.output;
+  EXPECT_EQ(loud.output.find("Cauchy"), std::string::npos) << loud.output;
+  const auto restart = igac_test::run_igac("run block.toml --quiet --out again --restart out", tmp.path());
+  EXPECT_EQ(restart.exit_code, 2) << restart.output;
+  EXPECT_NE(restart.output.find("--restart: a frictional case's steps (and its slip history) are not restarted"),
+            std::string::npos) << restart.output;
+  EXPECT_EQ(std::count(restart.output.begin(), restart.output.end(), '\n'), 1) << restart.output;
 }
 
 }  // namespace

@@ -102,7 +102,15 @@ INSTANTIATE_TEST_SUITE_P(
                   "[contact] master_motion"},
         BadMaster{"master_motion_on_obstacle", "master = \"0:north\"",
                   "master_motion = [0.1, 0.0]\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]",
-                  "[contact] master_motion: moves the master body of a contact between two bodies"}),
+                  "[contact] master_motion: moves the master body of a contact between two bodies"},
+        // master_curve scales a master_motion: without one, or on an obstacle, one line naming it.
+        BadMaster{"master_curve_without_motion", "master = \"0:north\"",
+                  "master = \"0:north\"\nmaster_curve = [[0, 0], [1, 1]]",
+                  "[contact] master_curve: there is no master_motion for the curve to scale"},
+        BadMaster{"master_curve_on_obstacle", "master = \"0:north\"",
+                  "master_curve = [[0, 0], [1, 1]]\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\n"
+                  "normal = [0.0, 1.0]",
+                  "[contact] master_curve: is the curve of a master body's master_motion"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
 // Large deformation between two bodies runs; moving the master body there
