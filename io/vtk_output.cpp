@@ -184,6 +184,12 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   }
   auto patch_cell = make_array("patch", 1, mesh.num_elements());
   for (int e = 0; e < mesh.num_elements(); ++e) patch_cell->SetValue(e, patch_of[e]);
+  // The body of each element: its [[body]] table's index (0 for a case of one body).
+  std::vector<int> body_of_patch(size_t(body.num_patches()), 0);
+  for (size_t k = 0; k < model.parts.size(); ++k)
+    for (int p = 0; p < model.parts[k].num_patches; ++p) body_of_patch[size_t(model.parts[k].first_patch + p)] = int(k);
+  auto body_cell = make_array("body", 1, mesh.num_elements());
+  for (int e = 0; e < mesh.num_elements(); ++e) body_cell->SetValue(e, body_of_patch[size_t(patch_of[e])]);
   // J = det F and the hydrostatic pressure (model/field_recovery.hpp)
   const RecoveredVolume v = recover_volume(mesh, model);
   auto jac = make_array("J", 1, np);
@@ -195,6 +201,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   for (auto* a : {stress.Get(), strain.Get(), principal.Get(), vm.Get(), mag.Get(), patch_point.Get(), jac.Get(), hyd.Get()})
     grid->GetPointData()->AddArray(a);
   grid->GetCellData()->AddArray(patch_cell);
+  grid->GetCellData()->AddArray(body_cell);
   grid->GetPointData()->SetActiveScalars("von_mises");
   return grid;
 }

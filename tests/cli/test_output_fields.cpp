@@ -39,6 +39,23 @@ double min_over_steps(const fs::path& out, const char* array) {
   return lo;
 }
 
+// A case of several [[body]] tables: each cell says its body (issue 25),
+// the roller's first (index 0), the block's after it (1).
+TEST(VtkOutput, EachCellSaysItsBody) {
+  igac_test::TempDir tmp("bodies");
+  const std::string roller = std::string(IGAC_SOURCE_DIR) + "/cases/roller_on_block.toml";
+  const auto o = igac_test::run_igac("run " + igac_test::quote(roller) + " --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto grid = igac_test::read_vtu((tmp.path() / "out" / "solution_0001.vtu").string());
+  vtkDataArray* body = grid->GetCellData()->GetArray("body");
+  vtkDataArray* patch = grid->GetCellData()->GetArray("patch");
+  ASSERT_NE(body, nullptr);
+  ASSERT_NE(patch, nullptr);
+  std::set<std::pair<double, double>> patch_body;
+  for (vtkIdType e = 0; e < body->GetNumberOfTuples(); ++e) patch_body.insert({patch->GetComponent(e, 0), body->GetComponent(e, 0)});
+  EXPECT_EQ(patch_body, (std::set<std::pair<double, double>>{{0, 0}, {1, 1}}));
+}
+
 // Issue 25: von Mises and |sigma| cannot be negative, and were (-0.052 and
 // -0.89 in the O-ring) when their own Bezier coefficients were projected.
 // Every shipped case that runs in a few seconds, small and large deformation.
