@@ -9,7 +9,7 @@ namespace igac {
 
 void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, MasterSurface& master,
                               MortarIntegration integration, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                              int offset, const FiniteStrainMortarTerms& out) {
+                              int offset, const FiniteStrainMortarTerms& out, const ContactQuadrature& tabulated) {
   master.update(u);
   const int dim = dofs.dim(), pd = dim - 1;
   std::vector<int> master_local, master_cps, eq_s, eq_m, eq_block;
@@ -88,7 +88,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
         out.K_coupling->emplace_back(eq_m[c], eq_s[r], H(ns * dim + c, r));
       }
     }
-  });
+  }, &tabulated);
 }
 
 }  // namespace igac

@@ -50,9 +50,10 @@ struct FiniteStrainMortarTerms {
 // Adds contact (slave, master) at displacement u (n_cp x dim, prescribed
 // values included) to `out`: `master` is moved to u first.  lambda: the
 // multipliers of this contact (the face's numbering), weighting the
-// curvature terms; its rows start at `offset`.
+// curvature terms; its rows start at `offset`.  `tabulated`: the slave's
+// quadrature, tabulated once by the caller (element-based integration).
 void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, MasterSurface& master,
                               MortarIntegration integration, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                              int offset, const FiniteStrainMortarTerms& out);
+                              int offset, const FiniteStrainMortarTerms& out, const ContactQuadrature& tabulated);
 
 }  // namespace igac

@@ -62,7 +62,8 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
                                lambda.size() ? Eigen::VectorXd(lambda.segment(offset, count))
                                              : Eigen::VectorXd::Zero(count),
                                offset, {&out.gamma, coupling ? &out.G : nullptr, K, K_coupling,
-                                        coupling ? &out.resultants[c] : nullptr});
+                                        coupling ? &out.resultants[c] : nullptr},
+                               contact_quadratures_[c]);
       continue;
     }
     // A moving obstacle stands at its reference position moved by t * motion.

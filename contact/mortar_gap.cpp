@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include "engine/quadrature.hpp"
@@ -92,7 +93,8 @@ std::vector<double> segment_cuts(const ContactSide& side, const Eigen::MatrixXd*
 }  // namespace
 
 void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
-                           const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit) {
+                           const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit,
+                           const ContactQuadrature* tabulated) {
   MortarSlavePoint sp;
   const auto displace = [&] {
     sp.x = sp.X;
@@ -100,7 +102,9 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
       for (size_t a = 0; a < sp.cps.size(); ++a) sp.x += sp.N[Eigen::Index(a)] * u->row(sp.cps[a]).transpose();
   };
   if (integration == MortarIntegration::element) {
-    ContactQuadrature(slave).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
+    std::optional<ContactQuadrature> own;
+    if (!tabulated) own.emplace(slave);
+    (tabulated ? *tabulated : *own).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                                 const std::vector<double>& B) {
       sp.X = ev.X[q];
       sp.JxW = ev.JxW[q];

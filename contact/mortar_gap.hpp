@@ -75,10 +75,13 @@ struct MortarSlavePoint {
 // element edge).  With u (n_cp x dim, body numbering; null: none) the slave
 // face is cut at its displaced position against `master` as it stands (the
 // caller has moved it): the integrand is continuous across the cuts, so the
-// gaps' derivative may be taken with the cuts held.  The one loop of the
-// small- and large-deformation mortar gaps.
+// gaps' derivative may be taken with the cuts held.  `tabulated`: the
+// slave's quadrature already tabulated (element-based; null: tabulated
+// here), so that a Newton iteration does not tabulate it again.  The one
+// loop of the small- and large-deformation mortar gaps.
 void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
-                           const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit);
+                           const Eigen::MatrixXd* u, const std::function<void(const MortarSlavePoint&)>& visit,
+                           const ContactQuadrature* tabulated = nullptr);
 
 // With friction > 0 also the tangential rows (Coulomb friction between the
 // two bodies, contact/small_strain_friction.hpp), in the same loop: the

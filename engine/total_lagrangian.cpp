@@ -254,12 +254,6 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
     throw std::invalid_argument(fmt::format("total-Lagrangian assembly of {} patches got {} laws and {} formulations "
                                             "(one for all, or one per patch)", patches, laws_.size(),
                                             formulations_.size()));
-  for (size_t k = 0; k < std::max(laws_.size(), formulations_.size()); ++k) {
-    const HyperelasticLaw& law = *laws_[laws_.size() == 1 ? 0 : k];
-    if (formulations_[formulations_.size() == 1 ? 0 : k] == Formulation::mixed && !law.has_volumetric_split())
-      throw std::invalid_argument(fmt::format("the mixed formulation needs a law with an isochoric/volumetric split; "
-                                              "'{}' declares none", law.name()));
-  }
   if ((dim != 2 && dim != 3) || body_.param_dim() != dim)
     throw std::invalid_argument(fmt::format(
         "total-Lagrangian assembly needs a 2D or 3D volume body, got {} parametric directions in R^{}",
@@ -267,6 +261,16 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
   if (dofs.dim() != dim || dofs.num_dofs() != body_.num_control_points() * dim)
     throw std::invalid_argument(fmt::format("the dof map ({} dofs in {}D) does not belong to this body ({} control points in {}D)",
                                             dofs.num_dofs(), dofs.dim(), body_.num_control_points(), dim));
+  // the mixed formulation's stabilisation modulus per law, once (volumetric_projection.hpp)
+  stabilisations_.assign(std::max(laws_.size(), formulations_.size()), 0.0);
+  for (size_t k = 0; k < stabilisations_.size(); ++k) {
+    const HyperelasticLaw& law = *laws_[laws_.size() == 1 ? 0 : k];
+    if (formulations_[formulations_.size() == 1 ? 0 : k] != Formulation::mixed) continue;
+    if (!law.has_volumetric_split())
+      throw std::invalid_argument(fmt::format("the mixed formulation needs a law with an isochoric/volumetric split; "
+                                              "'{}' declares none", law.name()));
+    stabilisations_[k] = stabilisation_modulus(law, dim);
+  }
   if (tangent) pattern_ = coupling_pattern(quad_, dofs_);
   colours_ = colour_elements(quad_, dofs_);
   double min_det = std::numeric_limits<double>::infinity();
@@ -298,13 +302,10 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
-  // the mixed formulation's stabilisation modulus, per law (volumetric_projection.hpp)
-  std::vector<double> mu_s(std::max(laws_.size(), formulations_.size()), 0.0);
-  for (size_t k = 0; k < mu_s.size(); ++k)
-    if (formulations_[formulations_.size() == 1 ? 0 : k] == Formulation::mixed)
-      mu_s[k] = stabilisation_modulus(*laws_[laws_.size() == 1 ? 0 : k], dim);
-  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, mu_s, colours_, pattern_, u, f_int, K)
-                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, mu_s, colours_, pattern_, u, f_int, K);
+  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, colours_,
+                                   pattern_, u, f_int, K)
+                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, colours_,
+                                    pattern_, u, f_int, K);
 }
 
 }  // namespace igac

@@ -92,6 +92,7 @@ class TotalLagrangianAssembler {
   DofMap dofs_;
   std::vector<const HyperelasticLaw*> laws_;  // one, or one per patch
   std::vector<Formulation> formulations_;     // one, or one per patch
+  std::vector<double> stabilisations_;        // mu_s of each law in the mixed formulation (0: none)
   int pressure_degree_;
   Eigen::SparseMatrix<double> pattern_;
   std::vector<std::vector<int>> colours_;  // elements by colour: one colour shares no equation

@@ -52,6 +52,13 @@ struct Model {
     for (const Part& p : parts) out.insert(out.end(), size_t(p.num_patches), p.formulation);
     return out;
   }
+  // The law of each patch of `body` (one entry: every patch's).
+  std::vector<const HyperelasticLaw*> patch_laws() const {
+    if (parts.size() <= 1) return {law.get()};
+    std::vector<const HyperelasticLaw*> out;
+    for (const Part& p : parts) out.insert(out.end(), size_t(p.num_patches), p.law.get());
+    return out;
+  }
   // The small-strain material of each patch of `body` (one entry: every patch's).
   std::vector<LinearElastic> patch_materials() const {
     if (parts.size() <= 1) return {material};

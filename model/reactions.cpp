@@ -25,13 +25,10 @@ ReactionEvaluator::ReactionEvaluator(const Model& m) : model_(m), all_free_(m.bo
   if (!m.spec.finite_strain() && (m.parts.size() > 1 || mixed))
     linear_K_ = assemble_linear_elasticity(m.body, all_free_, m.patch_materials(),
                                            Eigen::VectorXd::Zero(m.body.space_dim()), {}, formulations).K;
-  else if (m.parts.size() > 1) {  // several hyperelastic bodies: each patch with its body's law
-    std::vector<const HyperelasticLaw*> laws;
-    for (const Model::Part& p : m.parts) laws.insert(laws.end(), size_t(p.num_patches), p.law.get());
-    assembler_ = std::make_unique<TotalLagrangianAssembler>(m.body, all_free_, laws, formulations, false);
-  } else {
+  else if (m.parts.size() > 1)  // several hyperelastic bodies: each patch with its body's law
+    assembler_ = std::make_unique<TotalLagrangianAssembler>(m.body, all_free_, m.patch_laws(), formulations, false);
+  else
     assembler_ = std::make_unique<TotalLagrangianAssembler>(m.body, all_free_, *law, m.spec.formulation, false);
-  }
   const int dim = m.body.space_dim();
   std::set<int> claimed;  // equations of all_free_ already some face set's
   for (const DirichletSpec& d : m.spec.dirichlet)

@@ -117,7 +117,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   setup.formulation = m.spec.formulation;
   if (m.parts.size() > 1) {  // several bodies: each patch with its body's law
     setup.patch_formulations = m.patch_formulations();
-    for (const Model::Part& p : m.parts) setup.patch_laws.insert(setup.patch_laws.end(), size_t(p.num_patches), p.law.get());
+    setup.patch_laws = m.patch_laws();
   }
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve});
   setup.prescribed_curves = prescribed_curves(m);
