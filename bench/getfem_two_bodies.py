@@ -53,12 +53,14 @@ A_H = np.sqrt(8.0 * R ** 2 * P * (1.0 - NU ** 2) / (np.pi * E_EQ))
 P0_H = 4.0 * R * P / (np.pi * A_H)
 
 
-def block_mesh(gf, hertz_mesh, nx, ny, alpha_x=0.05, q_x=3.0, alpha_y=0.05, q_y=3.0):
-    """Q2 grid of [0,4] x [-5,-1], graded toward x = 0 and toward y = -1 (vertices graded, mid-nodes between)."""
+def block_mesh(gf, hertz_mesh, nx, ny, alpha_x=0.05, q_x=3.0, alpha_y=0.05, q_y=3.0, size=(4.0, 4.0)):
+    """Q2 grid of [0,w] x [-1-h,-1] (size = (w, h)), graded toward x = 0 and toward y = -1 (vertices
+    graded, mid-nodes between)."""
+    w, h = size
     gx = lambda xi: hertz_mesh.grad_fun(xi, alpha_x, q_x)
     gy = lambda z: 1.0 - hertz_mesh.grad_fun(1.0 - z, alpha_y, q_y)
     Pn = hertz_mesh._fix_orientation(
-        hertz_mesh._block_nodes_2d(nx, ny, lambda A, B: (4.0 * A, -5.0 + 4.0 * B), gx, gy), 2)
+        hertz_mesh._block_nodes_2d(nx, ny, lambda A, B: (w * A, -1.0 - h + h * B), gx, gy), 2)
     m = gf.Mesh("empty", 2)
     m.add_convex(gf.GeoTrans("GT_QK(2,2)"), Pn)
     of = m.outer_faces()
@@ -67,7 +69,7 @@ def block_mesh(gf, hertz_mesh, nx, ny, alpha_x=0.05, q_x=3.0, alpha_y=0.05, q_y=
     m.set_region(TOPB, of[:, nrm[1] > 0.999])
     m.set_region(SYMB, of[:, nrm[0] < -0.999])
     m.set_region(BOT, of[:, nrm[1] < -0.999])
-    return m, 4.0 * alpha_x / nx, dict(TOP=TOPB, SYM=SYMB, BOT=BOT)
+    return m, w * alpha_x / nx, dict(TOP=TOPB, SYM=SYMB, BOT=BOT)
 
 
 def solve_one(args, N):
