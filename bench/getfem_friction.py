@@ -34,7 +34,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from getfem_per_mesh import add_solver_arguments, one_mesh_row, run_per_mesh  # noqa: E402
+from getfem_per_mesh import main_per_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PEER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers", "getfem"))
@@ -157,14 +157,9 @@ def main():
     ap.add_argument("--N", type=int, nargs="+", default=[16, 32, 64])
     ap.add_argument("--option", type=int, default=1)
     ap.add_argument("--r", type=float, default=-1, help="augmentation (<= 0: E/h at the contact point)")
-    add_solver_arguments(ap)
-    args = ap.parse_args()
-    if args.json_one:
-        one_mesh_row(solve_one(args, args.json_one))
-        return
-    run_per_mesh(__file__, args.N, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d N=%(normal_force).6f "
+    main_per_mesh(ap, __file__, solve_one, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d N=%(normal_force).6f "
                  "Q=%(tangential_force).6f a=%(half_width).5f c=%(stick_half_width).5f law %(stick_law).5f "
-                 "err/a %(stick_err).4f", args.csv, FIELDS)
+                 "err/a %(stick_err).4f", FIELDS)
 
 if __name__ == "__main__":
     main()

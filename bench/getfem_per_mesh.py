@@ -41,3 +41,14 @@ def run_per_mesh(script, meshes, line, csv_path, fields):
                 if new:
                     w.writeheader()
                 w.writerow({k: row.get(k, "") for k in fields})
+
+
+def main_per_mesh(ap, script, solve_one, line, fields):
+    """A peer script's main: the shared options added to its own (ap, which has --N), then either one
+    mesh in this process (the child's --json-one N) or every mesh of --N, each in a child."""
+    add_solver_arguments(ap)
+    args = ap.parse_args()
+    if args.json_one:
+        one_mesh_row(solve_one(args, args.json_one))
+        return
+    run_per_mesh(script, args.N, line, args.csv, fields)

@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from getfem_per_mesh import add_solver_arguments, one_mesh_row, run_per_mesh  # noqa: E402
+from getfem_per_mesh import main_per_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PEER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers", "getfem"))
@@ -196,13 +196,8 @@ def main():
     ap.add_argument("--option", type=int, default=1, help="1 Alart-Curnier unsym, 2 sym, 3 unsym+augm, 4 new unsym")
     ap.add_argument("--brick", default="gwfl", choices=["gwfl", "integral", "nodal"])
     ap.add_argument("--r", type=float, default=-1, help="augmentation (<= 0: 0.75/h, h the arc element at the contact)")
-    add_solver_arguments(ap)
-    args = ap.parse_args()
-    if args.json_one:
-        one_mesh_row(solve_one(args, args.json_one))
-        return
-    run_per_mesh(__file__, args.N, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d a_h=%(a_h).5f (%(a_exact).5f) "
-                 "p0_h=%(p0_h).5f (%(p0_exact).5f) L2rel=%(L2_err_rel).3e F=%(force_h).6f", args.csv, FIELDS)
+    main_per_mesh(ap, __file__, solve_one, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d a_h=%(a_h).5f (%(a_exact).5f) "
+                 "p0_h=%(p0_h).5f (%(p0_exact).5f) L2rel=%(L2_err_rel).3e F=%(force_h).6f", FIELDS)
 
 if __name__ == "__main__":
     main()

@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from getfem_per_mesh import add_solver_arguments, one_mesh_row, run_per_mesh  # noqa: E402
+from getfem_per_mesh import main_per_mesh  # noqa: E402
 from getfem_two_bodies import block_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -172,13 +172,8 @@ def main():
     ap.add_argument("--block-alpha-y", type=float, default=0.15)
     ap.add_argument("--release", type=float, default=0.5, help="ray-tracing release distance")
     ap.add_argument("--r", type=float, default=-1, help="augmentation (<= 0: E/h, h the arc element at the contact)")
-    add_solver_arguments(ap)
-    args = ap.parse_args()
-    if args.json_one:
-        one_mesh_row(solve_one(args, args.json_one))
-        return
-    run_per_mesh(__file__, args.N, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d "
-                 "force=%(force).6f a=%(half_width).5f p=%(max_pressure).5f minJ=%(min_J).3f", args.csv, FIELDS)
+    main_per_mesh(ap, __file__, solve_one, "N=%(N)d dofs=%(n_dof_total)d t=%(t_solve_s).3f it=%(newton_iter)d "
+                 "force=%(force).6f a=%(half_width).5f p=%(max_pressure).5f minJ=%(min_J).3f", FIELDS)
 
 
 if __name__ == "__main__":
