@@ -52,3 +52,15 @@ def main_per_mesh(ap, script, solve_one, line, fields):
         one_mesh_row(solve_one(args, args.json_one))
         return
     run_per_mesh(script, args.N, line, args.csv, fields)
+
+
+def zero_crossing(x, p):
+    """Where the nodal pressure p (nodes at x, ordered from the contact point outwards) first falls to
+    zero, linearly between the last positive and the first non-positive node: the half width."""
+    nonpos = [k for k, v in enumerate(p) if v <= 0.0]
+    kz = nonpos[0] if nonpos else len(x)
+    if kz == 0:
+        return 0.0
+    if kz == len(x):
+        return x[-1]
+    return x[kz - 1] + (x[kz] - x[kz - 1]) * p[kz - 1] / (p[kz - 1] - p[kz])

@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from getfem_per_mesh import main_per_mesh  # noqa: E402
+from getfem_per_mesh import main_per_mesh, zero_crossing  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PEER = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers", "getfem"))
@@ -165,14 +165,7 @@ def solve_one(args, N):
     sgn = 1.0 if args.brick == "gwfl" else -1.0   # the bricks' multiplier is minus the pressure
     xs, ps = xl[0][order], sgn * lam[ldof][order]
     p0h = ps.max()
-    nonpos = np.nonzero(ps <= 0.0)[0]
-    kz = nonpos.min() if nonpos.size else xs.size
-    if kz == 0:
-        a_h = 0.0
-    elif kz == xs.size:
-        a_h = xs[-1]
-    else:   # the zero crossing between the last positive and the first non-positive node (as hertz2d.py)
-        a_h = xs[kz - 1] + (xs[kz] - xs[kz - 1]) * ps[kz - 1] / (ps[kz - 1] - ps[kz])
+    a_h = zero_crossing(xs, ps)   # as hertz2d.py
     md.add_initialized_data("aH", [A_H])
     md.add_initialized_data("p0H", [P0_H])
     mim_e = gf.MeshIm(m1, gf.Integ("IM_STRUCTURED_COMPOSITE(IM_GAUSS_PARALLELEPIPED(2,11),16)"))

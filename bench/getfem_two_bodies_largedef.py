@@ -38,7 +38,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from getfem_per_mesh import main_per_mesh  # noqa: E402
+from getfem_per_mesh import main_per_mesh, zero_crossing  # noqa: E402
 from getfem_two_bodies import block_mesh  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -146,14 +146,7 @@ def solve_one(args, N):
     # roller's centre, -X/|X| up to the rotation of the normal) where the arc is pressed
     push = -(lx * X + ly * Y) / np.hypot(X, Y)
     p = np.where(push > 0, np.hypot(lx, ly), -np.hypot(lx, ly))
-    nonpos = np.nonzero(p <= 0.0)[0]
-    kz = nonpos.min() if nonpos.size else X.size
-    if kz == 0:
-        a_def = 0.0
-    elif kz == X.size:
-        a_def = xd[-1]
-    else:
-        a_def = xd[kz - 1] + (xd[kz] - xd[kz - 1]) * p[kz - 1] / (p[kz - 1] - p[kz])
+    a_def = zero_crossing(xd, p)
     mimd = gf.MeshImData(mim1)
     min_j = float(np.asarray(md.interpolation("Det(F1)", mimd)).min())
     return dict(N=N, n_elem=m1.nbcvs() + m2.nbcvs(), n_dof_u=mfu1.nbdof() + mfu2.nbdof(),
