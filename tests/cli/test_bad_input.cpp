@@ -109,6 +109,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"bulk_modulus_nan", "bad_bulk_nan.toml", "bulk_modulus =", {"[material] bulk_modulus:"}},
         BadCase{"mixed_without_split", "bad_mixed_without_split.toml", "formulation =",
                 {"[material] formulation:", "'saint_venant_kirchhoff' declares none"}},
+        BadCase{"traction_in_large_deformation", "bad_traction_large_deformation.toml", "value = [0.0, 1.0]",
+                {"[traction] value:", "small deformation", "[[pressure]]"}},
         BadCase{"curve_times_not_increasing", "bad_curve_times_not_increasing.toml", "curve =",
                 {"[pressure] curve:", "the times must increase: 0.5 follows 1"}},
         BadCase{"curve_not_finite", "bad_curve_nan.toml", "curve =", {"[pressure] curve:", "non-finite"}},
