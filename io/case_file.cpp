@@ -467,6 +467,7 @@ std::vector<std::string> declared_case_keys() {
   add("mesh.grading", kGradingKeys);
   out.insert("material.model");
   out.insert("material.formulation");
+  out.insert("material.incompressible");
   for (const std::string& law : law_names())
     for (const LawParameter& p : law_parameters(law)) out.insert("material." + std::string(p.key));
   out.insert("faces.*");  // names of one's own

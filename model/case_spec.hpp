@@ -141,6 +141,10 @@ struct BodySpec {
   // displacement | mixed (engine/volumetric_projection.hpp: the volumetric
   // part projected per element; nearly incompressible solids do not lock)
   Formulation formulation = Formulation::displacement;
+  // [material] incompressible = true: the mixed formulation's fully
+  // incompressible limit (K = infinity, engine/total_lagrangian.hpp's
+  // augmented Lagrangian; the law's bulk modulus is its penalty)
+  bool incompressible = false;
 
   bool finite_strain() const { return model != "linear_elastic"; }
   int dim() const {
