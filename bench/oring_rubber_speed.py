@@ -13,6 +13,9 @@ Runs, one after the other (OMP_NUM_THREADS=1), N times each:
                         "halving", predictor = "tangent_every_step")
   rubber_fixed_steps    as shipped with max_increment = 0.05: the load factors
                         of rubber_kinsol, to compare the force-squeeze curves
+  rubber_incompressible as shipped with [material] incompressible = true: the
+                        limit K = infinity (augmented Lagrangian); its cost per
+                        Newton iteration against rubber's, same mesh
 and writes bench/results/oring_rubber_speed.csv: steps, Newton iterations,
 cut-backs, user CPU seconds (the least of the N runs: the machine is shared),
 the force at full squeeze, the pressure wiggle (pressure_oscillation.py), and
@@ -37,12 +40,14 @@ from case_toml import write_case  # noqa: E402
 from pressure_oscillation import oscillation  # noqa: E402
 
 
-def variant(tmp, name, loading):
+def variant(tmp, name, loading, material=None):
     case = tomllib.loads((ROOT / "cases" / "oring_rubber.toml").read_text())
     case["geometry"]["file"] = str(ROOT / "cases" / "oring_quarter.xml")
     case["loading"].update(loading)
+    case["material"].update(material or {})
     path = Path(tmp) / f"{name}.toml"
-    write_case(case, path, f"# cases/oring_rubber.toml, [loading] {loading} (bench/oring_rubber_speed.py)")
+    write_case(case, path, f"# cases/oring_rubber.toml, [loading] {loading}, [material] {material or {}} "
+                           "(bench/oring_rubber_speed.py)")
     return path
 
 
@@ -69,7 +74,8 @@ def main():
         runs = [("oring", ROOT / "cases" / "oring.toml"),
                 ("rubber_kinsol", variant(tmp, "rubber_kinsol", {"line_search": True, "predictor": "tangent"})),
                 ("rubber", ROOT / "cases" / "oring_rubber.toml"),
-                ("rubber_fixed_steps", variant(tmp, "rubber_fixed_steps", {"max_increment": 0.05}))]
+                ("rubber_fixed_steps", variant(tmp, "rubber_fixed_steps", {"max_increment": 0.05})),
+                ("rubber_incompressible", variant(tmp, "rubber_incompressible", {}, {"incompressible": True}))]
         curves = {}
         for name, case in runs:
             out = Path(tmp) / name
@@ -78,9 +84,11 @@ def main():
             steps = s["load_steps"]
             curves[name] = curve(out)
             wiggle, _, _, _ = oscillation(out / "pressure.csv")
-            rows.append({"run": name, "status": s["status"], "steps": len(steps),
-                         "newton_iterations": sum(x["newton_iterations"] for x in steps),
+            iterations = sum(x["newton_iterations"] for x in steps)
+            rows.append({"run": name, "status": s["status"], "steps": len(steps), "newton_iterations": iterations,
+                         "augmentations": sum(x.get("augmentations", 0) for x in steps),
                          "cut_backs": sum(x["cut_backs"] for x in steps), "user_cpu_s": f"{cpu:.3f}",
+                         "cpu_per_iteration_ms": f"{1000 * cpu / max(iterations, 1):.2f}",
                          "force": f"{s['contact']['total_force']:.10g}", "wiggle_percent": f"{100 * wiggle:.2f}"})
         base = curves["rubber_kinsol"]
         for r in rows:

@@ -18,6 +18,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (s_.patch_laws.empty()) s_.patch_laws.assign(1, s_.law);
   if (s_.patch_formulations.empty()) s_.patch_formulations.assign(1, s_.formulation);
   tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, s_.patch_laws, s_.patch_formulations);
+  if (s_.incompressibility_tolerance > 0) tl_->make_incompressible(s_.incompressibility_tolerance);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {

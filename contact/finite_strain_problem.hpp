@@ -65,6 +65,10 @@ struct FiniteStrainSetup {
   };
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
+  // > 0: the mixed patches are incompressible (K = infinity), their element
+  // pressures updated by augment() until max |theta_e - 1| <= this
+  // (TotalLagrangianAssembler::make_incompressible).
+  double incompressibility_tolerance = 0;
 };
 
 class FiniteStrainProblem final : public NonlinearProblem {
@@ -84,6 +88,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   int active_set_size(double t, const Eigen::VectorXd& x) const override;
   std::vector<char> active_set(double t, const Eigen::VectorXd& x) const override;
   double force_scale(double t, const Eigen::VectorXd& x) override;
+  // The incompressible limit's Uzawa update (TotalLagrangianAssembler::augment).
+  bool augment(double t, const Eigen::VectorXd& x) override { return tl_->augment(displacement(t, x)); }
+  void keep_augmentation(bool accepted) override { tl_->keep_multipliers(accepted); }
+  // The body's assembler (its element pressures in the incompressible limit).
+  const TotalLagrangianAssembler& assembler() const { return *tl_; }
 
   // Displacement per control point at load factor t.
   Eigen::MatrixXd displacement(double t, const Eigen::VectorXd& x) const;

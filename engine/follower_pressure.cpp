@@ -32,9 +32,11 @@ Eigen::Matrix<double, dim, 1> area_derivative(double sigma, const Eigen::Matrix<
 // point's contribution as an element vector and matrix, then the one scatter
 // (sparsity.hpp); per point rather than per element, so that f and K add
 // the terms in the order they always have (the shipped results stay the
-// same to the bit).
+// same to the bit).  `traction` (dim entries, u and K null): instead of the
+// pressure, the dead traction t per unit reference area, f += int N_A t |a| dxi.
 void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
-                    const Eigen::MatrixXd* u, Eigen::VectorXd& f, Eigen::SparseMatrix<double>* K) {
+                    const Eigen::MatrixXd* u, Eigen::VectorXd& f, Eigen::SparseMatrix<double>* K,
+                    const double* traction = nullptr) {
   const FaceQuadrature quad(body, faces, gauss_points_for(body.degree()));
   std::vector<int> eq;
   Eigen::VectorXd fe;
@@ -61,8 +63,14 @@ void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<Patc
       const Vec area = oriented_area<dim>(sigma, T);
       const double pw = p * v.w[q];
       fe.resize(nd);
-      for (int a = 0; a < nl; ++a)
-        for (int i = 0; i < dim; ++i) fe[a * dim + i] = -(pw * v.N(q, a) * area[i]);
+      if (traction) {
+        const double aw = area.norm() * v.w[q];
+        for (int a = 0; a < nl; ++a)
+          for (int i = 0; i < dim; ++i) fe[a * dim + i] = aw * v.N(q, a) * traction[i];
+      } else {
+        for (int a = 0; a < nl; ++a)
+          for (int i = 0; i < dim; ++i) fe[a * dim + i] = -(pw * v.N(q, a) * area[i]);
+      }
       scatter_element_vector(eq, fe, f.data());
       if (!K) continue;
       Ke.resize(nd, nd);
@@ -109,6 +117,14 @@ void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<P
                        Eigen::VectorXd& f_ext) {
   check_shapes(body, dofs, f_ext);
   faces_pressure(body, dofs, faces, p, nullptr, f_ext, nullptr);
+}
+
+void add_dead_traction(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
+                       const Eigen::VectorXd& traction, Eigen::VectorXd& f_ext) {
+  check_shapes(body, dofs, f_ext);
+  if (traction.size() != body.space_dim())
+    throw std::invalid_argument(fmt::format("traction load: {} components in {}D", traction.size(), body.space_dim()));
+  faces_pressure(body, dofs, faces, 0.0, nullptr, f_ext, nullptr, traction.data());
 }
 
 }  // namespace igac

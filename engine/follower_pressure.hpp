@@ -57,4 +57,12 @@ void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vect
 void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                        Eigen::VectorXd& f_ext);
 
+// Adds the external force of a dead traction t (dim components, force per
+// unit reference area of the faces, any direction: a shear load such as
+// Cook's membrane's), f_ext_(A,i) += int N_A t_i dA on the reference faces;
+// the face loop of the pressures.  Throws std::invalid_argument when t has
+// the wrong size.
+void add_dead_traction(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,
+                       const Eigen::VectorXd& traction, Eigen::VectorXd& f_ext);
+
 }  // namespace igac

@@ -355,7 +355,25 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
       Eigen::VectorXd x_try = attempt == 0 ? *predicted : x;
       Attempt a{problem, t_new, 1.0, J, solver, summary, {}, {}, {}, {}, false, {}, {}, {}};
       a.record.load_factor = t_new;
-      if (solve_step(a, x_try, ctx, opt)) {
+      bool ok = solve_step(a, x_try, ctx, opt);
+      const int first_solve = a.record.newton_iterations;  // the step's speed, augmentations aside
+      // An augmented Lagrangian: while the problem updates its multipliers,
+      // the step is solved again from where it stands (Newton iterations summed).
+      while (ok && a.problem.augment(t_new, x_try)) {
+        if (a.record.augmentations == opt.max_augmentations) {
+          ok = false;
+          a.failure = fmt::format("the constraint is not met after {} augmentations", opt.max_augmentations);
+          break;
+        }
+        ++a.record.augmentations;
+        a.active_history.clear();  // a new solve: the residual changed with the multipliers
+        a.x_accepted.resize(0);
+        const int before = a.record.newton_iterations;
+        ok = solve_step(a, x_try, ctx, opt);
+        a.record.newton_iterations += before;
+      }
+      problem.keep_augmentation(ok);
+      if (ok) {
         a.record.cut_backs = cut_backs;
         x_old = x;
         x = x_try;
@@ -369,12 +387,13 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
         // to the corner.
         if (curves && t == corner) dt_old = 0;
         if (!(curves && h < dt)) dt = h;
-        if (a.record.newton_iterations <= opt.fast_iterations) dt *= opt.growth;
+        if (first_solve <= opt.fast_iterations) dt *= opt.growth;
         if (opt.on_state) opt.on_state({t, dt, dt_old, x, x_old});
         if (!opt.quiet)
-          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}\n",
+          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}{}\n",
                      steps_done, curves ? "time" : "load factor", t, h, a.record.newton_iterations,
                      a.record.residual_norms.back(), a.record.active_set_sizes.back(),
+                     a.record.augmentations ? fmt::format(", {} augmentation(s)", a.record.augmentations) : "",
                      cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
         if (on_step) on_step(summary.steps.back(), x);
         cut_backs = 0;

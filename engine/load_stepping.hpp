@@ -66,6 +66,17 @@ class NonlinearProblem {
   virtual std::vector<char> active_set(double t, const Eigen::VectorXd& x) const { return {}; }
   // Force scale at (x; t) for the relative residual (e.g. |f_ext| + |f_int|).
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
+  // An augmented Lagrangian (an incompressible solid, engine/total_lagrangian.hpp):
+  // called once Newton has converged at (t, x); the problem updates its
+  // multipliers from x and returns true when the step must be solved again
+  // with them (its constraint not met yet).  Then keep_augmentation(true)
+  // when the step is accepted, (false) when it failed and is cut back (back
+  // to the multipliers of the last accepted step).  Default: none.
+  virtual bool augment(double t, const Eigen::VectorXd& x) {
+    static_cast<void>(t), static_cast<void>(x);
+    return false;
+  }
+  virtual void keep_augmentation(bool accepted) { static_cast<void>(accepted); }
 };
 
 // Where the driver stands between two steps: everything the next step
@@ -116,6 +127,9 @@ struct LoadSteppingOptions {
   // Stop once this many steps are done (0: no limit), with the status
   // "stopped after step N (as asked)".
   int max_steps = 0;
+  // Augmented-Lagrangian rounds per step at most (NonlinearProblem::augment);
+  // more fails the step (cut back).
+  int max_augmentations = 30;
   // Called after each converged step, before on_step, with the state to
   // continue from.
   std::function<void(const LoadSteppingState&)> on_state;
@@ -127,6 +141,7 @@ struct LoadStepRecord {
   std::vector<double> residual_norms;  // relative, per Newton iteration, last = converged
   std::vector<int> active_set_sizes;   // per Newton iteration
   int cut_backs = 0;                   // failed attempts before this step converged
+  int augmentations = 0;               // NonlinearProblem::augment rounds (each a Newton solve more)
 };
 
 struct LoadSteppingSummary {

@@ -47,8 +47,17 @@ struct Workspace {
 // p = Pi_e U'(theta) + mu_s (J - theta) at the points
 // (volumetric_projection.hpp); false when the projected dilatation leaves
 // U's domain.
+// The augmented Lagrangian of the incompressible limit (make_incompressible):
+// U(theta) = lambda_e (theta - 1) + kappa/2 (theta - 1)^2 in place of the
+// law's, lambda_e the element's pressure multiplier.
+struct Augmentation {
+  const double* lambda = nullptr;  // null: the law's U
+  double kappa = 0;
+};
+
 template <int dim>
-bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double stabilisation, Workspace<dim>& ws) {
+bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double stabilisation, Augmentation aug,
+                         Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nq = geo.n_q;
   ws.projection.build(geo.xi, geo.JxW, pressure_degree);
@@ -65,6 +74,12 @@ bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double
   ws.d2U.resize(nq);
   VolumetricValues v;
   for (int q = 0; q < nq; ++q) {
+    if (aug.lambda) {
+      if (!(ws.theta[q] > 0)) return false;
+      ws.dU[q] = *aug.lambda + aug.kappa * (ws.theta[q] - 1);
+      ws.d2U[q] = aug.kappa;
+      continue;
+    }
     if (!law.volumetric(ws.theta[q], v)) return false;
     ws.dU[q] = v.dU;
     ws.d2U[q] = v.d2U;
@@ -93,7 +108,7 @@ void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, T
 
 template <int dim>
 bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree, double stabilisation,
-                    const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
+                    Augmentation aug, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
   const bool mixed = formulation == Formulation::mixed;
@@ -114,7 +129,7 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
         for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
     if (!F.allFinite() || !(F.determinant() > 0)) return false;
   }
-  if (mixed && !condense_volumetric<dim>(law, pressure_degree, stabilisation, ws)) return false;
+  if (mixed && !condense_volumetric<dim>(law, pressure_degree, stabilisation, aug, ws)) return false;
   if (mixed && tangent) ws.B.resize(nq, nd);
   DimMatrix<dim> P;
   TangentMatrix<dim> A;
@@ -185,9 +200,10 @@ constexpr int kElementsPerColourForThreads = 64;
 template <int dim>
 bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vector<const HyperelasticLaw*>& laws,
                   const std::vector<Formulation>& formulations, int pressure_degree,
-                  const std::vector<double>& stabilisations,
+                  const std::vector<double>& stabilisations, const TotalLagrangianAssembler::Incompressibility* inc,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
-                  const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) {
+                  const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
+                  Eigen::VectorXd* dilatations) {
   const bool tangent = K != nullptr;
   f_int.setZero(dofs.num_free());
   if (tangent && !has_structure(*K, pattern)) *K = pattern;
@@ -221,9 +237,17 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vec
         const HyperelasticLaw& law = *laws[laws.size() == 1 ? 0 : patch];
         const Formulation formulation = formulations[formulations.size() == 1 ? 0 : patch];
         const double stabilisation = stabilisations[stabilisations.size() == 1 ? 0 : patch];
-        if (!element_kernel<dim>(law, formulation, pressure_degree, stabilisation, u, tangent, ws)) {
+        Augmentation aug;
+        if (inc && formulation == Formulation::mixed)
+          aug = {&inc->multipliers[colour[j]], inc->penalties[inc->penalties.size() == 1 ? 0 : patch]};
+        if (!element_kernel<dim>(law, formulation, pressure_degree, stabilisation, aug, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
+        }
+        if (dilatations && formulation == Formulation::mixed) {  // the element's mean of theta - 1 (= Pi_e (J - 1))
+          double s = 0, w = 0;
+          for (int q = 0; q < ws.geo.n_q; ++q) s += ws.geo.JxW[q] * (ws.theta[q] - 1), w += ws.geo.JxW[q];
+          (*dilatations)[colour[j]] = s / w;
         }
         dofs.element_equations(ws.geo.cps, ws.eq);
         scatter_element_vector(ws.eq, ws.fe, f);
@@ -302,10 +326,74 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
-  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, colours_,
-                                   pattern_, u, f_int, K)
-                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, colours_,
-                                    pattern_, u, f_int, K);
+  const Incompressibility* inc = incompressibility_ ? &*incompressibility_ : nullptr;
+  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc, colours_,
+                                   pattern_, u, f_int, K, nullptr)
+                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc, colours_,
+                                    pattern_, u, f_int, K, nullptr);
+}
+
+void TotalLagrangianAssembler::make_incompressible(double tolerance) {
+  if (!(tolerance > 0)) throw std::invalid_argument("the incompressibility tolerance must be positive");
+  if (std::find(formulations_.begin(), formulations_.end(), Formulation::mixed) == formulations_.end())
+    throw std::invalid_argument("the incompressible limit needs the mixed formulation");
+  Incompressibility inc;
+  inc.tolerance = tolerance;
+  for (const HyperelasticLaw* law : laws_) {  // kappa = U''(1), the law's bulk modulus
+    VolumetricValues v;
+    inc.penalties.push_back(law->volumetric(1.0, v) ? v.d2U : 0.0);
+  }
+  inc.multipliers = Eigen::VectorXd::Zero(quad_.num_elements());
+  inc.accepted = inc.multipliers;
+  incompressibility_ = std::move(inc);
+}
+
+bool TotalLagrangianAssembler::volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const {
+  dilatation = Eigen::VectorXd::Zero(quad_.num_elements());
+  Eigen::VectorXd f;
+  const Incompressibility* inc = incompressibility_ ? &*incompressibility_ : nullptr;
+  return dofs_.dim() == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc,
+                                            colours_, pattern_, u, f, nullptr, &dilatation)
+                          : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc,
+                                            colours_, pattern_, u, f, nullptr, &dilatation);
+}
+
+bool TotalLagrangianAssembler::element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const {
+  if (!incompressibility_ || !volume_changes(u, pressure)) return false;
+  const Incompressibility& inc = *incompressibility_;
+  for (int e = 0; e < quad_.num_elements(); ++e)
+    pressure[e] = inc.multipliers[e] + inc.penalties[inc.penalties.size() == 1 ? 0 : size_t(quad_.patch_of(e))] * pressure[e];
+  return true;
+}
+
+bool TotalLagrangianAssembler::augment(const Eigen::MatrixXd& u) {
+  if (!incompressibility_) return false;
+  Incompressibility& inc = *incompressibility_;
+  Eigen::VectorXd dil;
+  if (!volume_changes(u, dil)) return false;
+  inc.last_volume_change = dil.cwiseAbs().maxCoeff();
+  if (inc.last_volume_change <= inc.tolerance) return false;
+  for (int e = 0; e < quad_.num_elements(); ++e) {
+    const int patch = inc.penalties.size() == 1 ? 0 : quad_.patch_of(e);
+    inc.multipliers[e] += inc.penalties[size_t(patch)] * dil[e];
+  }
+  ++inc.augmentations;
+  return true;
+}
+
+void TotalLagrangianAssembler::copy_multipliers(const TotalLagrangianAssembler& from) {
+  if (!from.incompressibility_) return;
+  if (!incompressibility_) make_incompressible(from.incompressibility_->tolerance);
+  if (from.incompressibility_->multipliers.size() != incompressibility_->multipliers.size())
+    throw std::invalid_argument("copy_multipliers: the assemblers do not have the same elements");
+  incompressibility_->multipliers = from.incompressibility_->multipliers;
+  incompressibility_->accepted = from.incompressibility_->accepted;
+}
+
+void TotalLagrangianAssembler::keep_multipliers(bool accepted) {
+  if (!incompressibility_) return;
+  if (accepted) incompressibility_->accepted = incompressibility_->multipliers;
+  else incompressibility_->multipliers = incompressibility_->accepted;
 }
 
 }  // namespace igac

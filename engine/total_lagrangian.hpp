@@ -37,6 +37,7 @@
 
 #include <Eigen/Sparse>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "engine/assembly.hpp"
@@ -86,6 +87,46 @@ class TotalLagrangianAssembler {
   // Smallest det J of the geometry map met at a Gauss point.
   double min_det_J() const { return min_det_J_; }
 
+  // Tolerance on max_e |theta_e - 1| of the incompressible limit's runs.
+  static constexpr double kIncompressibilityTolerance = 1e-8;
+  // The fully incompressible limit of the mixed patches (K = infinity,
+  // docs/design.md): an augmented Lagrangian, as FEBio's.  Each element's
+  // volumetric energy becomes U(theta) = lambda_e (theta - 1) +
+  // kappa/2 (theta - 1)^2, with lambda_e its pressure multiplier (0 at
+  // first) and kappa the law's bulk modulus U''(1) as the penalty; the
+  // assembly is otherwise the mixed one (same pattern, symmetric).  After a
+  // Newton solve, augment(u) updates lambda_e += kappa (theta_e - 1) (Uzawa)
+  // unless max_e |theta_e - 1| <= tolerance already; solving again and again
+  // drives theta_e = Pi_e J to 1 in every element, whatever kappa (kappa
+  // only sets how fast).  Throws std::invalid_argument without a mixed patch.
+  void make_incompressible(double tolerance);
+  bool incompressible() const { return incompressibility_.has_value(); }
+  // Updates the multipliers from u and returns true when the constraint was
+  // not yet met (the state must be solved again); false when it is met, or
+  // u is inadmissible, or the body is not incompressible.
+  bool augment(const Eigen::MatrixXd& u);
+  // A step accepted: its multipliers are the ones to return to; not
+  // accepted (cut back): back to those of the last accepted step.
+  void keep_multipliers(bool accepted);
+  // The multipliers of another assembler of the same body (e.g. the
+  // reactions' one, model/reactions.hpp); makes this one incompressible.
+  void copy_multipliers(const TotalLagrangianAssembler& from);
+  // theta_e - 1 = Pi_e (J - 1) per element (0 for the displacement
+  // formulation's elements); false when u is inadmissible.
+  bool volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const;
+  // The incompressible limit: each element's pressure U'(theta_e) =
+  // lambda_e + kappa (theta_e - 1) at u (positive in tension); false when u
+  // is inadmissible or the body is not incompressible.
+  bool element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const;
+  struct Incompressibility {
+    double tolerance = 0;
+    std::vector<double> penalties;        // kappa per law (one, or one per patch)
+    Eigen::VectorXd multipliers, accepted;  // lambda_e per element: current, of the last accepted step
+    double last_volume_change = 0;        // max_e |theta_e - 1| at the last augment()
+    int augmentations = 0;                // Uzawa updates so far
+  };
+  const std::optional<Incompressibility>& incompressibility() const { return incompressibility_; }
+
  private:
   Body body_;
   BodyQuadrature quad_;  // the elements, their tabulated basis and control points
@@ -97,6 +138,7 @@ class TotalLagrangianAssembler {
   Eigen::SparseMatrix<double> pattern_;
   std::vector<std::vector<int>> colours_;  // elements by colour: one colour shares no equation
   double min_det_J_ = 0;
+  std::optional<Incompressibility> incompressibility_;
 };
 
 }  // namespace igac

@@ -134,7 +134,7 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
     const toml::table& mt = owner.sub("material");
     const auto laws = law_names();
     const std::string model = mt["model"].value_or(std::string("linear_elastic"));
-    std::set<std::string> keys{"model", "formulation"};
+    std::set<std::string> keys{"model", "formulation", "incompressible"};
     const bool known = std::find(laws.begin(), laws.end(), model) != laws.end();
     if (known)
       for (const LawParameter& p : law_parameters(model)) keys.insert(std::string(p.key));
@@ -148,6 +148,15 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
       const auto parsed = parse_formulation(f);
       if (!parsed) mat.fail("formulation", fmt::format("unknown formulation '{}' (available: displacement, mixed)", f));
       c.formulation = *parsed;
+      c.incompressible = mat.boolean("incompressible", false);
+      if (c.incompressible && c.formulation != Formulation::mixed)
+        mat.fail("incompressible", "incompressible = true is the limit of formulation = \"mixed\" (K = infinity, the "
+                                   "element pressures as multipliers): give formulation = \"mixed\"");
+      if (c.incompressible && !c.finite_strain())
+        mat.fail("incompressible", "incompressible = true runs the large-deformation laws (neo_hookean, mooney_rivlin); "
+                                   "linear_elastic takes nu < 0.5 with formulation = \"mixed\"");
+      if (c.incompressible && !where.empty())
+        mat.fail("incompressible", "incompressible = true is read in the [material] of a one-body case, not in [[body]] tables");
     }
     MaterialParameters given;
     for (const LawParameter& p : law_parameters(model)) {

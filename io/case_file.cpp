@@ -33,11 +33,12 @@ namespace {
 // and declared_case_keys() lists them for docs/case_file.md's test.  The
 // keys of a shape, a law or an obstacle come from their registries.
 const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", "material", "dirichlet",
-                                     "pressure", "body_force", "contact", "reference", "output", "loading",
+                                     "pressure", "traction", "body_force", "contact", "reference", "output", "loading",
                                      "faces", "solver", "body", "units"};
 const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value", "curve"};
 const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
+const std::set<std::string> kTractionKeys{"faces", "value", "curve"};
 const std::set<std::string> kBodyForceKeys{"value", "curve"};
 const std::set<std::string> kContactKeys{"face", "obstacle", "master", "master_motion", "master_curve", "friction"};
 const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
@@ -191,6 +192,7 @@ void check_load_curves(CaseSpec& c) {
   };
   for (DirichletSpec& d : c.dirichlet) hold(d.curve);
   for (PressureSpec& p : c.pressure) hold(p.curve);
+  for (TractionSpec& p : c.traction) hold(p.curve);
   hold(c.body_force_curve);
   for (ContactSpec& cs : c.contacts) hold(cs.obstacle.curve);
 }
@@ -266,6 +268,14 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     const Section s(path, "pressure", *t, kPressureKeys);
     c.pressure.push_back({s.strings("faces"), s.load("value"), {}});
     if (s.has("curve")) c.pressure.back().curve = s.curve("curve");
+  }
+  for (const auto* t : tables(path, root, "traction")) {
+    const Section s(path, "traction", *t, kTractionKeys);
+    if (c.finite_strain())
+      s.fail("value", "a traction load is applied in small deformation (linear_elastic) only; in large deformation "
+                      "use [[pressure]]");
+    c.traction.push_back({s.strings("faces"), s.loads("value", size_t(dim)), {}});
+    if (s.has("curve")) c.traction.back().curve = s.curve("curve");
   }
   if (root.contains("body_force")) {
     const Section s(path, "body_force", top.sub("body_force"), kBodyForceKeys);
@@ -457,11 +467,13 @@ std::vector<std::string> declared_case_keys() {
   add("mesh.grading", kGradingKeys);
   out.insert("material.model");
   out.insert("material.formulation");
+  out.insert("material.incompressible");
   for (const std::string& law : law_names())
     for (const LawParameter& p : law_parameters(law)) out.insert("material." + std::string(p.key));
   out.insert("faces.*");  // names of one's own
   add("dirichlet", kDirichletKeys);
   add("pressure", kPressureKeys);
+  add("traction", kTractionKeys);
   add("body_force", kBodyForceKeys);
   add("contact", kContactKeys);
   add("contact.obstacle", kObstacleKeys);

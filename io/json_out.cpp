@@ -192,6 +192,7 @@ Json run_summary(const Model& m, const RunResult& r) {
       step["residual_norms"] = norms;
       step["active_set_sizes"] = st.active_set_sizes;
       step["cut_backs"] = st.cut_backs;
+      if (st.augmentations > 0) step["augmentations"] = st.augmentations;  // the incompressible limit's rounds
       if (per_step && !m.spec.dirichlet.empty())
         step["dirichlet_reactions"] = reactions_json(r.load_curve[steps.size()].dirichlet_reactions);
       steps.push_back(step);

@@ -191,7 +191,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   auto body_cell = make_array("body", 1, mesh.num_elements());
   for (int e = 0; e < mesh.num_elements(); ++e) body_cell->SetValue(e, body_of_patch[size_t(patch_of[e])]);
   // J = det F and the hydrostatic pressure (model/field_recovery.hpp)
-  const RecoveredVolume v = recover_volume(mesh, model);
+  const RecoveredVolume v = recover_volume(mesh, model, r.element_pressures);
   auto jac = make_array("J", 1, np);
   auto hyd = make_array("hydrostatic_pressure", 1, np);
   for (vtkIdType i = 0; i < np; ++i) {

@@ -355,6 +355,7 @@ Model build_model(const CaseSpec& spec) {
   for (const auto& d : spec.dirichlet)
     dc.push_back({resolve_faces(m, d.faces, "dirichlet"), d.component, d.value});
   for (const auto& p : spec.pressure) resolve_faces(m, p.faces, "pressure");
+  for (const auto& p : spec.traction) resolve_faces(m, p.faces, "traction");
   // The same face and component held at two values: the conditions are
   // applied in order, so the last one wins; say so.
   for (size_t a = 0; a < spec.dirichlet.size(); ++a)

@@ -46,6 +46,14 @@ struct PressureSpec {
   LoadCurve curve;
 };
 
+// [[traction]]: a dead traction (force per unit reference area, any
+// direction) on faces; small deformation.
+struct TractionSpec {
+  std::vector<std::string> faces;
+  std::vector<double> value;
+  LoadCurve curve;
+};
+
 struct ObstacleSpec {
   std::string type;  // a registered obstacle type (contact/obstacle.hpp): plane | sphere | cylinder
   std::map<std::string, std::vector<double>, std::less<>> values;  // its declared keys (scalars as one entry)
@@ -133,6 +141,10 @@ struct BodySpec {
   // displacement | mixed (engine/volumetric_projection.hpp: the volumetric
   // part projected per element; nearly incompressible solids do not lock)
   Formulation formulation = Formulation::displacement;
+  // [material] incompressible = true: the mixed formulation's fully
+  // incompressible limit (K = infinity, engine/total_lagrangian.hpp's
+  // augmented Lagrangian; the law's bulk modulus is its penalty)
+  bool incompressible = false;
 
   bool finite_strain() const { return model != "linear_elastic"; }
   int dim() const {
@@ -155,6 +167,7 @@ struct CaseSpec : BodySpec {
   // conditions and loads
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;
+  std::vector<TractionSpec> traction;
   std::vector<double> body_force;
   LoadCurve body_force_curve;
   std::vector<ContactSpec> contacts;  // [contact] or [[contact]]: each face with its rigid obstacle
@@ -168,6 +181,7 @@ struct CaseSpec : BodySpec {
     std::vector<const LoadCurve*> out;
     for (const auto& d : dirichlet) out.push_back(&d.curve);
     for (const auto& p : pressure) out.push_back(&p.curve);
+    for (const auto& p : traction) out.push_back(&p.curve);
     out.push_back(&body_force_curve);
     for (const auto& c : contacts) out.push_back(&c.obstacle.curve);
     return out;

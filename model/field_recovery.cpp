@@ -176,7 +176,7 @@ StressLaw model_stress_law(const Model& model) {
                    : linear_elastic_stress(model.material.lambda(), model.material.mu());  // a Model made in code
 }
 
-RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model) {
+RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures) {
   const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
   if (pd != dim) throw std::invalid_argument("volume recovery needs a volume mesh");
   const bool mixed = model.spec.formulation == Formulation::mixed, small = !model.spec.finite_strain();
@@ -220,6 +220,7 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model) {
         const Eigen::VectorXd theta = projection.matrix() * Jq;
         VolumetricValues v;
         for (int q = 0; q < nq; ++q) pq[q] = model.law->volumetric(theta[q], v) ? v.dU : std::numeric_limits<double>::quiet_NaN();
+        if (element_pressures.size() == mesh.num_elements()) pq.setConstant(element_pressures[e]);  // (one body, same elements)
         pq = -(projection.matrix() * pq);
       }
     }

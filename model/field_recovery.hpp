@@ -89,7 +89,9 @@ RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh,
 struct RecoveredVolume {
   Eigen::VectorXd jacobian, pressure;  // num_points each
 };
-RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model);
+// `element_pressures` (RunResult's, the incompressible limit): the pressure
+// of each element of the mesh, which the law's U' at theta = 1 is not.
+RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures = {});
 
 struct ContactPartFields {
   Eigen::VectorXd point_pressure;          // per Bezier point: the projection of -lambda_h

@@ -101,6 +101,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   if (modes.modes.cols() > 0) {  // held? (with every load at its value, as without curves)
     Eigen::VectorXd f = f_body;
     for (const auto& fp : f_pressure) f += fp;
+    add_traction_loads(m, *m.dofs, {}, f);
     check_body_is_held(m, modes, f);
   }
   if (m.on_solve_start) m.on_solve_start();
@@ -120,6 +121,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   auto load_at = [&](double t) {
     Eigen::VectorXd f = m.spec.body_force_curve(t) * f_body;
     for (size_t i = 0; i < f_pressure.size(); ++i) f += m.spec.pressure[i].curve(t) * f_pressure[i];
+    add_traction_loads(m, *m.dofs, t, f);
     for (const auto& [curve, l] : lifts) f += (*curve)(t) * l;
     return f;
   };

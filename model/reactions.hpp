@@ -40,6 +40,11 @@ class ReactionEvaluator {
   // support carries where it holds a dof the contact pushes.
   std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t,
                                        const Eigen::VectorXd& contact_forces = {}) const;
+  // The incompressible limit: f_int depends on the element pressures of the
+  // solve's assembler too; take them (before each call).
+  void take_element_pressures(const TotalLagrangianAssembler& solve_assembler) {
+    if (assembler_) assembler_->copy_multipliers(solve_assembler);
+  }
 
  private:
   const Model& model_;

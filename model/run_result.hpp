@@ -116,6 +116,10 @@ struct RunResult {
 
   std::string status = "converged";
   Eigen::MatrixXd u;  // n_cp x dim
+  // The incompressible limit ([material] incompressible): each element's
+  // pressure U' = lambda_e + kappa (theta_e - 1), per element of the body
+  // (TotalLagrangianAssembler::element_pressures); empty otherwise.
+  Eigen::VectorXd element_pressures;
   std::optional<ContactSolve> contact;      // the contact solve (every contact's multipliers)
   std::vector<ContactResult> contacts;      // one per contact, in case order (pressure files, reports, VTK)
   std::vector<ObstacleReaction> reactions;  // every contact, in case order

@@ -57,6 +57,10 @@ std::vector<ContactResult> report_contacts(const Model& model, const ContactSolv
 // |int P n dGamma| summed over the pressure loads (the modelled part), at
 // their values or (`time`) at their curves' factors at that time.
 double pressure_resultant(const Model& model, std::optional<double> time = {});
+// Adds the [[traction]] loads (dead, on the reference faces) to f, numbered
+// by `dofs` (the model's, or one of its variants): at their values, or times
+// their curves at `time`.
+void add_traction_loads(const Model& model, const DofMap& dofs, std::optional<double> time, Eigen::VectorXd& f);
 // A master body moved rigidly with its supports ([[contact]] master_motion):
 // its motion (at time: curve(time) x motion) added to every control point of
 // that body, whose solved displacement is relative to the moved supports.

@@ -126,6 +126,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
                               default_mortar_integration(body.space_dim()), c.curve});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+  if (m.spec.incompressible) setup.incompressibility_tolerance = TotalLagrangianAssembler::kIncompressibilityTolerance;
   return setup;
 }
 
@@ -160,15 +161,17 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.quiet = m.quiet;
   const bool curves = m.spec.has_load_curves();
   if (curves) opt.corners = curve_corners(m.spec.load_curves());
-  const ReactionEvaluator reactions(m);
+  ReactionEvaluator reactions(m);
   auto snapshot = [&](double t, const Eigen::VectorXd& xs, RunResult& out) {
     out.u = problem.displacement(t, xs);
+    if (problem.assembler().incompressible()) problem.assembler().element_pressures(out.u, out.element_pressures);
     if (!m.contacts.empty()) fill_contact(m, problem, t, xs, out);
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
     p.face_displacement = probe.face_displacement(body, out.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
+    reactions.take_element_pressures(problem.assembler());
     p.dirichlet_reactions = reactions(out.u, t, problem.contact_forces_on_every_dof(t, xs));
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;

@@ -13,6 +13,7 @@
 #include "contact/small_strain_friction.hpp"
 #include "engine/stopwatch.hpp"
 #include "engine/face_quadrature.hpp"
+#include "engine/follower_pressure.hpp"
 #include "engine/prolongation.hpp"
 #include "model/deformation_check.hpp"
 #include "model/load_history.hpp"
@@ -41,6 +42,14 @@ double pressure_resultant(const Model& m, std::optional<double> time) {
     }
   }
   return total;
+}
+
+void add_traction_loads(const Model& m, const DofMap& dofs, std::optional<double> time, Eigen::VectorXd& f) {
+  for (const auto& t : m.spec.traction) {
+    const double factor = time ? t.curve(*time) : 1.0;
+    const Eigen::Map<const Eigen::VectorXd> value(t.value.data(), Eigen::Index(t.value.size()));
+    add_dead_traction(m.body, dofs, resolve_faces(m, t.faces, "traction"), factor * value, f);
+  }
 }
 
 namespace {
@@ -240,6 +249,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   if (modes.modes.cols() > 0) {
     Eigen::VectorXd f = body_force_load(body, *m.dofs, bf);
     for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, f);
+    add_traction_loads(m, *m.dofs, {}, f);
     check_body_is_held(m, modes, f, op ? &*op : nullptr);
   }
   r.timing.assembly = t0.seconds();
@@ -264,6 +274,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
                                                 m.patch_formulations());
   sum_over_processes(sys.f);
   for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
+  add_traction_loads(m, *m.dofs, {}, sys.f);
   r.timing.assembly += t0.seconds();
   r.applied_force = pressure_resultant(m);
   SparseCholesky chol;
