@@ -66,6 +66,11 @@ class NonlinearProblem {
   virtual std::vector<char> active_set(double t, const Eigen::VectorXd& x) const { return {}; }
   // Force scale at (x; t) for the relative residual (e.g. |f_ext| + |f_int|).
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
+  // The converged state (t, x) the next step starts from (t = 0: the
+  // initial state), told before that step is tried, and again before each
+  // retry after a cut-back: what a path-dependent problem (friction's slip
+  // increments over the step) counts from.
+  virtual void begin_step(double t, const Eigen::VectorXd& x) {}
 };
 
 // Where the driver stands between two steps: everything the next step
