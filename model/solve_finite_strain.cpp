@@ -175,6 +175,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
+    if (problem.num_tangential() > 0)  // friction: the tangential force of each contact
+      for (const ObstacleReaction& rr : out.reactions) p.tangential_forces.push_back(rr.tangential_force);
     p.face_displacement = probe.face_displacement(body, out.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
     p.dirichlet_reactions = reactions(out.u, t, problem.contact_forces_on_every_dof(t, xs));

@@ -181,6 +181,15 @@ TEST(FiniteStrainFriction, BlockDraggedThereAndBackReversesTheForce) {
   const ObstacleReaction& re = r.reactions.at(0);
   EXPECT_NEAR(re.tangential_force[0], -kF * re.normal_force, 1e-9 * kP);
   EXPECT_NEAR(re.normal_force, kP, 1e-9 * kP);
+  // load_curve.csv's tangential_force: +f N at the turn (t = 2), -f N at the end
+  const auto at = [&](double t) {
+    for (const LoadCurvePoint& p : r.load_curve)
+      if (std::abs(p.load_factor - t) < 1e-12) return p.tangential_forces.at(0)[0];
+    ADD_FAILURE() << "no step ends at t = " << t;
+    return 0.0;
+  };
+  EXPECT_NEAR(at(2.0), kF * kP, 1e-9 * kP);
+  EXPECT_NEAR(at(3.0), -kF * kP, 1e-9 * kP);
 }
 
 TEST(FiniteStrainFriction, ZeroIsTheFrictionlessRunBitForBit) {
