@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """finite_strain_friction.py: large-deformation friction on the shipped
-cases against a rigid plane, against the same cases frictionless (issue 23:
+large-deformation cases, against the same cases frictionless (issue 23:
 Newton at most 1.5x the frictionless iterations).
 
     python3 bench/finite_strain_friction.py [--igac build/igac] [--friction 0.3] [CASE ...]
 
-For each case (default: the shipped large-deformation cases whose contacts
-are all against a plane) runs it as shipped and once more with
+For each case (default: the shipped large-deformation cases with contact,
+rigid obstacles and two bodies) runs it as shipped and once more with
 `friction = F` in every contact table, and compares the load steps, the
 Newton iterations, the cut-backs, the normal contact force and the
 tangential force; the order of the last two Newton residuals of each
@@ -31,7 +31,7 @@ from case_toml import write_case  # noqa: E402
 from friction_iterations import absolute_files  # noqa: E402
 
 DEFAULT_CASES = ["hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "hertz3d_neohookean", "oring",
-                 "oring_unloading", "oring_rubber"]
+                 "oring_unloading", "oring_rubber", "oring_two_plates", "oring_on_plate", "roller_on_block_neohookean"]
 
 
 def run(igac, case, out):

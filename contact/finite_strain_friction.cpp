@@ -14,36 +14,61 @@ FiniteStrainFriction::FiniteStrainFriction(const Body& body, const DofMap& dofs,
       dim_(dofs.dim()),
       c_(complementarity_scale),
       contacts_(contacts),
+      body_(&body),
+      dofs_(&dofs),
+      every_(body, {}),
       weights_(weights),
       friction_(Eigen::VectorXd::Zero(weights.size())) {
-  // T on every dof (the body's own numbering: prescribed values are part
-  // of u), from the small-deformation kernel; t0 of each motion at curve = 1.
-  const DofMap every(body, {});
-  std::vector<Eigen::Triplet<double>> t;
   for (const FrictionContact& c : contacts_) {
-    t0_.push_back(Eigen::VectorXd::Zero(m_ * nt_));
-    tangents_.push_back(Eigen::MatrixXd::Zero(dim_, nt_));
-    if (!(c.friction > 0)) continue;  // a frictionless contact among frictional ones: lambda_t = 0
-    const Eigen::VectorXd shift = c.motion.size() ? c.motion : Eigen::VectorXd::Zero(dim_);
-    const WeightedGapOperator op = assemble_weighted_gaps(every, *c.face, *c.obstacle, c.friction, shift);
-    const int count = int(op.weights.size());
-    friction_.segment(c.offset, count) = op.friction;
-    t0_.back().segment(c.offset * nt_, count * nt_) = op.t0;
-    tangents_.back() = tangent_basis(c.obstacle->probe(Eigen::VectorXd::Zero(dim_)).normal);
-    for (int r = 0; r < op.T.outerSize(); ++r)
-      for (RowSparse::InnerIterator it(op.T, r); it; ++it) t.emplace_back(c.offset * nt_ + r, int(it.col()), it.value());
+    masters_.push_back(c.master ? std::make_unique<MasterSurface>(*c.master) : nullptr);
+    if (c.friction > 0) friction_.segment(c.offset, c.face->num_multipliers()).setConstant(c.friction);
   }
-  T_all_.resize(m_ * nt_, every.num_dofs());
-  T_all_.setFromTriplets(t.begin(), t.end());
+  row_weights_.resize(m_ * nt_);
+  for (int K = 0; K < m_; ++K) row_weights_.segment(K * nt_, nt_).setConstant(weights_[K]);
+  tau_prev_ = slip_total_ = Eigen::VectorXd::Zero(m_ * nt_);
+  assemble_rows(0.0, Eigen::MatrixXd::Zero(every_.num_dofs() / dim_, dim_));
+}
+
+void FiniteStrainFriction::assemble_rows(double t, const Eigen::MatrixXd& u) {
+  // T on every dof (the body's own numbering: prescribed values are part
+  // of u), from the small-deformation kernels at the configuration u; t0
+  // of each obstacle's motion at curve = 1.
+  std::vector<Eigen::Triplet<double>> trip;
+  t0_.clear();
+  row_tangent_ = Eigen::MatrixXd::Zero(m_ * nt_, dim_);
+  for (size_t k = 0; k < contacts_.size(); ++k) {
+    const FrictionContact& c = contacts_[k];
+    t0_.push_back(Eigen::VectorXd::Zero(m_ * nt_));
+    if (!(c.friction > 0)) continue;  // a frictionless contact among frictional ones: lambda_t = 0
+    WeightedGapOperator op;
+    if (masters_[k]) {
+      masters_[k]->update(u);
+      op = assemble_mortar_gaps(every_, *c.face, *masters_[k], c.integration, c.friction, {}, &u);
+    } else {
+      const Eigen::VectorXd motion = c.motion.size() ? c.motion : Eigen::VectorXd::Zero(dim_);
+      const TranslatedObstacle where(*c.obstacle, (*c.curve)(t) * motion);  // as the step starts
+      op = assemble_weighted_gaps(every_, *c.face, where, c.friction, motion, &u);
+    }
+    const int count = int(op.weights.size());
+    t0_.back().segment(c.offset * nt_, count * nt_) = op.t0;
+    // the slave face's control points: int B_K t_j from its columns (partition of unity)
+    std::vector<char> on_face(every_.num_dofs() / dim_, 0);
+    for (const ContactSide& side : c.face->sides)
+      for (int cp : side.face_cps) on_face[cp] = 1;
+    for (int r = 0; r < op.T.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(op.T, r); it; ++it) {
+        trip.emplace_back(c.offset * nt_ + r, int(it.col()), it.value());
+        if (on_face[it.col() / dim_]) row_tangent_(c.offset * nt_ + r, it.col() % dim_) += it.value();
+      }
+  }
+  T_all_.resize(m_ * nt_, every_.num_dofs());
+  T_all_.setFromTriplets(trip.begin(), trip.end());
   std::vector<Eigen::Triplet<double>> tf;
   for (int r = 0; r < T_all_.outerSize(); ++r)
     for (RowSparse::InnerIterator it(T_all_, r); it; ++it)
-      if (dofs.equation(int(it.col())) >= 0) tf.emplace_back(r, dofs.equation(int(it.col())), it.value());
+      if (dofs_->equation(int(it.col())) >= 0) tf.emplace_back(r, dofs_->equation(int(it.col())), it.value());
   T_free_.resize(m_ * nt_, n_);
   T_free_.setFromTriplets(tf.begin(), tf.end());
-  tau_prev_ = slip_total_ = Eigen::VectorXd::Zero(m_ * nt_);
-  row_weights_.resize(m_ * nt_);
-  for (int K = 0; K < m_; ++K) row_weights_.segment(K * nt_, nt_).setConstant(weights_[K]);
 }
 
 Eigen::VectorXd FiniteStrainFriction::position(double t, const Eigen::MatrixXd& u) const {
@@ -57,11 +82,11 @@ Eigen::VectorXd FiniteStrainFriction::position(double t, const Eigen::MatrixXd& 
 }
 
 void FiniteStrainFriction::begin_step(double t, const Eigen::MatrixXd& u) {
-  const Eigen::VectorXd tau = position(t, u);
-  if (started_ && t != t_prev_) slip_total_ += (tau - tau_prev_).cwiseQuotient(row_weights_);
+  if (started_ && t != t_prev_) slip_total_ += slip(t, u).cwiseQuotient(row_weights_);  // the last step's (its T)
+  assemble_rows(t, u);
   started_ = true;
   t_prev_ = t;
-  tau_prev_ = tau;
+  tau_prev_ = position(t, u);
 }
 
 Eigen::VectorXd FiniteStrainFriction::accumulated_slip(double t, const Eigen::MatrixXd& u) const {
@@ -152,10 +177,9 @@ void FiniteStrainFriction::jacobian(double t, const Eigen::MatrixXd& u, const Ei
 }
 
 Eigen::VectorXd FiniteStrainFriction::tangential_resultant(int k, const Eigen::VectorXd& lambda_t) const {
-  Eigen::VectorXd F = Eigen::VectorXd::Zero(dim_);
   const int first = contacts_[k].offset, past = k + 1 < int(contacts_.size()) ? contacts_[k + 1].offset : m_;
-  for (int K = first; K < past; ++K) F -= weights_[K] * (tangents_[k] * lambda_t.segment(K * nt_, nt_));
-  return F;
+  return -(row_tangent_.middleRows(first * nt_, (past - first) * nt_).transpose() *
+           lambda_t.segment(first * nt_, (past - first) * nt_));
 }
 
 }  // namespace igac

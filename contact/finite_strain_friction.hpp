@@ -1,21 +1,27 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Large-deformation Coulomb friction against rigid planes (that may
-// translate): the tangential rows of the large-deformation contact
-// (contact/finite_strain_problem.hpp), in the same semismooth Newton.
+// Large-deformation Coulomb friction against rigid obstacles (that may
+// translate) and between two bodies: the tangential rows of the
+// large-deformation contact (contact/finite_strain_problem.hpp), in the
+// same semismooth Newton.
 //
 // Per multiplier K (S^{p-2}, the normal one's space) dim-1 tangential
 // multipliers lambda_t,K, and the weighted tangential slip increment over
-// the load step: the body's displacement increment relative to the
-// obstacle's, projected on the obstacle's tangent plane at the current
-// point, weighted by B_K on the reference face,
-//   s_K,j = int B_K ((u - u_prev)(X) - (c(t) - c(t_prev))) . t_j dGamma_0,
-// u_prev, t_prev the last converged step, c the obstacle's translation,
-// t_j its tangents (contact/weighted_gap.hpp, tangent_basis).  A plane's
-// tangent plane is the same at every point and every time, so s is the
-// small-deformation T (u - u_prev) + t0 - t0_prev (contact/weighted_gap.hpp),
-// exact (a rigid motion of the body along the plane slips, one normal to
-// it does not), and its derivative T carries no second-order term.  Curved
-// obstacles and master bodies are refused (io/case_file.cpp).
+// the load step: the displacement increment of the slave point X relative
+// to the obstacle's (or the master's material point X' it faced at the
+// start of the step), projected on the tangent plane there at the start of
+// the step, weighted by B_K on the reference face,
+//   s_K,j = int B_K ((u - u_prev)(X) - (u - u_prev)(X') - (c(t) - c(t_prev))) . t_j dGamma_0,
+// u_prev, t_prev the last converged step, c an obstacle's translation, t_j
+// the obstacle's (the master's) tangents at the projection of X + u_prev(X)
+// (contact/weighted_gap.hpp, tangent_basis), X' that projection.  Two
+// material points that coincide at the start of the step and move
+// together (a rigid motion of both, a stuck pair) slip nothing, whatever
+// the rotation; the tangent plane is the one the step starts from, so the
+// rows are linear in u within a step, s = T (u - u_prev) + t0(t) - t0(t_prev)
+// with T, t0 the small-deformation kernels (assemble_weighted_gaps,
+// assemble_mortar_gaps) at the configuration u_prev, rebuilt at each step:
+// their derivative is exact with no second-order term.  Against a plane
+// the tangent plane does not turn and T is the same at every step.
 //
 // The Coulomb cone as in small deformation (contact/small_strain_friction.hpp),
 // with c the normal complementarity scale, xi = lambda_t + c s_K / K_K and
@@ -31,8 +37,10 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <memory>
 #include <vector>
 
+#include "contact/mortar_gap.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/load_curve.hpp"
 
@@ -41,8 +49,10 @@ namespace igac {
 // One frictional contact as the friction rows see it.
 struct FrictionContact {
   const ContactFace* face = nullptr;
-  const Obstacle* obstacle = nullptr;  // a plane, at its reference position
-  Eigen::VectorXd motion;              // its translation at curve(t) = 1 (empty: none)
+  const Obstacle* obstacle = nullptr;  // at its reference position; or
+  const MasterSurface* master = nullptr;  // a master face (at its reference position: copied)
+  MortarIntegration integration = MortarIntegration::element;
+  Eigen::VectorXd motion;              // an obstacle's translation at curve(t) = 1 (empty: none)
   const LoadCurve* curve = nullptr;    // (no points: the factor is t)
   double friction = 0;
   int offset = 0;                      // its first multiplier
@@ -61,8 +71,9 @@ class FiniteStrainFriction {
   // The weighted tangential position T u + t0(t) of the body relative to the
   // obstacles, u per control point (n_cp x dim, prescribed values included).
   Eigen::VectorXd position(double t, const Eigen::MatrixXd& u) const;
-  // The converged state the next step starts from: the slip counts from it;
-  // a new time adds the last step's slip to the accumulated one.
+  // The converged state the next step starts from: the slip counts from it,
+  // T and t0 are taken there; a new time adds the last step's slip to the
+  // accumulated one.
   void begin_step(double t, const Eigen::MatrixXd& u);
 
   // The state of each multiplier (FrictionState, small_strain_friction.hpp)
@@ -83,7 +94,7 @@ class FiniteStrainFriction {
                 std::vector<Eigen::Triplet<double>>& out) const;
   // sum_K lambda_t,K . ds_K/du on every dof (num_dofs): T_all^T lambda_t.
   Eigen::VectorXd forces_on_every_dof(const Eigen::VectorXd& lambda_t) const { return T_all_.transpose() * lambda_t; }
-  // The tangential force on the face of contact k, -sum_K K_K lambda_t,K . t_j t_j.
+  // The tangential force on the (slave) face of contact k, -sum_K lambda_t,K . int B_K t_j.
   Eigen::VectorXd tangential_resultant(int k, const Eigen::VectorXd& lambda_t) const;
   // The slip accumulated from t = 0 to (t, u), u a state of the step after
   // the last begin_step (/ K_K), per row.
@@ -93,8 +104,12 @@ class FiniteStrainFriction {
   int m_ = 0, nt_ = 0, n_ = 0, dim_ = 0;
   double c_ = 1;
   std::vector<FrictionContact> contacts_;
-  std::vector<Eigen::MatrixXd> tangents_;  // per contact: dim x nt
+  std::vector<std::unique_ptr<MasterSurface>> masters_;  // per contact: moved to each step's start (null: an obstacle)
+  const Body* body_;
+  const DofMap* dofs_;
+  DofMap every_;                           // the body's dofs, none prescribed: T_all's columns
   RowSparse T_all_, T_free_;
+  Eigen::MatrixXd row_tangent_;            // per row: int B_K t_j on the slave face (m nt x dim)
   std::vector<Eigen::VectorXd> t0_;        // per contact: the rows of its motion at curve = 1 (m nt)
   Eigen::VectorXd weights_, friction_, row_weights_;  // row_weights_: K_K per tangential row
   // history
@@ -103,6 +118,8 @@ class FiniteStrainFriction {
   Eigen::VectorXd tau_prev_, slip_total_;
 
   Eigen::VectorXd slip(double t, const Eigen::MatrixXd& u) const { return position(t, u) - tau_prev_; }
+  // T, t0 and row_tangent_ at the configuration u, the obstacles where they stand at t.
+  void assemble_rows(double t, const Eigen::MatrixXd& u);
 };
 
 }  // namespace igac

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <optional>
-#include <stdexcept>
 #include <type_traits>
 
 #include "engine/follower_pressure.hpp"
@@ -37,9 +36,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     std::vector<FrictionContact> fc;
     for (size_t k = 0; k < s_.contacts.size(); ++k) {
       const auto& c = s_.contacts[k];
-      if (c.friction > 0 && (c.master || !dynamic_cast<const RigidPlane*>(c.obstacle)))
-        throw std::invalid_argument("large-deformation friction: against a rigid plane only");
-      fc.push_back({c.face, c.obstacle, c.motion, &c.curve, c.friction, offsets_[k]});
+      fc.push_back({c.face, c.obstacle, c.master, c.integration, c.motion, &c.curve, c.friction, offsets_[k]});
     }
     friction_ = std::make_unique<FiniteStrainFriction>(*s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale);
     mt_ = friction_->rows();

@@ -66,8 +66,7 @@ struct FiniteStrainSetup {
     const MasterSurface* master = nullptr;
     MortarIntegration integration = MortarIntegration::element;
     LoadCurve curve;                     // the translation at t is curve(t) * motion (no points: t)
-    // Coulomb coefficient (contact/finite_strain_friction.hpp: a plane
-    // obstacle only); 0: frictionless.
+    // Coulomb coefficient (contact/finite_strain_friction.hpp); 0: frictionless.
     double friction = 0;
   };
   std::vector<Contact> contacts;

@@ -346,13 +346,6 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     if (s.has("friction")) {  // Coulomb (contact/small_strain_friction.hpp)
       cs.friction = s.number("friction");  // finite
       if (!(cs.friction >= 0 && cs.friction <= 10)) s.fail("friction", "must lie in [0, 10] (a Coulomb coefficient)");
-      // large deformation (contact/finite_strain_friction.hpp): a rigid plane only
-      if (cs.friction > 0 && c.finite_strain() && !cs.master.empty())
-        s.fail("friction", fmt::format("friction between two bodies runs in small deformation only (model "
-                                       "\"linear_elastic\"), not with model \"{}\"", c.model));
-      if (cs.friction > 0 && c.finite_strain() && cs.master.empty() && cs.obstacle.type != "plane")
-        s.fail("friction", fmt::format("friction in large deformation (model \"{}\") runs against a plane obstacle "
-                                       "only, not a {}", c.model, cs.obstacle.type));
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system

@@ -117,9 +117,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"curve_without_load", "bad_curve_no_load.toml", "curve =",
                 {"[dirichlet] curve:", "no prescribed value for the curve to scale"}},
         BadCase{"line_search_unknown", "bad_line_search_unknown.toml", "line_search =",
-                {"[loading] line_search:", "\"halving\""}},
-        BadCase{"friction_large_deformation_sphere", "bad_friction_large_deformation_sphere.toml", "friction =",
-                {"[contact] friction:", "against a plane obstacle only, not a sphere"}}),
+                {"[loading] line_search:", "\"halving\""}}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
 TEST(BadInput, RefineOptionBeyondMemory) {

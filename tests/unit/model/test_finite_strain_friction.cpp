@@ -203,6 +203,92 @@ TEST(FiniteStrainFriction, ZeroIsTheFrictionlessRunBitForBit) {
   EXPECT_EQ(a.contact->solution.lambda_t.size(), 0);
 }
 
+// A test case of tests/data with `friction = 0.3` in its contact table.
+Model data_case_with_friction(const std::string& file, const std::string& face_line) {
+  std::ifstream in(std::string(IGAC_SOURCE_DIR) + "/tests/data/" + file);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  std::string text = buffer.str();
+  const size_t at = text.find(face_line);
+  EXPECT_NE(at, std::string::npos) << face_line;
+  text.insert(at + face_line.size(), "\nfriction = 0.3");
+  return model_of(fs::path(file).stem().string() + "_friction", text);
+}
+
+// A curved obstacle (a Neo-Hookean quarter disc pressed on a cylinder of
+// radius 5, tests/data/finite_strain_curved_obstacle.toml) and two bodies
+// (a roller pressed into a stiffer block, the master curved): the tangent
+// plane of each step is the obstacle's or the master's where the step
+// starts, so the rows are linear in u within the step; the Newton matrix
+// with the normal rows' curvature terms against central differences.
+TEST(FiniteStrainFriction, TangentMatchesCentralDifferencesCurvedObstacle) {
+  const Model m = data_case_with_friction("finite_strain_curved_obstacle.toml", "face = \"curved\"");
+  FiniteStrainProblem problem(finite_strain_setup(m));
+  expect_tangent_matches(problem, 4, 1, 1);
+}
+
+TEST(FiniteStrainFriction, TangentMatchesCentralDifferencesTwoBodies) {
+  const Model m = data_case_with_friction("finite_strain_two_bodies.toml", "master = \"roller:curved\"");
+  FiniteStrainProblem problem(finite_strain_setup(m));
+  expect_tangent_matches(problem, 4, 1, 1);
+}
+
+// The sliding-block patch test on an elastic base in large deformation: an
+// upper block (1 wide, 16 elements along x) pressed by 0.01 on a lower one
+// (1.5 wide, 18: the meshes do not match), both Neo-Hookean with nu = 0, the upper's top
+// held in x, the lower's bottom moved along x by 0.05 (a prescribed
+// displacement): everything slides, the tangential force is f N to the
+// Newton tolerance, and the contact's forces on the two bodies, normal and
+// tangential, are opposite to round-off.
+TEST(FiniteStrainFriction, SlidingBlockOnAnElasticBlock) {
+  auto body = [](const char* name, double x0, double width, double y0, int nx) {
+    return std::string("[[body]]\nname = \"") + name + "\"\n[body.geometry]\nshape = \"rectangle\"\n"
+           "size = [" + std::to_string(width) + ", 0.25]\ntranslate = [" + std::to_string(x0) + ", " +
+           std::to_string(y0) + "]\n[body.mesh]\ndegree = 2\nelements = [" + std::to_string(nx) +
+           ", 4]\n[body.material]\nmodel = \"neo_hookean\"\nE = 1.0\nnu = 0.0\n";
+  };
+  // the lower block wider, so that the upper one stays on it (no edge of
+  // the master under the slave face)
+  const std::string text = body("upper", 0.0, 1.0, 0.25, 16) + body("lower", -0.25, 1.5, 0.0, 18) +
+                           "[[dirichlet]]\nfaces = [\"upper:top\"]\ncomponent = \"x\"\n"
+                           "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"x\"\nvalue = 0.05\n"
+                           "[[dirichlet]]\nfaces = [\"lower:bottom\"]\ncomponent = \"y\"\n"
+                           "[[pressure]]\nfaces = [\"upper:top\"]\nvalue = 0.01\n"
+                           "[[contact]]\nface = \"upper:bottom\"\nmaster = \"lower:top\"\nfriction = 0.3\n"
+                           "[loading]\nsteps = 4\n";
+  const Model m = model_of("blocks", text);
+  const RunResult r = run(m);
+  ASSERT_EQ(r.status, "converged");
+  const ContactSolution& s = r.contact->solution;
+  EXPECT_EQ(count_state(s.friction_state, kSlip), int(s.friction_state.size()));
+  const ObstacleReaction& re = r.reactions.at(0);
+  // The master's top dips under the upper block (it is wider), its normals
+  // turn a little at the upper block's edges: the multipliers' sum N is
+  // not the load to round-off (1.1e-4 off), the resultant on the upper
+  // block, normal and tangential tractions, balances it.
+  EXPECT_NEAR(re.normal_force, kP, 1e-3 * kP);
+  EXPECT_NEAR(r.contacts.at(0).resultant[1], kP, 1e-9 * kP);
+  // the lower block drags the upper one along +x: every multiplier on the cone
+  EXPECT_NEAR(re.tangential_force[0], kF * re.normal_force, 1e-9 * kP);
+  // the forces on every dof (both bodies) sum to zero per component
+  FiniteStrainProblem problem(finite_strain_setup(m));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
+  x.head(problem.num_displacements()) = s.u;
+  x.segment(problem.num_displacements(), problem.num_multipliers()) = s.lambda;
+  x.tail(problem.num_tangential()) = s.lambda_t;
+  const Eigen::VectorXd f = problem.contact_forces_on_every_dof(1.0, x);
+  for (int i = 0; i < 2; ++i) {
+    double sum = 0, scale = 0;
+    for (int d = i; d < f.size(); d += 2) {
+      sum += f[d];
+      scale += std::abs(f[d]);
+    }
+    EXPECT_LT(std::abs(sum), 1e-13 * scale) << "component " << i;
+    EXPECT_GT(scale, 0.5 * kF * kP);
+  }
+  igac_test::expect_newton_order(r, 1.8);
+}
+
 // Cattaneo-Mindlin: the half cylinder of cases/cattaneo_mindlin_cycle.toml
 // (R = 1, E = 1, nu = 0.45, f = 0.3) on a coarser mesh, its top pushed
 // down by 0.02 `scale` over t = 0 -> 1, then the plane moved along x by
