@@ -16,19 +16,18 @@ summarised by its smallest value.  Prints a table and writes
 bench/results/finite_strain_friction.csv (a minute or so).
 """
 import argparse
-import csv
 import json
 import math
 import subprocess
 import sys
 import tempfile
-import tomllib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from case_toml import write_case  # noqa: E402
-from friction_iterations import absolute_files  # noqa: E402
+from friction_iterations import read_shipped_case  # noqa: E402
+from results_io import write_rows  # noqa: E402
 
 DEFAULT_CASES = ["hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "hertz3d_neohookean", "oring",
                  "oring_unloading", "oring_rubber", "oring_two_plates", "oring_on_plate", "roller_on_block_neohookean"]
@@ -63,10 +62,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         for name in args.cases:
-            path = HERE.parent / "cases" / f"{name}.toml"
-            with open(path, "rb") as f:
-                case = tomllib.load(f)
-            absolute_files(case, path.parent)
+            path, case = read_shipped_case(name)
             contacts = case["contact"] if isinstance(case["contact"], list) else [case["contact"]]
             for c in contacts:
                 c["friction"] = args.friction
@@ -89,10 +85,7 @@ def main():
                   f"{r['normal_force']:.6g}  T {r['tangential_force']:.6g}  min order {r['min_order']}  {r['status']}",
                   flush=True)
     out = HERE / "results" / "finite_strain_friction.csv"
-    with open(out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_rows(out, rows)
     print(f"wrote {out}")
 
 
