@@ -42,6 +42,15 @@ def absolute_files(table, folder):
             absolute_files(v, folder)
 
 
+def read_shipped_case(name):
+    """cases/NAME.toml: its path and its tables, geometry files made absolute."""
+    path = HERE.parent / "cases" / f"{name}.toml"
+    with open(path, "rb") as f:
+        case = tomllib.load(f)
+    absolute_files(case, path.parent)
+    return path, case
+
+
 def iterations(igac, case, out):
     subprocess.run([igac, "run", str(case), "--out", str(out), "--quiet"], check=True)
     with open(out / "summary.json") as f:
@@ -58,10 +67,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         for name in args.cases:
-            path = HERE.parent / "cases" / f"{name}.toml"
-            with open(path, "rb") as f:
-                case = tomllib.load(f)
-            absolute_files(case, path.parent)
+            path, case = read_shipped_case(name)
             case.pop("loading", None)
             contacts = case["contact"] if isinstance(case["contact"], list) else [case["contact"]]
             for c in contacts:

@@ -33,6 +33,15 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
                    : assemble_weighted_gaps(*s_.dofs, *c.face, *c.obstacle).weights;
     }
   }
+  if (std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const auto& c) { return c.friction > 0; })) {
+    std::vector<FrictionContact> fc;
+    for (size_t k = 0; k < s_.contacts.size(); ++k) {
+      const auto& c = s_.contacts[k];
+      fc.push_back({c.face, c.obstacle, c.master, c.integration, c.motion, &c.curve, c.friction, offsets_[k]});
+    }
+    friction_ = std::make_unique<FiniteStrainFriction>(*s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale);
+    mt_ = friction_->rows();
+  }
 }
 
 Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorXd& x) const {
@@ -120,10 +129,10 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
     else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   }
-  r.resize(n_ + m_);
+  r.resize(n_ + m_ + mt_);
   r.head(n_) = f_int - f_ext;
   if (m_ > 0) {
-    const Eigen::VectorXd lambda = x.tail(m_);
+    const Eigen::VectorXd lambda = normal_multipliers(x);
     ContactEval ce;
     evaluate_contact(t, u, lambda, nullptr, ce);
     for (const auto& g : ce.G) r[g.col()] += lambda[g.row()] * g.value();
@@ -133,6 +142,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     last_gamma_ = ce.gamma;
     for (int K = 0; K < m_; ++K)
       r[n_ + K] = active[K] ? s_.complementarity_scale * ce.gamma[K] : weights_[K] * lambda[K];
+    if (friction_) friction_->residual(t, u, lambda, ce.gamma, active, x.tail(mt_), r.head(n_), r.tail(mt_));
   }
   return true;
 }
@@ -147,13 +157,17 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   J.d = Eigen::VectorXd::Zero(m_);
   J.rigid_modes = modes_.modes;
   J.pinned = modes_.pinned;
+  J.general = false;
+  std::vector<char> active;
+  Eigen::VectorXd gamma;
   if (m_ > 0) {
-    const Eigen::VectorXd lambda = x.tail(m_);
+    const Eigen::VectorXd lambda = normal_multipliers(x);
     ContactEval ce;
     std::vector<Eigen::Triplet<double>> coupling;
     // adds the curvature terms to K (one face's couplings: in the pattern; two bodies': beside it)
     evaluate_contact(t, u, lambda, &J.K, ce, true, &coupling);
-    const auto active = decide_active(ce.gamma, lambda);
+    active = decide_active(ce.gamma, lambda);
+    gamma = ce.gamma;
     J.B.setFromTriplets(ce.G.begin(), ce.G.end());
     J.K_coupling.resize(n_, n_);
     J.K_coupling.setFromTriplets(coupling.begin(), coupling.end());
@@ -173,6 +187,24 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   } else {
     J.K_factor.resize(0, 0);
   }
+  if (friction_) {  // the whole matrix: the slip rows tie lambda_t to lambda_n and gamma
+    const Eigen::SparseMatrix<double> normal = assemble_full(J);
+    std::vector<Eigen::Triplet<double>> trip;
+    trip.reserve(normal.nonZeros() + 4 * J.B.nonZeros());
+    for (int c = 0; c < normal.outerSize(); ++c)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(normal, c); it; ++it)
+        trip.emplace_back(int(it.row()), int(it.col()), it.value());
+    friction_->jacobian(t, u, normal_multipliers(x), gamma, active, x.tail(mt_), J.B, trip);
+    J.K.resize(size(), size());
+    J.K.setFromTriplets(trip.begin(), trip.end());
+    J.K.makeCompressed();
+    J.K_factor.resize(0, 0);
+    J.K_coupling.resize(0, 0);
+    J.B.resize(0, size());
+    J.s.resize(0);
+    J.d.resize(0);
+    J.general = true;
+  }
   return true;
 }
 
@@ -190,13 +222,30 @@ int FiniteStrainProblem::active_set_size(double t, const Eigen::VectorXd& x) con
 Eigen::VectorXd FiniteStrainProblem::gaps_at(double t, const Eigen::VectorXd& x) const {
   if (t == last_t_ && x.size() == last_x_.size() && x == last_x_) return last_gamma_;  // the same bits
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce, false);
+  evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce, false);
   return ce.gamma;
 }
 
 std::vector<char> FiniteStrainProblem::active_set(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
-  return decide_active(gaps_at(t, x), x.tail(m_));
+  std::vector<char> set = decide_active(gaps_at(t, x), normal_multipliers(x));
+  if (friction_)  // and each multiplier's stick or slip (coded apart from the active 1s that are counted)
+    for (char st : friction_states(t, x)) set.push_back(char(10 + st));
+  return set;
+}
+
+std::vector<char> FiniteStrainProblem::friction_states(double t, const Eigen::VectorXd& x) const {
+  if (!friction_) return {};
+  const Eigen::VectorXd gamma = gaps_at(t, x), lambda = normal_multipliers(x);
+  return friction_->states(t, displacement(t, x), lambda, gamma, decide_active(gamma, lambda), x.tail(mt_));
+}
+
+Eigen::VectorXd FiniteStrainProblem::accumulated_slip(double t, const Eigen::VectorXd& x) const {
+  return friction_ ? friction_->accumulated_slip(t, displacement(t, x)) : Eigen::VectorXd();
+}
+
+void FiniteStrainProblem::begin_step(double t, const Eigen::VectorXd& x) {
+  if (friction_) friction_->begin_step(t, displacement(t, x));
 }
 
 double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
@@ -219,7 +268,9 @@ Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::Vector
 std::vector<Eigen::VectorXd> FiniteStrainProblem::contact_resultants(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), x.tail(m_), nullptr, ce);
+  evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce);
+  if (friction_)
+    for (size_t k = 0; k < ce.resultants.size(); ++k) ce.resultants[k] += friction_->tangential_resultant(int(k), x.tail(mt_));
   return ce.resultants;
 }
 
@@ -227,11 +278,12 @@ Eigen::VectorXd FiniteStrainProblem::contact_forces_on_every_dof(double t, const
   const DofMap every(*s_.body, {});
   Eigen::VectorXd f = Eigen::VectorXd::Zero(every.num_free()), out = Eigen::VectorXd::Zero(every.num_dofs());
   if (m_ == 0) return out;
-  const Eigen::VectorXd lambda = x.tail(m_);
+  const Eigen::VectorXd lambda = normal_multipliers(x);
   ContactEval ce;
   evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, true, nullptr, &every);
   for (const auto& g : ce.G) f[g.col()] += lambda[g.row()] * g.value();
   for (int i = 0; i < every.num_dofs(); ++i) out[i] = f[every.equation(i)];
+  if (friction_) out += friction_->forces_on_every_dof(x.tail(mt_));
   return out;
 }
 

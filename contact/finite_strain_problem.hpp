@@ -5,7 +5,10 @@
 // prescribed displacements, and the weighted-gap contact of the paper
 // (Appendix 1) at the CURRENT position, solved by a semismooth Newton method.
 //
-// Unknowns x = [u_free (n); lambda (m)].  With gamma_K(u) = int B_K g_n(X + u) dGamma_0
+// Unknowns x = [u_free (n); lambda (m)], and with friction on some contact
+// the tangential multipliers [lambda_t (m (dim-1))] after them
+// (contact/finite_strain_friction.hpp; the Newton matrix is then handed over
+// whole, BlockJacobian::general).  With gamma_K(u) = int B_K g_n(X + u) dGamma_0
 // (weighted gaps integrated on the reference face, K_K = int B_K dGamma_0):
 //   R_u       = f_int(u) - t f_ext(u) + sum_K lambda_K dgamma_K/du,
 //   R_lambda_K = c gamma_K            where K_K lambda_K + c gamma_K < 0 (active),
@@ -20,6 +23,7 @@
 #include <memory>
 #include <vector>
 
+#include "contact/finite_strain_friction.hpp"
 #include "contact/finite_strain_mortar.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/linear_static.hpp"
@@ -62,6 +66,8 @@ struct FiniteStrainSetup {
     const MasterSurface* master = nullptr;
     MortarIntegration integration = MortarIntegration::element;
     LoadCurve curve;                     // the translation at t is curve(t) * motion (no points: t)
+    // Coulomb coefficient (contact/finite_strain_friction.hpp); 0: frictionless.
+    double friction = 0;
   };
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
@@ -74,9 +80,12 @@ struct FiniteStrainSetup {
 class FiniteStrainProblem final : public NonlinearProblem {
  public:
   explicit FiniteStrainProblem(FiniteStrainSetup setup);
-  int size() const override { return n_ + m_; }
+  int size() const override { return n_ + m_ + mt_; }
   int num_displacements() const { return n_; }
   int num_multipliers() const { return m_; }
+  // Tangential multipliers (0 without friction), after the normal ones.
+  int num_tangential() const { return mt_; }
+  void begin_step(double t, const Eigen::VectorXd& x) override;
   bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override;
   bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) override;
   // K = K_T + load stiffness + the obstacle's curvature term (the TL
@@ -93,6 +102,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
   void keep_augmentation(bool accepted) override { tl_->keep_multipliers(accepted); }
   // The body's assembler (its element pressures in the incompressible limit).
   const TotalLagrangianAssembler& assembler() const { return *tl_; }
+  // Friction: per multiplier open, stick or slip (FrictionState) at (t, x),
+  // and the slip accumulated from t = 0 (per tangential multiplier, / K_K).
+  std::vector<char> friction_states(double t, const Eigen::VectorXd& x) const;
+  Eigen::VectorXd accumulated_slip(double t, const Eigen::VectorXd& x) const;
 
   // Displacement per control point at load factor t.
   Eigen::MatrixXd displacement(double t, const Eigen::VectorXd& x) const;
@@ -133,7 +146,9 @@ class FiniteStrainProblem final : public NonlinearProblem {
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;
-  int n_ = 0, m_ = 0;
+  int n_ = 0, m_ = 0, mt_ = 0;
+  std::unique_ptr<FiniteStrainFriction> friction_;  // null: frictionless
+  Eigen::VectorXd normal_multipliers(const Eigen::VectorXd& x) const { return x.segment(n_, m_); }
   std::unique_ptr<TotalLagrangianAssembler> tl_;
   Eigen::VectorXd weights_;          // K_K
   RigidModes modes_;                 // of the free displacements

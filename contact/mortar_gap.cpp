@@ -161,7 +161,8 @@ MortarIntegration default_mortar_integration(int dim) {
 }
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
-                                         MortarIntegration integration, double friction, const Eigen::VectorXd& shift) {
+                                         MortarIntegration integration, double friction, const Eigen::VectorXd& shift,
+                                         const Eigen::MatrixXd* u) {
   const int m = slave.num_multipliers(), nt = dofs.dim() - 1;
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
@@ -174,8 +175,8 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
   Eigen::MatrixXd master_derivs;
-  for_each_mortar_point(slave, master, integration, nullptr, [&](const MortarSlavePoint& sp) {
-    const std::optional<MasterPoint> mp = master.project(sp.X);
+  for_each_mortar_point(slave, master, integration, u, [&](const MortarSlavePoint& sp) {
+    const std::optional<MasterPoint> mp = master.project(u ? sp.x : sp.X);
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     master.side_patch(mp->side).rational_basis(mp->xi, master_local, master_values, master_derivs);
     const std::vector<int>& master_cps = master.side_control_points(mp->side);

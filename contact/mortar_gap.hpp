@@ -93,9 +93,13 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
 // normal ones.  `shift` (empty: none) translates the master body rigidly
 // with its supports ([[contact]] master_motion): g0 and t0 lose
 // int B_K shift . n and int B_K shift . t_j.
+// `u` (n_cp x dim; null: none): at the displaced configuration, each slave
+// point X + u(X) projected on `master` as it stands (the caller has moved
+// it to u): large-deformation friction's rows of a load step
+// (contact/finite_strain_friction.hpp).
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
                                          MortarIntegration integration, double friction = 0,
-                                         const Eigen::VectorXd& shift = {});
+                                         const Eigen::VectorXd& shift = {}, const Eigen::MatrixXd* u = nullptr);
 
 // Weighted gaps of the exact gap in the displaced configuration, u per body
 // control point (n_cp x dim): each slave point X + u(X) projected on the

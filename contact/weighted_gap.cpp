@@ -61,7 +61,7 @@ Eigen::MatrixXd tangent_basis(const Eigen::VectorXd& n) {
 }
 
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle,
-                                           double friction, const Eigen::VectorXd& shift) {
+                                           double friction, const Eigen::VectorXd& shift, const Eigen::MatrixXd* u) {
   const int m = cf.num_multipliers(), nt = dofs.dim() - 1;
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
@@ -73,7 +73,7 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
   std::vector<Eigen::Triplet<double>> trip, ttrip;
   ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
-    const ObstacleProbe pr = obstacle.probe(ev.X[q]);
+    const ObstacleProbe pr = u ? obstacle.probe(ev.displaced(q, *u)) : obstacle.probe(ev.X[q]);
     const Eigen::MatrixXd t = friction > 0 ? tangent_basis(pr.normal) : Eigen::MatrixXd();
     for (size_t k = 0; k < K.size(); ++k) {
       const double bw = B[k] * ev.JxW[q];

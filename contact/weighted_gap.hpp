@@ -108,8 +108,13 @@ void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::R
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);
 // With friction > 0 also the tangential rows T, t0 (the obstacle translated
 // by `shift` from where its tangential displacement counts; empty: none).
+// `u` (n_cp x dim; null: none): the obstacle probed at the displaced points
+// X + u(X) (its normals and tangents there; the integrals stay on the
+// reference face): large-deformation friction's rows of a load step
+// (contact/finite_strain_friction.hpp).
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle,
-                                           double friction = 0, const Eigen::VectorXd& shift = {});
+                                           double friction = 0, const Eigen::VectorXd& shift = {},
+                                           const Eigen::MatrixXd* u = nullptr);
 // The obstacle's tangents at a point of normal n: t (2D, n rotated by -90
 // degrees: (n_y, -n_x)) or t1, t2 (3D, t1 the coordinate axis least aligned
 // with n projected on the tangent plane, t2 = n x t1), as columns.

@@ -339,6 +339,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
       break;
     }
     const double corner = corners[next];
+    problem.begin_step(t, x);
     dt = std::min(dt, opt.max_increment);
     const double h = std::min(dt, corner - t);  // this step's increment
     const double t_new = curves && h == corner - t ? corner : t + h;

@@ -77,6 +77,11 @@ class NonlinearProblem {
     return false;
   }
   virtual void keep_augmentation(bool accepted) { static_cast<void>(accepted); }
+  // The converged state (t, x) the next step starts from (t = 0: the
+  // initial state), told before that step is tried, and again before each
+  // retry after a cut-back: what a path-dependent problem (friction's slip
+  // increments over the step) counts from.
+  virtual void begin_step(double t, const Eigen::VectorXd& x) {}
 };
 
 // Where the driver stands between two steps: everything the next step

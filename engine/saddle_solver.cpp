@@ -241,7 +241,7 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
     I.analyse_pattern(J.K);
     I.chol_owner = std::make_unique<SparseCholesky>();
   }
-  if (!I.symmetric_pattern || !J.K.isCompressed()) {
+  if (J.general || !I.symmetric_pattern || !J.K.isCompressed()) {
     const bool ok = I.factor_full(why_);
     stats_.factorize_s += factorize_clock.seconds();
     stats_.fallbacks += ok;

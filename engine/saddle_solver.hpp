@@ -56,6 +56,11 @@ struct BlockJacobian {
   // bodies' control points (contact/finite_strain_mortar.hpp), which no
   // element of either body joins.  Its pattern may change every call.
   Eigen::SparseMatrix<double> K_coupling;
+  // K is the whole Newton matrix (B empty), unsymmetric beyond what GMRES
+  // absorbs: factorised by UMFPACK as it stands (large-deformation friction,
+  // contact/finite_strain_friction.hpp, whose slip rows tie the tangential
+  // multipliers to the normal ones).
+  bool general = false;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B;  // m x n (m = 0: no constraints)
   Eigen::VectorXd s, d;                            // m each
   // Motions the constraints must hold (K R = 0 up to the terms GMRES

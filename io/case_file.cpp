@@ -356,9 +356,6 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     if (s.has("friction")) {  // Coulomb (contact/small_strain_friction.hpp)
       cs.friction = s.number("friction");  // finite
       if (!(cs.friction >= 0 && cs.friction <= 10)) s.fail("friction", "must lie in [0, 10] (a Coulomb coefficient)");
-      if (cs.friction > 0 && c.finite_strain())
-        s.fail("friction", fmt::format("friction runs in small deformation only (model \"linear_elastic\"), not with "
-                                       "model \"{}\"", c.model));
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system

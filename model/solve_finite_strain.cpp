@@ -68,12 +68,17 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   ContactSolve& c = r.contact.emplace();
   const int n = problem.num_displacements(), mm = problem.num_multipliers();
   c.solution.u = x.head(n);
-  c.solution.lambda = x.tail(mm);
+  c.solution.lambda = x.segment(n, mm);
+  if (problem.num_tangential() > 0) {  // friction
+    c.solution.lambda_t = x.tail(problem.num_tangential());
+    c.solution.friction_state = problem.friction_states(t, x);
+    c.solution.slip = problem.accumulated_slip(t, x);
+  }
   c.solution.active = problem.active_set(t, x);
   c.solution.weighted_gap = problem.weighted_gaps(t, x);
   c.solution.converged = true;
   c.op.weights = problem.multiplier_weights();
-  r.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active);
+  r.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active, c.solution.lambda_t);
   r.contacts = report_contacts(m, c);
   const std::vector<Eigen::VectorXd> resultants = problem.contact_resultants(t, x);
   for (size_t i = 0; i < r.contacts.size(); ++i) {
@@ -124,7 +129,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
-                              default_mortar_integration(body.space_dim()), c.curve});
+                              default_mortar_integration(body.space_dim()), c.curve, c.friction});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   if (m.spec.incompressible) setup.incompressibility_tolerance = TotalLagrangianAssembler::kIncompressibilityTolerance;
   return setup;
@@ -136,6 +141,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   const Body& body = m.body;
   const FiniteStrainSetup setup = finite_strain_setup(m);
   FiniteStrainProblem problem(setup);
+  if (problem.num_tangential() > 0 && !m.resume.empty())
+    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
+                                 m.spec.path));
 
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
@@ -169,6 +177,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     LoadCurvePoint p;
     p.load_factor = t;
     for (const ContactResult& c : out.contacts) p.contact_forces.push_back(c.report.total_force);
+    if (problem.num_tangential() > 0)  // friction: the tangential force of each contact
+      for (const ObstacleReaction& rr : out.reactions) p.tangential_forces.push_back(rr.tangential_force);
     p.face_displacement = probe.face_displacement(body, out.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
     reactions.take_element_pressures(problem.assembler());

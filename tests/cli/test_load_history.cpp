@@ -57,14 +57,19 @@ TEST(LoadHistory, PvdTimesCsvColumnsAndReactionsPerStep) {
 
 // The sliding block of tests/unit/model/test_friction_cycle.cpp: pressed
 // over t = 0 -> 1, its plane dragged to +0.01 (t = 2) and back (t = 3).
-TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
-  igac_test::TempDir tmp("friction_curves");
-  std::ofstream(tmp.path() / "block.toml")
-      << "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n[mesh]\ndegree = 2\nelements = [16, 4]\n"
-         "[material]\nE = 1.0\nnu = 0.0\n[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
+// A block 1 x 0.25 (nu = 0) pressed by 0.01 on a plane, its top held in x,
+// the plane then dragged to +0.01 (t = 1 -> 2) and back to 0 (2 -> 3), f = 0.3.
+std::string dragged_block(const std::string& model) {
+  return "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n[mesh]\ndegree = 2\nelements = [16, 4]\n"
+         "[material]\nmodel = \"" + model + "\"\nE = 1.0\nnu = 0.0\n[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
          "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n[contact]\nface = \"bottom\"\nfriction = 0.3\n"
          "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nmotion = [0.01, 0.0]\n"
          "curve = [[0, 0], [1, 0], [2, 1], [3, 0]]\n[loading]\nsteps = 2\n[output]\nvtk = false\n";
+}
+
+TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
+  igac_test::TempDir tmp("friction_curves");
+  std::ofstream(tmp.path() / "block.toml") << dragged_block("linear_elastic");
   const auto o = igac_test::run_igac("run block.toml --quiet --out out", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
@@ -88,6 +93,41 @@ TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
       << loud.output;
   EXPECT_EQ(loud.output.find("Newton"), std::string::npos) << loud.output;
   EXPECT_EQ(loud.output.find("Cauchy"), std::string::npos) << loud.output;
+  const auto restart = igac_test::run_igac("run block.toml --quiet --out again --restart out", tmp.path());
+  EXPECT_EQ(restart.exit_code, 2) << restart.output;
+  EXPECT_NE(restart.output.find("--restart: a frictional case's steps (and its slip history) are not restarted"),
+            std::string::npos) << restart.output;
+  EXPECT_EQ(std::count(restart.output.begin(), restart.output.end(), '\n'), 1) << restart.output;
+}
+
+// Large deformation: the same block, Neo-Hookean,
+// through the executable: load_curve.csv's tangential_force is +f N at the
+// turn and -f N back at 0 (to its 10 printed digits and the Newton
+// tolerance); --restart refused in one line, exit 2 (the slip history is
+// not in the state files).
+TEST(LoadHistory, LargeDeformationFrictionColumnAndNoRestart) {
+  igac_test::TempDir tmp("friction_curves_large");
+  std::ofstream(tmp.path() / "block.toml") << dragged_block("neo_hookean");
+  const auto o = igac_test::run_igac("run block.toml --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
+  const auto column = std::find(rows.at(0).begin(), rows.at(0).end(), "tangential_force");
+  ASSERT_NE(column, rows[0].end());
+  const size_t tc = size_t(column - rows[0].begin()), oc = 3;
+  bool turn = false, back = false;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const double t = std::stod(rows[i][0]);
+    if (t == 2.0) {
+      turn = true;
+      EXPECT_EQ(std::stod(rows[i][oc]), 0.01);
+      EXPECT_NEAR(std::stod(rows[i][tc]), 0.003, 1e-11);
+    }
+    if (t == 3.0) {
+      back = true;
+      EXPECT_NEAR(std::stod(rows[i][tc]), -0.003, 1e-11);
+    }
+  }
+  EXPECT_TRUE(turn && back);
   const auto restart = igac_test::run_igac("run block.toml --quiet --out again --restart out", tmp.path());
   EXPECT_EQ(restart.exit_code, 2) << restart.output;
   EXPECT_NE(restart.output.find("--restart: a frictional case's steps (and its slip history) are not restarted"),

@@ -30,7 +30,8 @@ IGAC = os.environ.get("IGAC_BINARY", os.path.join(ROOT, "build", "igac"))
 FAST_CASES = ["hertz2d", "hertz2d_two_patches", "two_blocks", "roller_on_block", "lame_cylinder",
               "cattaneo_mindlin", "oring", "hertz2d_from_file", "hertz2d_high_load", "cattaneo_mindlin_two_bodies",
               "cattaneo_mindlin_cycle", "oring_on_plate", "oring_rubber", "roller_on_block_neohookean",
-              "hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "oring_two_plates", "oring_unloading"]
+              "hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "oring_two_plates", "oring_unloading",
+              "oring_friction"]
 ROUND_OFF = 1e-12
 # Keys that measure the machine or name a file, not the numerics.
 MACHINE = ("time", "timing", "seconds", "_s", "memory", "resident", "path", "folder", "fnv1a64")
