@@ -20,8 +20,8 @@ namespace {
 // fraction of the master element's size (at an edge's midpoint) is halved
 // (into 4), at most kMaxDepth times: curved faces.  On flat affine faces
 // the projection is affine and the element's two triangles stay whole.
-constexpr double kAffineTolerance = 1e-2;
-constexpr int kMaxDepth = 2;
+constexpr double kAffineTolerance = 1e-3;
+constexpr int kMaxDepth = 3;
 // A cell smaller than this fraction of the element is round-off (a master
 // edge through a slave vertex): dropped.
 constexpr double kSliver = 1e-14;
