@@ -24,7 +24,8 @@
 //
 // Degenerate cases: an element whose points (a 5 x 5 grid) all project
 // into one master element is integrated with its own tensor Gauss rule
-// (the element-based points); a cell below kSliver of the element (a
+// (the element-based points), and a triangle whose corners and edge
+// midpoints all do is one cell; a cell below kSliver of the element (a
 // master edge through a slave corner) is dropped; slave points beyond the
 // master's edge project on it (the closest point), and their triangles are
 // cut where that projection crosses a breakpoint; a triangle whose corners
