@@ -25,9 +25,9 @@
 // (BlockJacobian::K_coupling, engine/saddle_solver.hpp).
 //
 // The integration is MortarIntegration (contact/mortar_gap.hpp): element-based,
-// or segmented in 2D at the current position (the cuts move with the
-// bodies; the integrand is continuous across them, so the derivative is
-// taken with the cuts held).
+// or segmented at the current position (the cuts move with the bodies; the
+// integrand is continuous across them, so the derivative is taken with the
+// cuts held).
 #pragma once
 
 #include <Eigen/Sparse>

@@ -2,6 +2,7 @@
 #include "contact/master_surface.hpp"
 
 #include "engine/spline/bezier_extraction.hpp"
+#include "engine/stopwatch.hpp"
 
 #include <algorithm>
 #include <array>
@@ -16,6 +17,19 @@ namespace {
 constexpr int kLeafSize = 4;
 constexpr int kNewtonIterations = 60;
 constexpr int kGaussNewtonIterations = 6;
+
+// Adds the seconds of its lifetime to the search's counters.
+class Clock {
+ public:
+  explicit Clock(MasterSurface::SearchCounters& c) : c_(c) {}
+  ~Clock() { c_.seconds += watch_.seconds(); }
+  Clock(const Clock&) = delete;
+  Clock& operator=(const Clock&) = delete;
+
+ private:
+  MasterSurface::SearchCounters& c_;
+  Stopwatch watch_;
+};
 
 // Distance from x to the box [lo, hi] (0 inside).
 double box_distance(const Eigen::VectorXd& x, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
@@ -215,6 +229,8 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
 }
 
 std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) const {
+  const Clock clock(counters_);
+  ++counters_.queries;
   last_candidates_ = 0;
   if (nodes_.empty()) return std::nullopt;
   std::optional<MasterPoint> best;
@@ -231,6 +247,7 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) cons
         const Element& e = elements_[order_[i]];
         if (box_distance(x, e.box_lo, e.box_hi) >= bound) continue;
         ++last_candidates_;
+        ++counters_.candidates;
         MasterPoint mp = project_on_element(e, x);
         if (mp.distance < bound) {
           bound = mp.distance;

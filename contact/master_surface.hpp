@@ -60,6 +60,15 @@ class MasterSurface {
   const NurbsPatch& side_patch(int s) const { return sides_[s].current; }
   // Elements the last project() call ran Newton on (the search's cost).
   int last_candidates() const { return last_candidates_; }
+  // What the search has cost since construction (or reset): project()
+  // calls, the elements they ran Newton on, and the seconds spent in them
+  // (bench/two_body_search).
+  struct SearchCounters {
+    long queries = 0, candidates = 0;
+    double seconds = 0;
+  };
+  const SearchCounters& counters() const { return counters_; }
+  void reset_counters() { counters_ = {}; }
 
  private:
   struct Side {
@@ -91,6 +100,7 @@ class MasterSurface {
   std::vector<int> order_;  // element indices, grouped by leaf
   std::vector<Node> nodes_;
   mutable int last_candidates_ = 0;
+  mutable SearchCounters counters_;
 };
 
 }  // namespace igac

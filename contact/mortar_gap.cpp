@@ -2,12 +2,15 @@
 #include "contact/mortar_gap.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <stdexcept>
 
-#include "engine/quadrature.hpp"
 #include <string>
+
+#include "contact/mortar_cells.hpp"
+#include "engine/quadrature.hpp"
 
 namespace igac {
 
@@ -118,46 +121,52 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
     });
     return;
   }
-  if (slave.sides.empty() || slave.sides.front().face_patch.param_dim() != 1)
-    throw std::invalid_argument("segmented mortar integration is for 2D bodies (curves); in 3D it is element-based");
-  const GaussRule rule = gauss_legendre(slave.quadrature_points());
+  // Segmented: the points of each side's cut elements, at parameters xi
+  // with weights w (parameter measure; times the reference face's
+  // Jacobian here).
   std::vector<int> local;
   Eigen::VectorXd values;
-  Eigen::MatrixXd derivs;
+  Eigen::MatrixXd derivs, tangents;
+  const auto emit = [&](const ContactSide& side, const Eigen::VectorXd& xi, double w) {
+    side.face_patch.rational_basis(xi, local, values, derivs);
+    sp.X = Eigen::VectorXd::Zero(side.face_patch.space_dim());
+    tangents = Eigen::MatrixXd::Zero(side.face_patch.space_dim(), side.face_patch.param_dim());
+    sp.cps.resize(local.size());
+    for (size_t a = 0; a < local.size(); ++a) {
+      sp.X += values[Eigen::Index(a)] * side.face_patch.points().row(local[a]).transpose();
+      tangents += side.face_patch.points().row(local[a]).transpose() * derivs.row(Eigen::Index(a));
+      sp.cps[a] = side.face_cps[local[a]];
+    }
+    sp.N = values;
+    sp.JxW = w * std::sqrt((tangents.transpose() * tangents).determinant());
+    side.space.basis(xi, sp.K, sp.B);
+    for (int& K : sp.K) K += side.first_multiplier;
+    displace();
+    visit(sp);
+  };
+  const GaussRule rule = gauss_legendre(slave.quadrature_points());
   Eigen::MatrixXd u_side;
+  std::vector<Eigen::VectorXd> points;
+  std::vector<double> weights;
   for (const ContactSide& side : slave.sides) {
     if (u) {
       u_side.resize(Eigen::Index(side.face_cps.size()), u->cols());
       for (size_t a = 0; a < side.face_cps.size(); ++a) u_side.row(Eigen::Index(a)) = u->row(side.face_cps[a]);
     }
+    if (side.face_patch.param_dim() == 2) {  // 3D: cells of the slave elements (contact/mortar_cells.hpp)
+      segmented_side_rule(side, u ? &u_side : nullptr, master, slave.quadrature_points(), points, weights);
+      for (size_t q = 0; q < points.size(); ++q) emit(side, points[q], weights[q]);
+      continue;
+    }
     const std::vector<double> breaks = side.face_patch.knots(0).breakpoints();
     for (size_t e = 0; e + 1 < breaks.size(); ++e) {
       const std::vector<double> cuts = segment_cuts(side, u ? &u_side : nullptr, master, breaks[e], breaks[e + 1]);
       for (size_t c = 0; c + 1 < cuts.size(); ++c)
-        for (size_t q = 0; q < rule.points.size(); ++q) {
-          const Eigen::VectorXd t = Eigen::VectorXd::Constant(1, cuts[c] + rule.points[q] * (cuts[c + 1] - cuts[c]));
-          side.face_patch.rational_basis(t, local, values, derivs);
-          sp.X = Eigen::VectorXd::Zero(side.face_patch.space_dim());
-          Eigen::VectorXd tangent = sp.X;
-          sp.cps.resize(local.size());
-          for (size_t a = 0; a < local.size(); ++a) {
-            sp.X += values[Eigen::Index(a)] * side.face_patch.points().row(local[a]).transpose();
-            tangent += derivs(Eigen::Index(a), 0) * side.face_patch.points().row(local[a]).transpose();
-            sp.cps[a] = side.face_cps[local[a]];
-          }
-          sp.N = values;
-          sp.JxW = rule.weights[q] * (cuts[c + 1] - cuts[c]) * tangent.norm();
-          side.space.basis(t, sp.K, sp.B);
-          for (int& K : sp.K) K += side.first_multiplier;
-          displace();
-          visit(sp);
-        }
+        for (size_t q = 0; q < rule.points.size(); ++q)
+          emit(side, Eigen::VectorXd::Constant(1, cuts[c] + rule.points[q] * (cuts[c + 1] - cuts[c])),
+               rule.weights[q] * (cuts[c + 1] - cuts[c]));
     }
   }
-}
-
-MortarIntegration default_mortar_integration(int dim) {
-  return dim == 2 ? MortarIntegration::segmented : MortarIntegration::element;
 }
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,

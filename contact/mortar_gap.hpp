@@ -9,12 +9,13 @@
 //   g_n = (X - X') . n + (u_s(X) - u_m(X')) . n,
 //   K_K (Pi g)_K = g0_K + (G u)_K,
 //   G_{K,(A,i)} = int B_K N_A n_i  (slave A),  - int B_K N_A(X') n_i  (master A).
-// The integration (MortarIntegration below) is segmented in 2D: each slave
-// element cut where its points' master projections cross a master element
-// edge, so the contact patch test between non-matching meshes (and degrees)
-// is passed to round-off; element-based in 3D, where it is passed to the
-// quadrature error of the master's kinks (measured in
-// tests/unit/contact/test_mortar_gap.cpp).  The multipliers act on both
+// The integration (MortarIntegration below) is segmented by default: each
+// slave element cut where its points' master projections cross a master
+// element edge (2D: points; 3D: polygons, contact/mortar_cells.hpp), so the
+// contact patch test between non-matching meshes (and degrees) is passed to
+// round-off; element-based integration passes it to the quadrature error of
+// the master's kinks (both measured in tests/unit/contact/test_mortar_gap.cpp).
+// The multipliers act on both
 // bodies with opposite signs, and the B_K and N_A
 // are partitions of unity: the force on the slave is minus the force on the
 // master to round-off.
@@ -47,13 +48,12 @@ class MasterAsObstacle final : public Obstacle {
 // element direction, as for an obstacle; the master's basis has kinks
 // inside a slave element where their meshes do not match, so the contact
 // patch test is passed to that quadrature error (about 1e-3 at degree 2).
-// segmented (2D): each slave element cut where its points' master
-// projections cross a master element edge, the same Gauss rule on each
-// piece: the integrand is smooth on every piece and the patch test is
-// passed to round-off.  In 3D the cut pieces are polygons; not there yet.
+// segmented (the default, `[[contact]] integration`): each slave element
+// cut where its points' master projections cross a master element edge,
+// the Gauss rule on each piece (2D), a triangle rule on each cell's
+// triangles (3D, contact/mortar_cells.hpp): the integrand is smooth on
+// every piece and the patch test is passed to round-off.
 enum class MortarIntegration { element, segmented };
-// segmented in 2D, element in 3D.
-MortarIntegration default_mortar_integration(int dim);
 
 // One slave quadrature point of the mortar integral: where it is on the
 // reference face (X, where the integral is taken) and now (x = X + u(X);
@@ -70,9 +70,9 @@ struct MortarSlavePoint {
 };
 
 // Every slave quadrature point of the mortar integral, element-based (the
-// face's own Gauss points) or segmented (2D: Gauss points on each piece of
-// the slave element cut where its points' projections cross a master
-// element edge).  With u (n_cp x dim, body numbering; null: none) the slave
+// face's own Gauss points) or segmented (Gauss points on each piece of the
+// slave element cut where its points' projections cross a master element
+// edge; in 3D on the triangles of each cell).  With u (n_cp x dim, body numbering; null: none) the slave
 // face is cut at its displaced position against `master` as it stands (the
 // caller has moved it): the integrand is continuous across the cuts, so the
 // gaps' derivative may be taken with the cuts held.  `tabulated`: the

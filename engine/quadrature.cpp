@@ -60,4 +60,16 @@ TensorGaussRule tensor_gauss_rule(int param_dim, int n) {
   return r;
 }
 
+TensorGaussRule triangle_gauss_rule(int n) {
+  const GaussRule g = gauss_legendre(n);
+  TensorGaussRule r;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double u = g.points[i];
+      r.points.push_back(Eigen::Vector2d(u, (1 - u) * g.points[j]));
+      r.weights.push_back(2 * g.weights[i] * g.weights[j] * (1 - u));
+    }
+  return r;
+}
+
 }  // namespace igac

@@ -25,4 +25,11 @@ struct TensorGaussRule {
 };
 TensorGaussRule tensor_gauss_rule(int param_dim, int n);
 
+// A rule on the triangle {r, s >= 0, r + s <= 1}: the n x n Gauss rule of
+// the square collapsed onto it (Duffy; Stroud's conical product), r = u,
+// s = (1 - u) v, weight w_u w_v (1 - u) times 2.  Weights sum to 1 (times
+// the triangle's area: the integral); exact for polynomials of total degree
+// 2n - 2 (the collapse adds one degree in u).  Points as (r, s).
+TensorGaussRule triangle_gauss_rule(int n);
+
 }  // namespace igac

@@ -40,7 +40,8 @@ const std::set<std::string> kDirichletKeys{"faces", "component", "value", "curve
 const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
 const std::set<std::string> kTractionKeys{"faces", "value", "curve"};
 const std::set<std::string> kBodyForceKeys{"value", "curve"};
-const std::set<std::string> kContactKeys{"face", "obstacle", "master", "master_motion", "master_curve", "friction"};
+const std::set<std::string> kContactKeys{"face",         "obstacle", "master",     "master_motion",
+                                          "master_curve", "friction", "integration"};
 const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -356,6 +357,14 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     if (s.has("friction")) {  // Coulomb (contact/small_strain_friction.hpp)
       cs.friction = s.number("friction");  // finite
       if (!(cs.friction >= 0 && cs.friction <= 10)) s.fail("friction", "must lie in [0, 10] (a Coulomb coefficient)");
+    }
+    if (s.has("integration")) {  // the mortar integral between two bodies (contact/mortar_gap.hpp)
+      if (!s.has("master"))
+        s.fail("integration", "is the mortar integration of a contact between two bodies (with master); against an "
+                              "obstacle the face's own Gauss points integrate");
+      cs.integration = s.string("integration");
+      if (cs.integration != "segmented" && cs.integration != "element")
+        s.fail("integration", fmt::format("\"{}\" is not one of \"segmented\", \"element\"", cs.integration));
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system

@@ -430,6 +430,7 @@ Model build_model(const CaseSpec& spec) {
                                          cs.face, m.body.describe(s), m.body.describe(f)));
       c.master_name = cs.master;
       c.friction = cs.friction;
+      c.integration = cs.integration == "element" ? MortarIntegration::element : MortarIntegration::segmented;
       // The master body moved rigidly with its supports: its motion enters
       // the gaps (assemble_contact_operator) and, after the solve, its
       // displacement (add_master_motions).

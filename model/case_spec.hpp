@@ -67,6 +67,7 @@ struct ContactSpec {
   std::string master;     // the face of a second deformable body (empty: the obstacle)
   std::vector<double> master_motion;  // a rigid translation of the master body with its supports (as an obstacle's motion)
   double friction = 0;    // Coulomb coefficient (small deformation); 0: frictionless
+  std::string integration = "segmented";  // with master: "segmented" or "element" (contact/mortar_gap.hpp)
 };
 
 // Large deformation (hyperelastic models): how the load is applied.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contact/master_surface.hpp"
+#include "contact/mortar_gap.hpp"
 #include "contact/obstacle.hpp"
 #include "contact/pressure.hpp"
 #include "contact/weighted_gap.hpp"
@@ -78,6 +79,7 @@ struct Model {
                                          // body: moved rigidly with its supports (small deformation)
     LoadCurve curve;                     // of the motion (no points: the factor is t)
     double friction = 0;                 // Coulomb coefficient (small deformation)
+    MortarIntegration integration = MortarIntegration::segmented;  // with a master
   };
   std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter

@@ -129,7 +129,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
-                              default_mortar_integration(body.space_dim()), c.curve, c.friction});
+                              c.integration, c.curve, c.friction});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   if (m.spec.incompressible) setup.incompressibility_tolerance = TotalLagrangianAssembler::kIncompressibilityTolerance;
   return setup;

@@ -61,7 +61,7 @@ WeightedGapOperator contact_operator(const Model& m, Factor&& factor) {
     const double t = factor(c);
     if (c.master) {  // a master body moved (master_motion) by t * motion
       const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
-      ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, default_mortar_integration(m.body.space_dim()),
+      ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, c.integration,
                                          c.friction, shift));
       continue;
     }

@@ -41,6 +41,23 @@ TEST(TwoBodies, BlockOnBlockCarriesTheLoadAsAUniformPressure) {
   EXPECT_EQ(summary["obstacles"][0]["obstacle"], "the deformable face '0:north'");
 }
 
+// [[contact]] integration = "element" takes the slave's own Gauss points:
+// the same patch test passed only to their quadrature error (1.2e-3).
+TEST(TwoBodies, ElementBasedIntegrationIsTheKeysChoice) {
+  igac_test::TempDir tmp("two_blocks_element");
+  fs::copy_file(kCases / "two_blocks.xml", tmp.path() / "two_blocks.xml");
+  std::string text = igac_test::read_file(kCases / "two_blocks.toml");
+  text.replace(text.find("master = \"0:north\""), 18, "master = \"0:north\"\nintegration = \"element\"");
+  std::ofstream(tmp.path() / "case.toml") << text;
+  const auto o = igac_test::run_igac("run case.toml --out result --quiet", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  double worst = 0;
+  for (const auto& row : igac_test::csv_rows(tmp.path() / "result" / "pressure.csv"))
+    if (row[0] == "multiplier") worst = std::max(worst, std::abs(std::stod(row[2]) - 0.01) / 0.01);
+  EXPECT_GT(worst, 1e-4);
+  EXPECT_LT(worst, 5e-3);
+}
+
 struct BadMaster {
   std::string name, from, to, expected;
 };
@@ -110,7 +127,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadMaster{"master_curve_on_obstacle", "master = \"0:north\"",
                   "master_curve = [[0, 0], [1, 1]]\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\n"
                   "normal = [0.0, 1.0]",
-                  "[contact] master_curve: is the curve of a master body's master_motion"}),
+                  "[contact] master_curve: is the curve of a master body's master_motion"},
+        // integration: segmented or element, and only between two bodies.
+        BadMaster{"integration_unknown", "master = \"0:north\"", "master = \"0:north\"\nintegration = \"mortar\"",
+                  "[contact] integration: \"mortar\" is not one of \"segmented\", \"element\""},
+        BadMaster{"integration_on_obstacle", "master = \"0:north\"",
+                  "integration = \"element\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\n"
+                  "normal = [0.0, 1.0]",
+                  "[contact] integration: is the mortar integration of a contact between two bodies"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
 // Large deformation between two bodies runs; moving the master body there
