@@ -295,6 +295,10 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     folder->keep_on_termination();
     if (earlier.stopped) std::filesystem::remove_all(earlier.folder);
   } else if (vtk) {  // step 0: the undeformed body, at load factor 0
+    // (quiet unless it runs long: a large mesh's step 0 took half a minute without a word)
+    Progress progress(quiet);
+    progress.hold_until_late();
+    progress.phase("writing step 0 of the ParaView files (the undeformed body)");
     RunResult undeformed;
     undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
     if (!model.contacts.empty()) {  // and its contact faces: no pressure, the initial gaps

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -71,6 +72,21 @@ class Progress {
   void hold(bool held) {
     std::lock_guard<std::mutex> lock(mutex_);
     held_ = held;
+    on_release_ = nullptr;
+    late_release_ = false;
+    since_line_.restart();
+  }
+  // Held while the work is short, released once it has run a period
+  // without a line: `on_release` is called then (from the heartbeat's
+  // thread, e.g. to print the run's header) and the heartbeat goes on.  A
+  // long run is never silent for more than the period (issue 25: a line at
+  // least every 5 s), a short one stays quiet (a wrong PETSc option found
+  // in the first solve is one line).
+  void hold_until_late(std::function<void()> on_release = {}) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_ = true;
+    late_release_ = true;
+    on_release_ = std::move(on_release);
     since_line_.restart();
   }
   // How much of the whole is done, in [0, 1] (negative: not known).
@@ -99,6 +115,14 @@ class Progress {
     while (!stop_) {
       const double left = period_ - since_line_.seconds();
       if (left <= 0) {  // (held or without a phase: nothing printed, but the period starts again)
+        if (held_ && late_release_) {
+          held_ = late_release_ = false;
+          if (std::function<void()> release = std::move(on_release_)) {
+            lock.unlock();
+            release();
+            lock.lock();
+          }
+        }
         if (!phase_.empty())
           print(fmt::format("  ... still {} ({:.0f} s){}", phase_, seconds(),
                             terminal_ && fraction_ >= 0 ? "  " + bar(fraction_) : std::string()));
@@ -115,7 +139,8 @@ class Progress {
   std::string phase_;
   double fraction_ = -1;                             // not known
   const bool terminal_ = isatty(STDERR_FILENO) == 1;  // a bar only where a person watches
-  bool stop_ = false, held_ = false;
+  bool stop_ = false, held_ = false, late_release_ = false;
+  std::function<void()> on_release_;  // of hold_until_late
   std::mutex mutex_;
   std::condition_variable wake_;
   std::thread heartbeat_;

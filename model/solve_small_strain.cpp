@@ -2,6 +2,7 @@
 // The small-deformation path of solve_model: one linear solve, or the
 // active-set contact solve; the reactions and the contact report.
 #include <algorithm>
+#include <mutex>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -244,17 +245,20 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   }
   r.timing.assembly = t0.seconds();
   // The header, then the progress lines; with PETSc after its first solve
-  // (where it reads its options: a wrong one is an input error, one line).
+  // (where it reads its options: a wrong one is an input error, one line),
+  // or once it has run 4 s without a line (a long run is never silent).
   const bool petsc = uses_petsc(m);
   Progress progress(m.quiet);
+  std::once_flag header_once;  // the heartbeat's thread may print it
+  const auto header = [&] { std::call_once(header_once, [&] { if (m.on_solve_start) m.on_solve_start(); }); };
   bool started = false;
   const auto start = [&] {
     if (started) return;
     started = true;
     progress.hold(false);
-    if (m.on_solve_start) m.on_solve_start();
+    header();
   };
-  if (petsc) progress.hold(true);
+  if (petsc) progress.hold_until_late(header);
   else start();
   progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
   t0.restart();
