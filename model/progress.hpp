@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <functional>
@@ -64,7 +65,7 @@ class Progress {
   void now(const std::string& what) {
     std::lock_guard<std::mutex> lock(mutex_);
     phase_ = what;
-    since_line_.restart();
+    mark_line();
   }
   // Held: nothing printed (the heartbeat neither) until released; e.g.
   // until PETSc has read its options in the first solve, so that a wrong
@@ -74,7 +75,7 @@ class Progress {
     held_ = held;
     on_release_ = nullptr;
     late_release_ = false;
-    since_line_.restart();
+    mark_line();
   }
   // Held while the work is short, released once it has run a period
   // without a line: `on_release` is called then (from the heartbeat's
@@ -87,7 +88,6 @@ class Progress {
     held_ = true;
     late_release_ = true;
     on_release_ = std::move(on_release);
-    since_line_.restart();
   }
   // How much of the whole is done, in [0, 1] (negative: not known).
   void fraction(double done) {
@@ -105,15 +105,34 @@ class Progress {
   bool quiet() const { return quiet_; }
 
  private:
+  // The last line any Progress printed (or was told of, now()): the
+  // heartbeat counts the silence from there, so that one Progress after
+  // another (step 0's, then the solve's) does not add up their periods.
+  static std::mutex& line_mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::chrono::steady_clock::time_point& last_line() {  // under line_mutex()
+    static std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+    return t;
+  }
+  static void mark_line() {
+    std::lock_guard<std::mutex> lock(line_mutex());
+    last_line() = std::chrono::steady_clock::now();
+  }
+  static double since_line() {
+    std::lock_guard<std::mutex> lock(line_mutex());
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_line()).count();
+  }
   void print(const std::string& text) {  // under mutex_
     if (quiet_ || held_) return;
     fmt::print(stderr, "{}\n", text);
-    since_line_.restart();
+    mark_line();
   }
   void beat() {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
-      const double left = period_ - since_line_.seconds();
+      const double left = period_ - since_line();
       if (left <= 0) {  // (held or without a phase: nothing printed, but the period starts again)
         if (held_ && late_release_) {
           held_ = late_release_ = false;
@@ -126,7 +145,7 @@ class Progress {
         if (!phase_.empty())
           print(fmt::format("  ... still {} ({:.0f} s){}", phase_, seconds(),
                             terminal_ && fraction_ >= 0 ? "  " + bar(fraction_) : std::string()));
-        since_line_.restart();
+        mark_line();
         continue;
       }
       wake_.wait_for(lock, std::chrono::duration<double>(left));
@@ -135,7 +154,7 @@ class Progress {
 
   bool quiet_;
   double offset_, period_;
-  Stopwatch clock_, since_line_;
+  Stopwatch clock_;
   std::string phase_;
   double fraction_ = -1;                             // not known
   const bool terminal_ = isatty(STDERR_FILENO) == 1;  // a bar only where a person watches

@@ -81,5 +81,25 @@ TEST(Progress, HoldUntilLateReleasesALongHold) {
   EXPECT_EQ(released, 1);
 }
 
+// One Progress after another (step 0's, then the solve's) counts the
+// silence from the last line of either: a new one does not start a fresh
+// period (measured before: 8.2 s without a line between the two).
+TEST(Progress, SilenceCountsFromTheLastLineOfAnyProgress) {
+  testing::internal::CaptureStderr();
+  {
+    Progress first(false, 0.0, 1.0);
+    first.line("step 0 begins");
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  }
+  {
+    Progress second(false, 0.0, 1.0);
+    second.hold_until_late();
+    second.phase("setting up");
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));  // its own period would end at 1.0 s
+  }
+  const std::string out = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(count_of(out, "  ... still setting up ("), 1u) << out;
+}
+
 }  // namespace
 }  // namespace igac
