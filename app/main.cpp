@@ -253,6 +253,15 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // `out` together, when the run ends.
   std::optional<OutputFolder> folder;
   if (!out.empty()) folder.emplace(out);
+  // A long set-up (a large mesh refined, its dof maps, step 0 of the
+  // ParaView files) is not silent: lines held, and released after 4 s
+  // without one (model/progress.hpp); a short one prints nothing.
+  std::optional<Progress> setup;
+  if (!quiet) {
+    setup.emplace(false);
+    setup->hold_until_late();
+    setup->phase("building the model");
+  }
   Model model = build_model(spec);
   model.quiet = quiet;
   // A run in steps writes its state after each one (state_NNNN.bin, beside
@@ -296,9 +305,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     if (earlier.stopped) std::filesystem::remove_all(earlier.folder);
   } else if (vtk) {  // step 0: the undeformed body, at load factor 0
     // (quiet unless it runs long: a large mesh's step 0 took half a minute without a word)
-    Progress progress(quiet);
-    progress.hold_until_late();
-    progress.phase("writing step 0 of the ParaView files (the undeformed body)");
+    if (setup) setup->phase("writing step 0 of the ParaView files (the undeformed body)");
     RunResult undeformed;
     undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
     if (!model.contacts.empty()) {  // and its contact faces: no pressure, the initial gaps
@@ -330,6 +337,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
         folder->keep_on_termination();  // killed or stopped from here on, the run can be continued
       }
     };
+  setup.reset();  // the solve's own lines from here
   RunResult r = solve_model(model, observer);
   if (!quiet)
     for (const auto& w : r.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
