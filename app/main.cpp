@@ -253,6 +253,15 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // `out` together, when the run ends.
   std::optional<OutputFolder> folder;
   if (!out.empty()) folder.emplace(out);
+  // A long set-up (a large mesh refined, its dof maps, step 0 of the
+  // ParaView files) is not silent: lines held, and released after 4 s
+  // without one (model/progress.hpp); a short one prints nothing.
+  std::optional<Progress> setup;
+  if (!quiet) {
+    setup.emplace(false);
+    setup->hold_until_late();
+    setup->phase("building the model");
+  }
   Model model = build_model(spec);
   model.quiet = quiet;
   // A run in steps writes its state after each one (state_NNNN.bin, beside
@@ -269,21 +278,34 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
                                  std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; })
                                      ? "a frictional case's steps (and its slip history) are not restarted"
                                      : "this case is solved in one step"));
-  if (!restart.dir.empty()) model.resume = read_earlier_steps(path, restart);
+  // The state files say which case file and options wrote them: a restart
+  // continues the same (app/restart.hpp).
+  const StateOrigin origin{fnv1a64_of_file(path), run_options(spec)};
+  EarlierRun earlier;
+  if (!restart.dir.empty()) {
+    earlier = read_earlier_run(path, origin.options, restart);
+    model.resume = earlier.steps;
+  }
   model.stop_after_step = restart.stop_after_step;
-  const std::string case_hash = fnv1a64_of_file(path);
   bool header = false;  // printed once the solve accepts the case (bad input stays one line)
   if (!quiet) model.on_solve_start = [&] { print_header(model), header = true; };
   if (!quiet)
     for (const auto& w : model.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
-  if (folder) folder->create_staging();
+  if (folder) folder->create_staging(earlier.stopped ? earlier.folder : std::string());
   const std::string dir = folder ? folder->staging() : std::string();
   const bool vtk = folder && spec.write_vtk;
   VtkSeries series(dir);
+  if (!quiet && earlier.stopped)
+    fmt::print(stderr, "igac: continuing after step {} of the run stopped in {}\n", model.resume.size(), earlier.folder);
   if (folder && !model.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
-    series.resume(adopt_earlier_steps(restart.dir, dir, int(model.resume.size()), vtk));
+    series.resume(adopt_earlier_steps(earlier.folder, dir, int(model.resume.size()), vtk));
     if (vtk) write_pvd(dir, series.steps());
+    // Our staging folder now holds the steps: it is the stopped run if this one stops too.
+    folder->keep_on_termination();
+    if (earlier.stopped) std::filesystem::remove_all(earlier.folder);
   } else if (vtk) {  // step 0: the undeformed body, at load factor 0
+    // (quiet unless it runs long: a large mesh's step 0 took half a minute without a word)
+    if (setup) setup->phase("writing step 0 of the ParaView files (the undeformed body)");
     RunResult undeformed;
     undeformed.u = Eigen::MatrixXd::Zero(model.body.num_control_points(), model.body.space_dim());
     if (!model.contacts.empty()) {  // and its contact faces: no pressure, the initial gaps
@@ -310,9 +332,12 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (folder && stepped)
     observer = [&](const RunResult& step, double t) {
       if (vtk && step.u.allFinite()) series.write_step(model, step, t);
-      if (step.step_state)
-        write_state_file(dir + "/" + state_file_name(step.step_state->step), case_hash, *step.step_state);
+      if (step.step_state) {
+        write_state_file(dir + "/" + state_file_name(step.step_state->step), origin, *step.step_state);
+        folder->keep_on_termination();  // killed or stopped from here on, the run can be continued
+      }
     };
+  setup.reset();  // the solve's own lines from here
   RunResult r = solve_model(model, observer);
   if (!quiet)
     for (const auto& w : r.warnings) fmt::print(stderr, "igac: warning: {}\n", w);

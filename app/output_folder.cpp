@@ -64,8 +64,10 @@ std::vector<std::string> foreign_entries(const fs::path& dir) {
   return out;
 }
 
-// Staging folders of runs that are no longer alive, beside `target`.
-void remove_abandoned_staging(const fs::path& parent, const std::string& name) {
+// Staging folders of runs that are no longer alive, beside the folder
+// `name` in `parent`.
+std::vector<fs::path> dead_staging(const fs::path& parent, const std::string& name) {
+  std::vector<fs::path> out;
   std::error_code ec;
   const std::string prefix = "." + name + kStagingTag;
   for (const auto& e : fs::directory_iterator(parent, ec)) {
@@ -75,12 +77,23 @@ void remove_abandoned_staging(const fs::path& parent, const std::string& name) {
     char* end = nullptr;
     const long pid = std::strtol(pid_text.c_str(), &end, 10);
     if (pid_text.empty() || *end != '\0') continue;
-    if (pid > 0 && kill(pid_t(pid), 0) == 0) continue;  // a run still writing
-    fs::remove_all(e.path(), ec);
+    if (pid > 0 && pid != long(getpid()) && kill(pid_t(pid), 0) == 0) continue;  // a run still writing
+    if (e.is_directory(ec)) out.push_back(e.path());
   }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 }  // namespace
+
+std::vector<std::string> stopped_runs_beside(const std::string& target) {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(target, ec).lexically_normal();
+  const fs::path dir = abs.filename().empty() ? abs.parent_path() : abs;  // "out/" is "out"
+  std::vector<std::string> out;
+  for (const fs::path& p : dead_staging(dir.parent_path(), dir.filename().string())) out.push_back(p.string());
+  return out;
+}
 
 OutputFolder::OutputFolder(std::string target) : target_(std::move(target)) {
   auto bad = [&](const std::string& why) {
@@ -126,7 +139,7 @@ OutputFolder::OutputFolder(std::string target) : target_(std::move(target)) {
   target_ = abs.string();
 }
 
-void OutputFolder::create_staging() {
+void OutputFolder::create_staging(const std::string& keep) {
   auto bad = [&](const std::string& why) {
     return InputError(fmt::format("--out '{}': {}", target_, why));
   };
@@ -138,7 +151,8 @@ void OutputFolder::create_staging() {
     created_parents_.push_back(p.string());
   fs::create_directories(parent, ec);
   if (ec) throw bad(fmt::format("cannot create its parent folder ({})", ec.message()));
-  remove_abandoned_staging(parent, name);
+  for (const fs::path& p : dead_staging(parent, name))
+    if (keep.empty() || !fs::equivalent(p, keep, ec)) fs::remove_all(p, ec);
   staging_ = (parent / ("." + name + kStagingTag + std::to_string(getpid()))).string();
   remove_on_termination(staging_);  // a SIGTERM from here on removes it (app/launcher.hpp)
   fs::remove_all(staging_, ec);
@@ -168,9 +182,15 @@ void OutputFolder::commit() {
   remove_on_termination("");
 }
 
+void OutputFolder::keep_on_termination() {
+  kept_ = true;
+  remove_on_termination("");
+}
+
 OutputFolder::~OutputFolder() {
   if (committed_ || staging_.empty()) return;
   remove_on_termination("");
+  if (kept_) return;  // a stopped run, to restart
   std::error_code ec;
   fs::remove_all(staging_, ec);
   for (const auto& p : created_parents_) fs::remove(p, ec);  // innermost first; only if still empty

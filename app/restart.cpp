@@ -1,57 +1,115 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "app/restart.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <map>
 #include <regex>
+#include <sstream>
 
+#include "app/output_folder.hpp"
 #include "io/json_out.hpp"
 #include "io/state_file.hpp"
 
 namespace igac {
 namespace fs = std::filesystem;
 
-std::vector<StepState> read_earlier_steps(const std::string& case_path, const RestartOptions& o) {
-  const fs::path dir(o.dir);
-  const fs::path summary_path = dir / "summary.json";
-  std::ifstream in(summary_path);
-  if (!in) throw InputError(fmt::format("--restart {}: no summary.json there (not the output folder of an igac run)", o.dir));
-  nlohmann::json summary;
-  try {
-    summary = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(fmt::format("--restart {}: its summary.json is not JSON", o.dir));
-  }
-  const std::string hash = fnv1a64_of_file(case_path);
-  const auto input = summary.find("input");
-  const std::string earlier = input != summary.end() && input->contains("fnv1a64") ? (*input)["fnv1a64"].get<std::string>() : "";
-  if (earlier != hash)
-    throw InputError(fmt::format("--restart {}: that run was of another case file (input hash {}, {} is {}): a restart "
-                                 "continues the same case", o.dir, earlier.empty() ? "none" : earlier, case_path, hash));
-  int last = 0;  // the last step whose state file is there
-  while (fs::exists(dir / state_file_name(last + 1))) ++last;
-  if (last == 0)
-    throw InputError(fmt::format("--restart {}: no state file (state_0001.bin): the run wrote none (a case solved in "
-                                 "one step, or a run with --no-output)", o.dir));
-  const int n = o.from_step.value_or(last);
-  if (n < 1 || n > last)
-    throw InputError(fmt::format("--from-step {}: the run in {} wrote the states of steps 1 to {}", n, o.dir, last));
-  std::vector<StepState> steps;
-  for (int k = 1; k <= n; ++k) {
-    std::string written_with;
-    steps.push_back(read_state_file((dir / state_file_name(k)).string(), written_with));
-    if (written_with != hash || steps.back().step != k)
-      throw InputError(fmt::format("--restart {}: {} is not step {} of this case", o.dir, state_file_name(k), k));
-  }
-  return steps;
+std::string run_options(const CaseSpec& spec) {
+  std::vector<int> degrees{spec.degree};
+  for (const BodySpec& b : spec.bodies) degrees.push_back(b.degree);
+  return fmt::format("refine={}\ndegree={}\nsolver={}\nsolver options={}\npreconditioner={}\nprocesses={}\n", spec.refine,
+                     fmt::join(degrees, ","), spec.solver.type, spec.solver.options, spec.solver.preconditioner,
+                     spec.solver.processes);
 }
 
+namespace {
+
+int last_state_in(const fs::path& dir) {
+  int last = 0;
+  while (fs::exists(dir / state_file_name(last + 1))) ++last;
+  return last;
+}
+
+std::map<std::string, std::string> option_lines(const std::string& text) {
+  std::map<std::string, std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (const auto eq = line.find('='); eq != std::string::npos) out[line.substr(0, eq)] = line.substr(eq + 1);
+  return out;
+}
+
+// "refine 1 there, 0 here (--refine)", one per option that differs.
+std::string options_that_differ(const std::string& earlier, const std::string& now) {
+  static const std::map<std::string, std::string> flag{{"refine", "--refine"},           {"degree", "--degree"},
+                                                       {"solver", "--solver"},           {"solver options", "--petsc-options"},
+                                                       {"preconditioner", "--preconditioner"}, {"processes", "mpirun -n"}};
+  const auto a = option_lines(earlier), b = option_lines(now);
+  std::vector<std::string> out;
+  for (const auto& [key, value] : b) {
+    const auto it = a.find(key);
+    const std::string was = it == a.end() ? "none" : it->second;
+    if (was == value) continue;
+    const auto f = flag.find(key);
+    out.push_back(fmt::format("{} '{}' there, '{}' here ({})", key, was, value, f == flag.end() ? key : f->second));
+  }
+  return fmt::format("{}", fmt::join(out, "; "));
+}
+
+}  // namespace
+
+EarlierRun read_earlier_run(const std::string& case_path, const std::string& options, const RestartOptions& o) {
+  EarlierRun run{o.dir, false, {}};
+  // A run into the folder that was stopped before it ended (its staging
+  // folder, kept for this): the later one, with the most steps.
+  int last = 0;
+  for (const std::string& s : stopped_runs_beside(o.dir))
+    if (const int n = last_state_in(s); n > last) run = {s, true, {}}, last = n;
+  const fs::path dir(run.folder);
+  if (!run.stopped) last = last_state_in(dir);
+  const std::string hash = fnv1a64_of_file(case_path);
+  if (last == 0) {
+    if (!fs::exists(dir / "summary.json"))
+      throw InputError(fmt::format("--restart {}: no summary.json there, nor a stopped run's state beside it (not the "
+                                   "output folder of an igac run)", o.dir));
+    throw InputError(fmt::format("--restart {}: no state file (state_0001.bin): the run wrote none (a case solved in "
+                                 "one step, or a run with --no-output)", o.dir));
+  }
+  StateOrigin origin;
+  read_state_file((dir / state_file_name(1)).string(), origin);
+  if (origin.case_hash != hash)
+    throw InputError(fmt::format("--restart {}: that run was of another case file (input hash {}, {} is {}): a restart "
+                                 "continues the same case", o.dir, origin.case_hash, case_path, hash));
+  if (origin.options != options)
+    throw InputError(fmt::format("--restart {}: that run had other options: {}; a restart continues a run with the "
+                                 "options it had: give the same ones", o.dir, options_that_differ(origin.options, options)));
+  const int n = o.from_step.value_or(last);
+  if (n < 1 || n > last)
+    throw InputError(fmt::format("--from-step {}: the run in {} wrote the states of steps 1 to {}", n, run.folder, last));
+  for (int k = 1; k <= n; ++k) {
+    StateOrigin written_with;
+    run.steps.push_back(read_state_file((dir / state_file_name(k)).string(), written_with));
+    if (written_with.case_hash != hash || written_with.options != options || run.steps.back().step != k)
+      throw InputError(fmt::format("--restart {}: {} is not step {} of this run", o.dir, state_file_name(k), k));
+  }
+  return run;
+}
+
+namespace {
+// A file of the earlier run into the new output: a hard link (nothing is
+// copied, and the earlier folder may go), a copy where that fails.
+void adopt_file(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::remove(to, ec);
+  fs::create_hard_link(from, to, ec);
+  if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+}
+}  // namespace
+
 std::vector<VtkStep> adopt_earlier_steps(const std::string& dir, const std::string& staging, int n, bool vtk) {
-  for (int k = 1; k <= n; ++k)
-    fs::copy_file(fs::path(dir) / state_file_name(k), fs::path(staging) / state_file_name(k),
-                  fs::copy_options::overwrite_existing);
+  for (int k = 1; k <= n; ++k) adopt_file(fs::path(dir) / state_file_name(k), fs::path(staging) / state_file_name(k));
   std::vector<VtkStep> steps;
   std::ifstream pvd(fs::path(dir) / "solution.pvd");
   if (!vtk || !pvd) return steps;
@@ -66,8 +124,7 @@ std::vector<VtkStep> adopt_earlier_steps(const std::string& dir, const std::stri
     if (steps.empty()) continue;
     steps.back().files.push_back(m[4]);
     steps.back().parts.push_back(m[3]);
-    fs::copy_file(fs::path(dir) / std::string(m[4]), fs::path(staging) / std::string(m[4]),
-                  fs::copy_options::overwrite_existing);
+    adopt_file(fs::path(dir) / std::string(m[4]), fs::path(staging) / std::string(m[4]));
   }
   return steps;
 }

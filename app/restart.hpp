@@ -1,11 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // igac run CASE --restart DIR [--from-step N]: continue an earlier run of
-// the same case from the state it wrote after step N (the last one by
-// default), so that the result is the one an uninterrupted run gives, bit
-// for bit (docs/design.md, "Restart").  The earlier run's per-step state
-// files (io/state_file.hpp) give the steps' records and the driver's state;
-// its .vtu files of steps 0..N are copied into the new output, whose .pvd
-// goes on from there.
+// the same case, with the same options, from the state it wrote after step
+// N (the last one by default), so that the result is the one an
+// uninterrupted run gives, bit for bit (docs/design.md, "Restart").  The
+// earlier run's per-step state files (io/state_file.hpp) give the steps'
+// records and the driver's state; its .vtu files of steps 0..N are taken
+// into the new output, whose .pvd goes on from there.
+//
+// Where the state is: a run writes into a hidden staging folder beside DIR
+// (app/output_folder.hpp) that becomes DIR when it ends.  A run killed or
+// stopped before (SIGKILL, a power loss, SIGTERM, Ctrl-C) leaves that
+// folder, with the state files and ParaView files of its completed steps and
+// no summary.json; DIR keeps the earlier finished run.  --restart DIR takes
+// such a stopped run beside DIR when there is one (it is the later: a run
+// into DIR removes the stopped ones when it starts), else DIR itself.
 #pragma once
 
 #include <optional>
@@ -13,6 +21,7 @@
 #include <vector>
 
 #include "io/vtk_output.hpp"
+#include "model/case_spec.hpp"
 #include "model/run_result.hpp"
 
 namespace igac {
@@ -23,14 +32,31 @@ struct RestartOptions {
   int stop_after_step = 0;       // > 0: stop once this many steps are done
 };
 
-// The steps 1..N of the earlier run in options.dir, checked: an igac output
-// of the same case file (summary.json's input.fnv1a64 equals the hash of
-// `case_path`), with its state files.  Throws InputError in one line.
-std::vector<StepState> read_earlier_steps(const std::string& case_path, const RestartOptions& options);
+// The options beside the case file that change a run's result, one
+// "name=value" a line: refine, degree (the bodies' too), the solver, its
+// options, its preconditioner and the process count, as `spec` holds them
+// after the command line's overrides.  Written into every state file; a
+// restart with other values is refused.
+std::string run_options(const CaseSpec& spec);
 
-// Copies the earlier run's files of steps 0..n (the .vtu listed in its
+// The earlier run a restart continues: the folder its state files are in,
+// whether that is a stopped run's staging folder, and its steps 1..N.
+struct EarlierRun {
+  std::string folder;
+  bool stopped = false;
+  std::vector<StepState> steps;
+};
+
+// Finds and checks the earlier run of options.dir (above): its state files
+// were written from the same case file (the hash of `case_path`) with the
+// same `options` (run_options).  Throws InputError in one line naming what
+// differs or what is missing.
+EarlierRun read_earlier_run(const std::string& case_path, const std::string& options, const RestartOptions& o);
+
+// Takes the earlier run's files of steps 0..n (the .vtu listed in its
 // solution.pvd, when it has one and `vtk`, and the state files) into
-// `staging`; returns the .pvd's steps among them.
+// `staging` (hard links, copies where the file system has none); returns
+// the .pvd's steps among them.
 std::vector<VtkStep> adopt_earlier_steps(const std::string& dir, const std::string& staging, int n, bool vtk);
 
 }  // namespace igac

@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   std::string csv =
       "case,refine,dofs,multipliers,active_set_iterations,cholesky_s,contact_solve_s,ratio,"
       "contact_factorize_s,contact_schur_s,contact_iterations_s,face_last,schur_columns,reach_rows,blas\n";
+  fmt::print("{}", csv);  // the header first: stdout is the same CSV as --csv FILE
   for (int refine : refines) {
     CaseSpec spec = read_case(argv[1]);
     apply_overrides(spec, {}, refine);

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   }
   if (sizes.empty()) sizes = {4, 8, 16, 32};
   std::string csv = "degree,elements_per_side,displacement_dofs,pressures,zero_modes,beta\n";
+  fmt::print("{}", csv);  // stdout is the CSV of --csv FILE, its header first
   for (const int n : sizes) {
     const Geometry g = rectangle(1.0, 1.0);
     const NurbsPatch patch = subdivide(elevate_to(g.patch, degree), n);
@@ -76,9 +77,10 @@ int main(int argc, char** argv) {
       else smallest = std::min(smallest, ev[k]);
     }
     const double beta = std::sqrt(smallest);
-    fmt::print("p = {}, {:3d} x {:<3d} elements: {:5d} displacement dofs, {:5d} pressures, {} zero modes, beta_h = {:.4f}\n",
-               degree, n, n, nf, ne, zero, beta);
-    csv += fmt::format("{},{},{},{},{},{:.6g}\n", degree, n, nf, ne, zero, beta);
+    const std::string row = fmt::format("{},{},{},{},{},{:.6g}\n", degree, n, nf, ne, zero, beta);
+    fmt::print("{}", row);
+    std::fflush(stdout);
+    csv += row;
   }
   if (!csv_path.empty()) std::ofstream(csv_path) << csv;
   return 0;

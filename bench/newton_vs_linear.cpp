@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
       "case,refine,dofs,multipliers,status,load_steps,newton_iterations,cut_backs,newton_s,residual_s,jacobian_s,"
       "factorize_s,schur_s,solve_s,gmres_iterations,lu_fallbacks,linear_assembly_s,linear_factorize_s,"
       "newton_iteration_s,ratio\n";
+  fmt::print("{}", csv);  // the header first: stdout is the same CSV as --csv FILE
   for (int refine : refines) {
     CaseSpec spec = read_case(argv[1]);
     apply_overrides(spec, {}, refine);

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <filesystem>
 #include <fmt/format.h>
@@ -16,9 +18,20 @@
 
 namespace igac {
 
+std::string why_not_written(const std::string& path, int err) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path folder = fs::path(path).has_parent_path() ? fs::path(path).parent_path() : fs::path(".");
+  if (!fs::exists(folder, ec)) return fmt::format("the folder {} does not exist", folder.string());
+  if (!fs::is_directory(folder, ec)) return fmt::format("{} is not a folder", folder.string());
+  if (access(folder.c_str(), W_OK | X_OK) != 0) return fmt::format("the folder {} is not writable", folder.string());
+  return err != 0 ? std::string(std::strerror(err)) : std::string("disk full?");
+}
+
 void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = fmt::format("{}.tmp{}", path, getpid());
   bool ok = false;
+  errno = 0;
   {
     std::ofstream out(tmp, std::ios::binary);
     if (out) {
@@ -27,13 +40,15 @@ void write_file_atomically(const std::string& path, const std::string& text) {
       ok = !out.fail();
     }
   }
+  int err = ok ? 0 : errno;
   std::error_code ec;
   if (ok && std::filesystem::file_size(tmp, ec) == text.size() && !ec) {
     std::filesystem::rename(tmp, path, ec);
     if (!ec) return;
+    err = ec.value();
   }
   std::filesystem::remove(tmp, ec);  // never a short file in place of a good one
-  throw std::runtime_error(fmt::format("cannot write {} (disk full or not writable?)", path));
+  throw std::runtime_error(fmt::format("cannot write {}: {}", path, why_not_written(path, err)));
 }
 
 Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }

@@ -18,6 +18,10 @@ using Json = nlohmann::ordered_json;
 
 // Writes text to path atomically (temporary file in the same folder, rename).
 void write_file_atomically(const std::string& path, const std::string& text);
+// Why `path` could not be written, `err` the errno of the failure (0: not
+// known): a missing or read-only folder is said as such (it was blamed on a
+// full disk), anything else as the system says it ("File too large").
+std::string why_not_written(const std::string& path, int err);
 // FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
 // summary came from (not a cryptographic hash).  Empty when unreadable.
 std::string fnv1a64_of_file(const std::string& path);

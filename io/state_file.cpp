@@ -15,7 +15,7 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "state files are little-endian");
 constexpr char kMagic[8] = {'I', 'G', 'A', 'C', 'S', 'T', 'E', 'P'};
-constexpr int64_t kVersion = 1;
+constexpr int64_t kVersion = 2;  // 2: the run options after the case hash
 
 struct Writer {
   std::string bytes;
@@ -80,11 +80,12 @@ struct Reader {
 
 std::string state_file_name(int step) { return fmt::format("state_{:04d}.bin", step); }
 
-void write_state_file(const std::string& path, const std::string& case_hash, const StepState& s) {
+void write_state_file(const std::string& path, const StateOrigin& origin, const StepState& s) {
   Writer w;
   w.raw(kMagic, sizeof kMagic);
   w.integer(kVersion);
-  w.text(case_hash);
+  w.text(origin.case_hash);
+  w.text(origin.options);
   w.integer(s.step);
   w.real(s.driver.t);
   w.real(s.driver.dt);
@@ -109,7 +110,7 @@ void write_state_file(const std::string& path, const std::string& case_hash, con
   write_file_atomically(path, w.bytes);
 }
 
-StepState read_state_file(const std::string& path, std::string& case_hash) {
+StepState read_state_file(const std::string& path, StateOrigin& origin) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the state file (is the step there?)", path));
   Reader r{path, std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
@@ -117,7 +118,8 @@ StepState read_state_file(const std::string& path, std::string& case_hash) {
   r.raw(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no IGACSTEP magic");
   if (const int64_t v = r.integer(); v != kVersion) r.fail(fmt::format("version {}, this igac reads {}", v, kVersion));
-  case_hash = r.text();
+  origin.case_hash = r.text();
+  origin.options = r.text();
   StepState s;
   s.step = int(r.integer());
   s.driver.t = r.real();

@@ -5,8 +5,11 @@
 // integer an int64 and every real an IEEE-754 double, in this order:
 //
 //   "IGACSTEP"                       8 bytes, the magic
-//   version                          1
+//   version                          2
 //   case hash                        length, then its bytes: summary.json's input.fnv1a64
+//   run options                      length, then its bytes: the options that change the
+//                                    result (--refine, --degree, the solver's), one
+//                                    "name=value" a line (app/restart.hpp, run_options)
 //   step                             from 1
 //   t, dt, dt_old                    the time reached, the next increment, the last one
 //   x                                length, then the doubles: [u_free; lambda]
@@ -28,10 +31,17 @@
 
 namespace igac {
 
+// What run wrote a state file: its case file (hash) and the options given
+// beside it that change the result.
+struct StateOrigin {
+  std::string case_hash;
+  std::string options;
+};
+
 std::string state_file_name(int step);  // state_NNNN.bin
-void write_state_file(const std::string& path, const std::string& case_hash, const StepState& state);
+void write_state_file(const std::string& path, const StateOrigin& origin, const StepState& state);
 // Throws InputError naming the file when it is not a state file of this
-// version or is cut short; `case_hash` receives the hash it was written with.
-StepState read_state_file(const std::string& path, std::string& case_hash);
+// version or is cut short; `origin` receives what it was written with.
+StepState read_state_file(const std::string& path, StateOrigin& origin);
 
 }  // namespace igac

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "io/vtk_output.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -132,11 +133,13 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& dir, const std::st
   w->EncodeAppendedDataOff();
   w->SetCompressorTypeToZLib();
   w->SetGlobalWarningDisplay(0);  // a failure is one line of ours, not VTK's multi-line dump
+  errno = 0;
   const bool written = w->Write() == 1 && w->GetErrorCode() == 0;
+  const int err = errno;
   std::error_code ec;
   if (!written || std::filesystem::file_size(tmp, ec) == 0 || ec) {
     std::filesystem::remove(tmp, ec);
-    throw std::runtime_error(fmt::format("cannot write {} (disk full or not writable?)", path));
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path, why_not_written(path, written ? 0 : err)));
   }
   std::filesystem::rename(tmp, path);
 }

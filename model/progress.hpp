@@ -14,8 +14,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -63,7 +65,7 @@ class Progress {
   void now(const std::string& what) {
     std::lock_guard<std::mutex> lock(mutex_);
     phase_ = what;
-    since_line_.restart();
+    mark_line();
   }
   // Held: nothing printed (the heartbeat neither) until released; e.g.
   // until PETSc has read its options in the first solve, so that a wrong
@@ -71,7 +73,21 @@ class Progress {
   void hold(bool held) {
     std::lock_guard<std::mutex> lock(mutex_);
     held_ = held;
-    since_line_.restart();
+    on_release_ = nullptr;
+    late_release_ = false;
+    mark_line();
+  }
+  // Held while the work is short, released once it has run a period
+  // without a line: `on_release` is called then (from the heartbeat's
+  // thread, e.g. to print the run's header) and the heartbeat goes on.  A
+  // long run is never silent for more than the period (issue 25: a line at
+  // least every 5 s), a short one stays quiet (a wrong PETSc option found
+  // in the first solve is one line).
+  void hold_until_late(std::function<void()> on_release = {}) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_ = true;
+    late_release_ = true;
+    on_release_ = std::move(on_release);
   }
   // How much of the whole is done, in [0, 1] (negative: not known).
   void fraction(double done) {
@@ -89,20 +105,47 @@ class Progress {
   bool quiet() const { return quiet_; }
 
  private:
+  // The last line any Progress printed (or was told of, now()): the
+  // heartbeat counts the silence from there, so that one Progress after
+  // another (step 0's, then the solve's) does not add up their periods.
+  static std::mutex& line_mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::chrono::steady_clock::time_point& last_line() {  // under line_mutex()
+    static std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+    return t;
+  }
+  static void mark_line() {
+    std::lock_guard<std::mutex> lock(line_mutex());
+    last_line() = std::chrono::steady_clock::now();
+  }
+  static double since_line() {
+    std::lock_guard<std::mutex> lock(line_mutex());
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - last_line()).count();
+  }
   void print(const std::string& text) {  // under mutex_
     if (quiet_ || held_) return;
     fmt::print(stderr, "{}\n", text);
-    since_line_.restart();
+    mark_line();
   }
   void beat() {
     std::unique_lock<std::mutex> lock(mutex_);
     while (!stop_) {
-      const double left = period_ - since_line_.seconds();
+      const double left = period_ - since_line();
       if (left <= 0) {  // (held or without a phase: nothing printed, but the period starts again)
+        if (held_ && late_release_) {
+          held_ = late_release_ = false;
+          if (std::function<void()> release = std::move(on_release_)) {
+            lock.unlock();
+            release();
+            lock.lock();
+          }
+        }
         if (!phase_.empty())
           print(fmt::format("  ... still {} ({:.0f} s){}", phase_, seconds(),
                             terminal_ && fraction_ >= 0 ? "  " + bar(fraction_) : std::string()));
-        since_line_.restart();
+        mark_line();
         continue;
       }
       wake_.wait_for(lock, std::chrono::duration<double>(left));
@@ -111,11 +154,12 @@ class Progress {
 
   bool quiet_;
   double offset_, period_;
-  Stopwatch clock_, since_line_;
+  Stopwatch clock_;
   std::string phase_;
   double fraction_ = -1;                             // not known
   const bool terminal_ = isatty(STDERR_FILENO) == 1;  // a bar only where a person watches
-  bool stop_ = false, held_ = false;
+  bool stop_ = false, held_ = false, late_release_ = false;
+  std::function<void()> on_release_;  // of hold_until_late
   std::mutex mutex_;
   std::condition_variable wake_;
   std::thread heartbeat_;

@@ -2,6 +2,7 @@
 // The small-deformation path of solve_model: one linear solve, or the
 // active-set contact solve; the reactions and the contact report.
 #include <algorithm>
+#include <mutex>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -234,6 +235,19 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   Stopwatch t_start;
   const Body& body = m.body;
   const int dim = body.space_dim();
+  const bool petsc = uses_petsc(m);
+  Progress progress(m.quiet);
+  std::once_flag header_once;  // the heartbeat's thread may print it
+  const auto header = [&] { std::call_once(header_once, [&] { if (m.on_solve_start) m.on_solve_start(); }); };
+  bool started = false;
+  const auto start = [&] {
+    if (started) return;
+    started = true;
+    progress.hold(false);
+    header();
+  };
+  progress.hold_until_late(header);
+  progress.phase("setting up the contact operator and the rigid modes");
   Stopwatch t0;
   Eigen::VectorXd bf = m.spec.body_force.empty()
                            ? Eigen::VectorXd::Zero(dim)
@@ -253,19 +267,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     check_body_is_held(m, modes, f, op ? &*op : nullptr);
   }
   r.timing.assembly = t0.seconds();
-  // The header, then the progress lines; with PETSc after its first solve
-  // (where it reads its options: a wrong one is an input error, one line).
-  const bool petsc = uses_petsc(m);
-  Progress progress(m.quiet);
-  bool started = false;
-  const auto start = [&] {
-    if (started) return;
-    started = true;
-    progress.hold(false);
-    if (m.on_solve_start) m.on_solve_start();
-  };
-  if (petsc) progress.hold(true);
-  else start();
+  // The header once the case is accepted (the held-body check above), with
+  // PETSc after its first solve (where it reads its options: a wrong one is
+  // an input error, one line); then the progress lines.  Or once it has run
+  // 4 s without a line: a long run is never silent.
+  if (!petsc) start();
   progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
   t0.restart();
   // One process: every element.  PETSc on several: this process's block

@@ -2,8 +2,8 @@
 // The Python module `igac` (pybind11): runs a case from a file or a dict,
 // with keys overridden, and returns what a script sweeps over: the summary
 // (as summary.json holds it) and NumPy arrays of the control points, the
-// displacements, the multipliers, and the pressure along each contact
-// face.  The same read_case / build_model / solve_model / run_summary as
+// displacements, the multipliers, the pressure along each contact face and
+// the reaction on each [[dirichlet]] face set.  The same read_case / build_model / solve_model / run_summary as
 // `igac run`, so a result equals the command line's to round-off
 // (tests/python/test_module.py).  No files are written.
 #include <pybind11/eigen.h>
@@ -139,6 +139,27 @@ py::dict run_text(const std::string& text, const std::string& path, std::optiona
     pressure.append(d);
   }
   out["pressure"] = pressure;
+  // Per [[dirichlet]] face set its reaction at the end and, for a run in
+  // steps, at each row of load_curve.csv (its load factor or time in `t`).
+  py::list reactions;
+  for (size_t i = 0; i < r.dirichlet_reactions.size(); ++i) {
+    const FaceReaction& f = r.dirichlet_reactions[i];
+    Eigen::MatrixXd history(0, f.force.size());
+    std::vector<double> t;
+    for (const LoadCurvePoint& p : r.load_curve)
+      if (i < p.dirichlet_reactions.size() && p.dirichlet_reactions[i].force.size() == f.force.size()) {
+        history.conservativeResize(history.rows() + 1, Eigen::NoChange);
+        history.row(history.rows() - 1) = p.dirichlet_reactions[i].force.transpose();
+        t.push_back(p.load_factor);
+      }
+    py::dict d;
+    d["face"] = f.face;
+    d["force"] = Eigen::VectorXd(f.force);
+    d["steps"] = history;
+    d["t"] = Eigen::Map<const Eigen::VectorXd>(t.data(), Eigen::Index(t.size())).eval();
+    reactions.append(d);
+  }
+  out["reactions"] = reactions;
   return out;
 }
 
@@ -166,7 +187,7 @@ PYBIND11_MODULE(igac, m) {
       py::arg("case_file"), py::arg("overrides") = py::dict(), py::arg("refine") = py::none(),
       py::arg("degree") = py::none(),
       "Runs a case file, its keys overridden by `overrides` ({'material.E': 2.0, 'contact.0.obstacle.motion': [0, "
-      "-0.5]}); returns a dict: summary, status, control_points, displacement, multipliers, pressure.");
+      "-0.5]}); returns a dict: summary, status, control_points, displacement, multipliers, pressure, reactions.");
   m.def(
       "run_dict",
       [](const py::dict& case_table, const std::string& folder, std::optional<int> refine, std::optional<int> degree) {

@@ -78,6 +78,7 @@
 #include <vector>
 
 #include "tests/support/igac_process.hpp"
+#include "tests/support/vtu_file.hpp"
 
 namespace {
 
@@ -297,6 +298,18 @@ TEST_P(GoldenCase, ResultsAsRecordedBeforeTheRefactor) {
   for (const auto& [key, value] : golden.items())
     if (key.ends_with("_csv")) compare_csv(value, out / (key.substr(0, key.size() - 4) + ".csv"), t);
   EXPECT_GT(t.numbers, 10) << "a record with numbers in it";
+  // Issue 25: scalars that cannot be negative are not, in every ParaView
+  // step of every shipped case (von Mises reached -0.052 and |sigma| -0.89
+  // in the O-ring when their own Bezier coefficients were projected).  The
+  // studies write no ParaView files, nor does cattaneo_mindlin_cycle
+  // ([output] vtk = false): GoldenCases.VonMisesOfTheCaseWithoutParaViewFiles.
+  if (!study && fs::exists(out / "solution.pvd")) {
+    int files = 0;
+    EXPECT_GE(igac_test::min_over_steps(out, "von_mises", files), 0.0);
+    EXPECT_GE(igac_test::min_over_steps(out, "stress_magnitude", files), 0.0);
+    EXPECT_GT(files, 0);
+    std::printf("%s: von Mises and |sigma| >= 0 in %d ParaView steps\n", GetParam().c_str(), files);
+  }
   std::printf("%s: %d numbers compared (%d integers exactly); largest |diff| / tolerance: results %.3g (%s), "
               "residuals %.3g (%s), CSV files %.3g (%s)\n",
               GetParam().c_str(), t.numbers, t.exact, t.result.ratio, t.result.at.c_str(), t.residual.ratio,

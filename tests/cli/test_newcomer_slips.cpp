@@ -103,3 +103,25 @@ TEST(NewcomerSlips, FailedRunCountsItsLastCutBacks) {
 }
 
 }  // namespace
+
+namespace {
+
+// A file written into a folder that is not there said "disk full or not
+// writable?" (issue 25: a missing output folder is not blamed on the disk);
+// it names the missing folder now, and a full file system what the system says.
+TEST(NewcomerSlips, MissingFolderIsNotBlamedOnTheDisk) {
+  igac_test::TempDir tmp("slips_folder");
+  const std::string c = igac_test::quote(std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml");
+  const auto o = igac_test::run_igac("geometry " + c + " --out missing/body.xml", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  EXPECT_NE(o.output.find("cannot write missing/body.xml: the folder missing does not exist"), std::string::npos)
+      << o.output;
+  EXPECT_EQ(o.output.find("disk"), std::string::npos) << o.output;
+  // A file-size limit: the system's reason, not a guess.
+  const auto big = igac_test::run_igac("run " + c + " --quiet --out out", tmp.path(), "ulimit -f 10;");
+  EXPECT_EQ(big.exit_code, 1) << big.output;
+  EXPECT_NE(big.output.find("File too large"), std::string::npos) << big.output;
+}
+
+}  // namespace

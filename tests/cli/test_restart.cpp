@@ -6,14 +6,25 @@
 // in small deformation (load curves, contact) and in large deformation
 // (the Newton driver, its increments and predictor state carried over);
 // --from-step continues from an earlier step of a finished run; a restart
-// against another case file is refused in one line.
+// against another case file, or with other options (--refine, --degree),
+// is refused in one line.  And for real: a run killed (SIGKILL) or stopped
+// (SIGTERM, SIGINT) once the state file of step K exists is continued from
+// the folder it was writing to, to the uninterrupted run's numbers; the
+// earlier finished output there survives the kill untouched.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "tests/support/igac_process.hpp"
 
@@ -109,6 +120,132 @@ TEST(Restart, AnotherCaseFileIsRefusedInOneLine) {
       tmp.path());
   EXPECT_EQ(one_step.exit_code, 2) << one_step.output;
   EXPECT_NE(one_step.output.find("need a run in steps"), std::string::npos) << one_step.output;
+}
+
+// A restart with other command-line options than the run it continues
+// would mix two meshes (or two solvers): refused in one line naming what
+// differs; with the same ones it goes on.
+TEST(Restart, OtherOptionsAreRefusedInOneLine) {
+  igac_test::TempDir tmp("restart");
+  const std::string c = data("curve_contact.toml");
+  ASSERT_EQ(igac_test::run_igac("run " + c + " --quiet --refine 1 --out a --stop-after-step 2", tmp.path()).exit_code, 0);
+  const auto other = igac_test::run_igac("run " + c + " --quiet --out b --restart a", tmp.path());
+  EXPECT_EQ(other.exit_code, 2) << other.output;
+  EXPECT_EQ(std::count(other.output.begin(), other.output.end(), '\n'), 1) << other.output;
+  EXPECT_NE(other.output.find("igac: error: --restart a: that run had other options: refine '1' there, '0' here "
+                              "(--refine); a restart continues a run with the options it had: give the same ones"),
+            std::string::npos) << other.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "b"));
+  const auto degree = igac_test::run_igac("run " + c + " --quiet --refine 1 --degree 3 --out b --restart a", tmp.path());
+  EXPECT_EQ(degree.exit_code, 2) << degree.output;
+  EXPECT_NE(degree.output.find("degree '2' there, '3' here (--degree)"), std::string::npos) << degree.output;
+  const auto same = igac_test::run_igac("run " + c + " --quiet --refine 1 --out b --restart a", tmp.path());
+  EXPECT_EQ(same.exit_code, 0) << same.output;
+}
+
+// `igac run ARGS` started in `cwd` as a child process, ended by `sig` once
+// the state file of step `k` stands in its staging folder beside `out`.
+// Returns false (and says why) when the run ended before.
+bool run_and_stop_at(const std::vector<std::string>& args, const fs::path& cwd, const std::string& out, int k, int sig) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (chdir(cwd.c_str()) != 0) _exit(127);
+    std::vector<char*> argv{const_cast<char*>(IGAC_BINARY)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(IGAC_BINARY, argv.data());
+    _exit(127);
+  }
+  if (pid < 0) return false;
+  // igac re-executes itself once (the signal mask): the same process id.
+  const fs::path state = cwd / ("." + out + ".igac-tmp-" + std::to_string(pid)) / ("state_000" + std::to_string(k) + ".bin");
+  int status = 0;
+  bool ended = false;
+  for (int i = 0; i < 120000 && !ended; ++i) {  // up to 2 minutes on a loaded machine
+    if (fs::exists(state)) break;
+    ended = waitpid(pid, &status, WNOHANG) == pid;
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+  if (ended) {
+    ADD_FAILURE() << "the run ended before step " << k << " was written";
+    return false;
+  }
+  kill(pid, sig);
+  waitpid(pid, &status, 0);
+  if (sig == SIGKILL) EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "the run ended before the kill";
+  else EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 128 + sig) << "status " << status;
+  return true;
+}
+
+std::set<std::string> listing(const fs::path& dir) {
+  std::set<std::string> s;
+  for (const auto& e : fs::directory_iterator(dir)) s.insert(e.path().filename().string());
+  return s;
+}
+
+// An uninterrupted run, then a finished run of hertz2d into `part`, then
+// the case run into `part` and ended by `sig` after step k: `part` is still
+// the hertz2d output, a stopped run (no summary.json) stands beside it, and
+// `--restart part` continues it to the uninterrupted run's numbers (1e-12).
+void expect_stopped_run_continues(const std::string& case_file, const std::vector<std::string>& options, int k, int sig) {
+  igac_test::TempDir tmp("stopped");
+  const std::string c = std::string(IGAC_SOURCE_DIR) + "/" + case_file, opts = [&] {
+    std::string s;
+    for (const auto& o : options) s += " " + o;
+    return s;
+  }();
+  const auto whole = igac_test::run_igac("run " + igac_test::quote(c) + opts + " --quiet --out whole", tmp.path());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  const auto earlier = igac_test::run_igac(
+      "run " + igac_test::quote(std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml") + " --quiet --out part", tmp.path());
+  ASSERT_EQ(earlier.exit_code, 0) << earlier.output;
+  const std::set<std::string> before = listing(tmp.path() / "part");
+  const std::string earlier_summary = igac_test::read_file(tmp.path() / "part" / "summary.json");
+
+  std::vector<std::string> args{"run", c, "--quiet", "--out", "part"};
+  args.insert(args.end(), options.begin(), options.end());
+  ASSERT_TRUE(run_and_stop_at(args, tmp.path(), "part", k, sig));
+  // The earlier output is whole; the stopped run is hidden beside it, without a summary.
+  EXPECT_EQ(listing(tmp.path() / "part"), before);
+  EXPECT_EQ(igac_test::read_file(tmp.path() / "part" / "summary.json"), earlier_summary);
+  std::vector<fs::path> stopped;
+  for (const auto& e : fs::directory_iterator(tmp.path()))
+    if (e.path().filename().string().rfind(".part.igac-tmp-", 0) == 0) stopped.push_back(e.path());
+  ASSERT_EQ(stopped.size(), 1u) << "one stopped run beside part";
+  EXPECT_FALSE(fs::exists(stopped[0] / "summary.json"));
+  EXPECT_TRUE(fs::exists(stopped[0] / "state_0001.bin"));
+
+  const auto resumed = igac_test::run_igac("run " + igac_test::quote(c) + opts + " --out part --restart part", tmp.path());
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("igac: continuing after step "), std::string::npos) << resumed.output;
+  int numbers = 0;
+  expect_same(igac_test::read_summary(tmp.path() / "whole"), igac_test::read_summary(tmp.path() / "part"),
+              "summary.json", numbers);
+  EXPECT_GT(numbers, 20);
+  EXPECT_EQ(igac_test::read_file(tmp.path() / "whole" / "load_curve.csv"),
+            igac_test::read_file(tmp.path() / "part" / "load_curve.csv"));
+  EXPECT_EQ(listing(tmp.path()), (std::set<std::string>{"part", "whole"})) << "the stopped run is taken in";
+}
+
+// Large deformation: the shipped Neo-Hookean Hertz case (8 load steps).
+TEST(Restart, KilledLargeDeformationRunContinues) {
+  expect_stopped_run_continues("cases/hertz2d_neohookean_pressure.toml", {}, 3, SIGKILL);
+}
+
+// Small deformation along a load curve: the disc pushed and released, 4
+// steps of about 0.15 s each at --refine 3 (time to kill it in between).
+TEST(Restart, KilledSmallDeformationRunContinues) {
+  expect_stopped_run_continues("tests/data/curve_contact.toml", {"--refine", "3"}, 2, SIGKILL);
+}
+
+// SIGTERM and SIGINT (Ctrl-C) end the run at once (app/launcher.hpp), and
+// leave it to be continued as a SIGKILL does.
+TEST(Restart, TerminatedRunContinues) {
+  expect_stopped_run_continues("tests/data/curve_contact.toml", {"--refine", "3"}, 1, SIGTERM);
+}
+
+TEST(Restart, InterruptedRunContinues) {
+  expect_stopped_run_continues("tests/data/curve_contact.toml", {"--refine", "3"}, 2, SIGINT);
 }
 
 }  // namespace

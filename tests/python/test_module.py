@@ -4,8 +4,15 @@
 
 Run by CTest (tests/CMakeLists.txt) with PYTHONPATH=build/python and
 IGAC_BINARY=build/igac:
-  - every shipped case of a second or less gives the summary igac run writes,
-    number for number (relative 1e-12; the keys that time the run aside);
+  - every shipped case (cases/*.toml) gives the summary igac run writes,
+    number for number (relative 1e-12; the keys that time the run aside):
+    those of a second or less as shipped; the 3D ones and the longer ones
+    (LONG_CASES) with [output] vtk = false added to a copy that both run, so
+    that the command line does not spend half its time on ParaView files the
+    module never writes (no number of summary.json depends on them; their
+    von Mises is checked on the golden runs, tests/cli/test_golden_cases.cpp).
+    The two study cases run as cases (their level 0): the module has no
+    study, and `igac study` is runs of the same code at --refine 0, 1, ...;
   - an override is the same as the case file edited;
   - a case given as a dict is the same as its file;
   - bad input is igac.InputError (a ValueError) with the one-line message;
@@ -14,6 +21,7 @@ IGAC_BINARY=build/igac:
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -31,7 +39,11 @@ FAST_CASES = ["hertz2d", "hertz2d_two_patches", "two_blocks", "roller_on_block",
               "cattaneo_mindlin", "oring", "hertz2d_from_file", "hertz2d_high_load", "cattaneo_mindlin_two_bodies",
               "cattaneo_mindlin_cycle", "oring_on_plate", "oring_rubber", "roller_on_block_neohookean",
               "hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "oring_two_plates", "oring_unloading",
-              "oring_friction"]
+              "oring_friction", "cook_membrane"]
+# Run by the module and the command line at their shipped mesh, 3D and longer
+# (8 to 30 s each on a loaded machine), once each.
+LONG_CASES = ["hertz3d", "hertz3d_high_load", "hertz3d_p3", "hertz3d_neohookean", "sphere_on_block",
+              "indented_block", "hertz2d_neohookean_pressure_study", "hertz3d_study"]
 ROUND_OFF = 1e-12
 # Keys that measure the machine or name a file, not the numerics.
 MACHINE = ("time", "timing", "seconds", "_s", "memory", "resident", "path", "folder", "fnv1a64")
@@ -70,6 +82,27 @@ class ModuleAgainstCommandLine(unittest.TestCase):
                 result = igac.run(path)
                 compare(self, cli_summary(path), result["summary"])
                 self.assertEqual(result["status"], result["summary"]["status"])
+
+    def test_every_long_shipped_case_gives_the_command_lines_summary(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            for name in os.listdir(CASES):  # the geometry files beside the copies
+                if name.endswith(".xml"):
+                    shutil.copy(os.path.join(CASES, name), tmp)
+            for name in LONG_CASES:
+                with self.subTest(case=name):
+                    with open(os.path.join(CASES, name + ".toml")) as f:
+                        text = f.read()
+                    self.assertNotIn("[output]", text)
+                    path = os.path.join(tmp, name + ".toml")
+                    with open(path, "w") as f:
+                        f.write(text + "\n[output]\nvtk = false\n")
+                    result = igac.run(path)
+                    compare(self, cli_summary(path), result["summary"])
+                    self.assertEqual(result["status"], "converged")
+
+    def test_every_shipped_case_is_compared(self):
+        shipped = sorted(f[:-5] for f in os.listdir(CASES) if f.endswith(".toml"))
+        self.assertEqual(sorted(FAST_CASES + LONG_CASES), shipped)
 
     def test_an_override_is_the_case_file_edited(self):
         path = os.path.join(CASES, "hertz2d.toml")
@@ -125,6 +158,22 @@ class ModuleAgainstCommandLine(unittest.TestCase):
         p = r["pressure"][0]
         self.assertEqual(p["face"], "roller:curved")
         self.assertAlmostEqual(float(np.max(p["pressure"])), r["summary"]["contact"]["max_pressure"], delta=1e-15)
+
+
+    def test_reactions_are_the_summarys_per_face_set_and_per_step(self):
+        path = os.path.join(ROOT, "tests", "data", "curve_block_neohookean.toml")
+        r = igac.run(path)
+        faces = r["summary"]["dirichlet_reactions"]
+        self.assertEqual([f["face"] for f in r["reactions"]], [f["face"] for f in faces])
+        for mine, theirs in zip(r["reactions"], faces):
+            self.assertEqual(mine["force"].tolist(), theirs["force"])
+            self.assertEqual(mine["steps"].shape, (len(mine["t"]), 2))
+            self.assertEqual(mine["steps"][-1].tolist(), theirs["force"])
+            # per step: the summary's load_steps carry the same reactions
+            for row, step in zip(mine["steps"][-len(r["summary"]["load_steps"]):], r["summary"]["load_steps"]):
+                match = [f for f in step["dirichlet_reactions"] if f["face"] == mine["face"]][0]
+                self.assertEqual(row.tolist(), match["force"])
+        self.assertGreater(len(r["summary"]["load_steps"]), 4)
 
 
 if __name__ == "__main__":

@@ -23,10 +23,11 @@ TEST(StateFile, RoundTripIsBitForBit) {
   s.point.obstacle_displacement = 0.3;
   s.point.dirichlet_reactions = {{"left", Eigen::Vector2d(1.0 / 3, 0.0)}, {"mid plane", Eigen::Vector2d(0.0, -5.5)}};
   const auto path = (std::filesystem::temp_directory_path() / "igac_test_state_0007.bin").string();
-  write_state_file(path, "0123456789abcdef", s);
-  std::string hash;
+  write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
+  StateOrigin hash;
   const StepState r = read_state_file(path, hash);
-  EXPECT_EQ(hash, "0123456789abcdef");
+  EXPECT_EQ(hash.case_hash, "0123456789abcdef");
+  EXPECT_EQ(hash.options, "refine=1\ndegree=3\n");
   EXPECT_EQ(r.step, 7);
   EXPECT_EQ(r.driver.t, s.driver.t);
   EXPECT_EQ(r.driver.dt, s.driver.dt);

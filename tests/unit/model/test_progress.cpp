@@ -50,5 +50,56 @@ TEST(Progress, QuietAndHeldPrintNothing) {
   EXPECT_EQ(run(false, true), "");
 }
 
+// Held until late (the PETSc path until its first solve, a large mesh's
+// step 0): a short hold prints nothing, and one that lasts a period
+// releases itself, calls its callback once (the run's header) and goes on
+// with the heartbeat: a 3D PETSc run was silent for its first 177 s.
+TEST(Progress, HoldUntilLateReleasesALongHold) {
+  int released = 0;
+  testing::internal::CaptureStderr();
+  {
+    Progress p(false, 0.0, 0.1);
+    p.hold_until_late([&] {
+      ++released;
+      fmt::print(stderr, "HEADER\n");
+    });
+    p.phase("the active-set iterations with PETSc");
+    std::this_thread::sleep_for(std::chrono::milliseconds(450));
+  }
+  const std::string out = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(released, 1);
+  EXPECT_EQ(out.rfind("HEADER\n  ... still the active-set iterations with PETSc (", 0), 0u) << out;
+  EXPECT_GE(count_of(out, "  ... still the active-set iterations with PETSc ("), 2u) << out;
+  // A short one: nothing, no callback.
+  testing::internal::CaptureStderr();
+  {
+    Progress p(false, 0.0, 30.0);
+    p.hold_until_late([&] { ++released; });
+    p.phase("writing step 0");
+  }
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_EQ(released, 1);
+}
+
+// One Progress after another (step 0's, then the solve's) counts the
+// silence from the last line of either: a new one does not start a fresh
+// period (measured before: 8.2 s without a line between the two).
+TEST(Progress, SilenceCountsFromTheLastLineOfAnyProgress) {
+  testing::internal::CaptureStderr();
+  {
+    Progress first(false, 0.0, 1.0);
+    first.line("step 0 begins");
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  }
+  {
+    Progress second(false, 0.0, 1.0);
+    second.hold_until_late();
+    second.phase("setting up");
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));  // its own period would end at 1.0 s
+  }
+  const std::string out = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(count_of(out, "  ... still setting up ("), 1u) << out;
+}
+
 }  // namespace
 }  // namespace igac
