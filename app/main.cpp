@@ -267,17 +267,19 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // A run in steps writes its state after each one (state_NNNN.bin, beside
   // the step's .vtu); --restart continues from there (app/restart.hpp).
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
-  // Along load curves a frictional run is in steps, but its slip history is not in the state files.
-  if (!restart.dir.empty() && stepped &&
-      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; }))
-    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
-                                 path));
+  // What the state files do not hold, so that a restart could not continue
+  // the run as it went: a frictional run's slip history, an incompressible
+  // one's element pressures (its augmented Lagrangian's multipliers).
+  const std::string not_in_state =
+      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; })
+          ? "a frictional case's steps (and its slip history) are not restarted"
+      : spec.incompressible ? "an incompressible case's steps (and its element pressures) are not restarted"
+                            : "";
+  if (!restart.dir.empty() && stepped && !not_in_state.empty())
+    throw InputError(fmt::format("{}: --restart: {}", path, not_in_state));
   if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)
     throw InputError(fmt::format("{}: --restart and --stop-after-step need a run in steps (large deformation or load "
-                                 "curves); {}", path,
-                                 std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; })
-                                     ? "a frictional case's steps (and its slip history) are not restarted"
-                                     : "this case is solved in one step"));
+                                 "curves); {}", path, not_in_state.empty() ? "this case is solved in one step" : not_in_state));
   // The state files say which case file and options wrote them: a restart
   // continues the same (app/restart.hpp).
   const StateOrigin origin{fnv1a64_of_file(path), run_options(spec)};

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -120,6 +121,23 @@ TEST(Restart, AnotherCaseFileIsRefusedInOneLine) {
       tmp.path());
   EXPECT_EQ(one_step.exit_code, 2) << one_step.output;
   EXPECT_NE(one_step.output.find("need a run in steps"), std::string::npos) << one_step.output;
+}
+
+// An incompressible run's element pressures (its augmented Lagrangian's
+// multipliers) are not in the state files: a restart could not go on as the
+// run went, so it is refused in one line, as a frictional one is.
+TEST(Restart, IncompressibleRunIsRefusedInOneLine) {
+  igac_test::TempDir tmp("restart");
+  std::string text = igac_test::read_file(std::string(IGAC_SOURCE_DIR) + "/cases/oring_rubber.toml");
+  text = std::regex_replace(text, std::regex(R"(file = "oring_quarter.xml")"),
+                            "file = \"" + std::string(IGAC_SOURCE_DIR) + "/cases/oring_quarter.xml\"");
+  text = std::regex_replace(text, std::regex(R"(formulation = "mixed")"), "formulation = \"mixed\"\nincompressible = true");
+  std::ofstream(tmp.path() / "rubber.toml") << text;
+  const auto o = igac_test::run_igac("run rubber.toml --quiet --out b --restart a", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
+  EXPECT_NE(o.output.find("--restart: an incompressible case's steps (and its element pressures) are not restarted"),
+            std::string::npos) << o.output;
 }
 
 // A restart with other command-line options than the run it continues
