@@ -46,3 +46,8 @@ def write_case(d, path, header):
     lines = [f"# {line}" for line in header.splitlines()]
     _toml_table(d, "", lines)
     Path(path).write_text("\n".join(lines) + "\n")
+
+
+def contacts_of(case):
+    """The [[contact]] tables of a parsed case (one [contact] table is a list of one)."""
+    return case["contact"] if isinstance(case["contact"], list) else [case["contact"]]

@@ -25,7 +25,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from case_toml import write_case  # noqa: E402
+from case_toml import contacts_of, write_case  # noqa: E402
 from friction_iterations import read_shipped_case  # noqa: E402
 from results_io import write_rows  # noqa: E402
 
@@ -63,8 +63,7 @@ def main():
         tmp = Path(tmp)
         for name in args.cases:
             path, case = read_shipped_case(name)
-            contacts = case["contact"] if isinstance(case["contact"], list) else [case["contact"]]
-            for c in contacts:
+            for c in contacts_of(case):
                 c["friction"] = args.friction
             case.setdefault("output", {})["vtk"] = False
             variant = tmp / f"{name}_friction.toml"

@@ -26,7 +26,7 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
-from case_toml import write_case  # noqa: E402
+from case_toml import contacts_of, write_case  # noqa: E402
 
 
 def absolute_files(table, folder):
@@ -69,8 +69,7 @@ def main():
         for name in args.cases:
             path, case = read_shipped_case(name)
             case.pop("loading", None)
-            contacts = case["contact"] if isinstance(case["contact"], list) else [case["contact"]]
-            for c in contacts:
+            for c in contacts_of(case):
                 c.pop("friction", None)
             variant = tmp / f"{name}_frictionless.toml"
             write_case(case, variant, f"{name} without friction (bench/friction_iterations.py)")
