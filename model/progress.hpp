@@ -65,17 +65,19 @@ class Progress {
   void now(const std::string& what) {
     std::lock_guard<std::mutex> lock(mutex_);
     phase_ = what;
-    mark_line();
+    if (!quiet_) mark_line();
   }
   // Held: nothing printed (the heartbeat neither) until released; e.g.
   // until PETSc has read its options in the first solve, so that a wrong
   // one stays a one-line input error.
+  // Holding or releasing prints nothing, so the silence the heartbeat
+  // counts goes on (a quiet inner solve, such as a coarser mesh's start,
+  // released before the run has printed a line, must not restart it).
   void hold(bool held) {
     std::lock_guard<std::mutex> lock(mutex_);
     held_ = held;
     on_release_ = nullptr;
     late_release_ = false;
-    mark_line();
   }
   // Held while the work is short, released once it has run a period
   // without a line: `on_release` is called then (from the heartbeat's

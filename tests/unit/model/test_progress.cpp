@@ -101,5 +101,26 @@ TEST(Progress, SilenceCountsFromTheLastLineOfAnyProgress) {
   EXPECT_EQ(count_of(out, "  ... still setting up ("), 1u) << out;
 }
 
+// A quiet inner solve (the coarser meshes a PETSc run starts from) holds and
+// releases its own Progress without printing: that must not restart the
+// silence of the run around it (measured before: the header of a 3D PETSc
+// run came at 5.2 s, after two coarse solves had each restarted the count).
+TEST(Progress, AQuietInnerSolveDoesNotRestartTheSilence) {
+  testing::internal::CaptureStderr();
+  {
+    Progress outer(false, 0.0, 1.0);
+    outer.hold_until_late([] { fmt::print(stderr, "HEADER\n"); });
+    outer.phase("the active-set iterations with PETSc");
+    for (int k = 0; k < 3; ++k) {  // an inner solve every 0.4 s: before, each one restarted the period
+      std::this_thread::sleep_for(std::chrono::milliseconds(400));
+      Progress inner(true);
+      inner.hold(false);
+      inner.now("a coarser mesh's solve");
+    }
+  }  // 1.2 s in all: the outer period (1 s) ended once
+  const std::string out = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(out.rfind("HEADER\n  ... still the active-set iterations with PETSc (", 0), 0u) << out;
+}
+
 }  // namespace
 }  // namespace igac
