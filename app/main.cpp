@@ -267,14 +267,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // A run in steps writes its state after each one (state_NNNN.bin, beside
   // the step's .vtu); --restart continues from there (app/restart.hpp).
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
-  // What the state files do not hold, so that a restart could not continue
-  // the run as it went: a frictional run's slip history, an incompressible
-  // one's element pressures (its augmented Lagrangian's multipliers).
-  const std::string not_in_state =
-      std::any_of(spec.contacts.begin(), spec.contacts.end(), [](const ContactSpec& c) { return c.friction > 0; })
-          ? "a frictional case's steps (and its slip history) are not restarted"
-      : spec.incompressible ? "an incompressible case's steps (and its element pressures) are not restarted"
-                            : "";
+  // Refused before the earlier run is read: what its state files do not hold.
+  const std::string not_in_state = not_in_state_files(spec);
   if (!restart.dir.empty() && stepped && !not_in_state.empty())
     throw InputError(fmt::format("{}: --restart: {}", path, not_in_state));
   if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)

@@ -134,9 +134,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   // last one ended (the slip counted from the obstacle at time 0).
   bool frictional = false;
   for (const auto& c : m.contacts) frictional = frictional || c.friction > 0;
-  if (frictional && !m.resume.empty())
-    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
-                                 m.spec.path));
+  check_resumable(m);
   std::optional<SmallStrainFriction> friction;
   std::vector<int> friction_steps;  // active-set iterations per step
   SparseCholesky chol;
@@ -266,6 +264,19 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   r.timing.total = t_start.seconds();
   return r;
+}
+
+std::string not_in_state_files(const CaseSpec& spec) {
+  for (const ContactSpec& c : spec.contacts)
+    if (c.friction > 0) return "a frictional case's steps (and its slip history) are not restarted";
+  if (spec.incompressible) return "an incompressible case's steps (and its element pressures) are not restarted";
+  return "";
+}
+
+void check_resumable(const Model& m) {
+  if (m.resume.empty()) return;
+  if (const std::string why = not_in_state_files(m.spec); !why.empty())
+    throw InputError(fmt::format("{}: --restart: {}", m.spec.path, why));
 }
 
 }  // namespace igac

@@ -141,9 +141,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   const Body& body = m.body;
   const FiniteStrainSetup setup = finite_strain_setup(m);
   FiniteStrainProblem problem(setup);
-  if (problem.num_tangential() > 0 && !m.resume.empty())
-    throw InputError(fmt::format("{}: --restart: a frictional case's steps (and its slip history) are not restarted",
-                                 m.spec.path));
+  check_resumable(m);
 
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
