@@ -15,18 +15,16 @@ frictional step whose first lies in (1e-11, 1e-1) (quadratic: about 2) is
 summarised by its smallest value.  Prints a table and writes
 bench/results/finite_strain_friction.csv (a minute or so).
 """
-import argparse
 import json
 import math
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 from case_toml import contacts_of, write_case  # noqa: E402
-from friction_iterations import read_shipped_case  # noqa: E402
+from friction_iterations import shipped_case_arguments, shipped_cases  # noqa: E402
 from results_io import write_rows  # noqa: E402
 
 DEFAULT_CASES = ["hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "hertz3d_neohookean", "oring",
@@ -53,36 +51,31 @@ def run(igac, case, out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--igac", default=str(HERE.parent / "build" / "igac"))
+    ap = shipped_case_arguments(DEFAULT_CASES)
     ap.add_argument("--friction", type=float, default=0.3)
-    ap.add_argument("cases", nargs="*", default=DEFAULT_CASES)
     args = ap.parse_args()
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        for name in args.cases:
-            path, case = read_shipped_case(name)
-            for c in contacts_of(case):
-                c["friction"] = args.friction
-            case.setdefault("output", {})["vtk"] = False
-            variant = tmp / f"{name}_friction.toml"
-            write_case(case, variant, f"{name} with friction {args.friction} (bench/finite_strain_friction.py)")
-            plain = run(args.igac, path, tmp / name)
-            frictional = run(args.igac, variant, tmp / f"{name}_friction")
-            rows.append({"case": name, "friction": args.friction, "status": frictional["status"],
-                         "steps_frictionless": plain["steps"], "steps": frictional["steps"],
-                         "newton_frictionless": plain["newton"], "newton": frictional["newton"],
-                         "ratio": round(frictional["newton"] / plain["newton"], 3),
-                         "cut_backs": frictional["cut_backs"],
-                         "normal_force_frictionless": plain["normal_force"], "normal_force": frictional["normal_force"],
-                         "tangential_force": frictional["tangential_force"],
-                         "min_order": round(frictional["min_order"], 3)})
-            r = rows[-1]
-            print(f"{name:34s} steps {r['steps_frictionless']:3d} -> {r['steps']:3d}  Newton {r['newton_frictionless']:4d} "
-                  f"-> {r['newton']:4d} ({r['ratio']:.2f}x)  N {r['normal_force_frictionless']:.6g} -> "
-                  f"{r['normal_force']:.6g}  T {r['tangential_force']:.6g}  min order {r['min_order']}  {r['status']}",
-                  flush=True)
+    for name, path, case, tmp in shipped_cases(args.cases):
+        for c in contacts_of(case):
+            c["friction"] = args.friction
+        case.setdefault("output", {})["vtk"] = False
+        variant = tmp / f"{name}_friction.toml"
+        write_case(case, variant, f"{name} with friction {args.friction} (bench/finite_strain_friction.py)")
+        plain = run(args.igac, path, tmp / name)
+        frictional = run(args.igac, variant, tmp / f"{name}_friction")
+        rows.append({"case": name, "friction": args.friction, "status": frictional["status"],
+                     "steps_frictionless": plain["steps"], "steps": frictional["steps"],
+                     "newton_frictionless": plain["newton"], "newton": frictional["newton"],
+                     "ratio": round(frictional["newton"] / plain["newton"], 3),
+                     "cut_backs": frictional["cut_backs"],
+                     "normal_force_frictionless": plain["normal_force"], "normal_force": frictional["normal_force"],
+                     "tangential_force": frictional["tangential_force"],
+                     "min_order": round(frictional["min_order"], 3)})
+        r = rows[-1]
+        print(f"{name:34s} steps {r['steps_frictionless']:3d} -> {r['steps']:3d}  Newton {r['newton_frictionless']:4d} "
+              f"-> {r['newton']:4d} ({r['ratio']:.2f}x)  N {r['normal_force_frictionless']:.6g} -> "
+              f"{r['normal_force']:.6g}  T {r['tangential_force']:.6g}  min order {r['min_order']}  {r['status']}",
+              flush=True)
     out = HERE / "results" / "finite_strain_friction.csv"
     write_rows(out, rows)
     print(f"wrote {out}")

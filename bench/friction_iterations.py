@@ -51,6 +51,21 @@ def read_shipped_case(name):
     return path, case
 
 
+def shipped_case_arguments(default_cases):
+    """The options of a bench over shipped cases: --igac and the case names."""
+    ap = argparse.ArgumentParser(description=sys.modules["__main__"].__doc__.splitlines()[0])
+    ap.add_argument("--igac", default=str(HERE.parent / "build" / "igac"))
+    ap.add_argument("cases", nargs="*", default=default_cases)
+    return ap
+
+
+def shipped_cases(names):
+    """Each shipped case as (name, path, tables, a temporary folder for its variants and outputs)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in names:
+            yield (name, *read_shipped_case(name), Path(tmp))
+
+
 def iterations(igac, case, out):
     subprocess.run([igac, "run", str(case), "--out", str(out), "--quiet"], check=True)
     with open(out / "summary.json") as f:
@@ -59,25 +74,19 @@ def iterations(igac, case, out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--igac", default=str(HERE.parent / "build" / "igac"))
-    ap.add_argument("cases", nargs="*", default=["cattaneo_mindlin", "cattaneo_mindlin_two_bodies"])
-    args = ap.parse_args()
+    args = shipped_case_arguments(["cattaneo_mindlin", "cattaneo_mindlin_two_bodies"]).parse_args()
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        tmp = Path(tmp)
-        for name in args.cases:
-            path, case = read_shipped_case(name)
-            case.pop("loading", None)
-            for c in contacts_of(case):
-                c.pop("friction", None)
-            variant = tmp / f"{name}_frictionless.toml"
-            write_case(case, variant, f"{name} without friction (bench/friction_iterations.py)")
-            plain, _ = iterations(args.igac, variant, tmp / f"{name}_frictionless")
-            total, steps = iterations(args.igac, path, tmp / name)
-            rows.append({"case": name, "frictionless": plain, "frictional_press": steps[0],
-                         "ratio": round(steps[0] / plain, 3), "drag_steps": " ".join(map(str, steps[1:])),
-                         "frictional_total": total})
+    for name, path, case, tmp in shipped_cases(args.cases):
+        case.pop("loading", None)
+        for c in contacts_of(case):
+            c.pop("friction", None)
+        variant = tmp / f"{name}_frictionless.toml"
+        write_case(case, variant, f"{name} without friction (bench/friction_iterations.py)")
+        plain, _ = iterations(args.igac, variant, tmp / f"{name}_frictionless")
+        total, steps = iterations(args.igac, path, tmp / name)
+        rows.append({"case": name, "frictionless": plain, "frictional_press": steps[0],
+                     "ratio": round(steps[0] / plain, 3), "drag_steps": " ".join(map(str, steps[1:])),
+                     "frictional_total": total})
     print(f"{'case':32s} {'frictionless':>12s} {'press':>6s} {'ratio':>6s}  drag steps")
     for r in rows:
         print(f"{r['case']:32s} {r['frictionless']:12d} {r['frictional_press']:6d} {r['ratio']:6.2f}  {r['drag_steps']}")
