@@ -82,7 +82,7 @@ void MasterSurface::build_elements() {
   if (!elements_.empty()) build_tree(0, int(elements_.size()));
 }
 
-void MasterSurface::evaluate(const Element& e, const Eigen::VectorXd& s, Eigen::VectorXd& S, Eigen::MatrixXd& dS) const {
+void MasterSurface::evaluate(const Element& e, const Params& s, Point& S, Tangents& dS) const {
   const int n = int(s.size()), sd = int(e.points.cols());
   std::array<std::array<double, 32>, 2> B{}, dB{};
   for (int d = 0; d < n; ++d) bernstein(e.degree[d], s[d], B[d].data(), dB[d].data());
@@ -91,8 +91,8 @@ void MasterSurface::evaluate(const Element& e, const Eigen::VectorXd& s, Eigen::
   // Homogeneous sums: w, num = sum w B X, and their derivatives.
   double w = 0;
   std::array<double, 2> dw{0, 0};
-  Eigen::VectorXd num = Eigen::VectorXd::Zero(sd);
-  Eigen::MatrixXd dnum = Eigen::MatrixXd::Zero(sd, n);
+  Point num = Point::Zero(sd);
+  Tangents dnum = Tangents::Zero(sd, n);
   for (int j = 0; j < n1; ++j)
     for (int i = 0; i < n0; ++i) {
       const int a = i + n0 * j;
@@ -142,13 +142,15 @@ int MasterSurface::build_tree(int first, int count) {
   return id;
 }
 
-MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::VectorXd& x) const {
+MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::VectorXd& x_query) const {
+  using Hessian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
   const Side& side = sides_[e.side];
   const int n = int(e.lo.size());
-  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n), one = Eigen::VectorXd::Ones(n);
-  auto inside = [&](const Eigen::VectorXd& s) { return Eigen::VectorXd(s.cwiseMax(zero).cwiseMin(one)); };
-  Eigen::VectorXd s = Eigen::VectorXd::Constant(n, 0.5), S, Sn, Sa, Sb;
-  Eigen::MatrixXd J, Jn, Ja, Jb;
+  const Point x = x_query;
+  auto inside = [&](const Params& s) { return Params(s.cwiseMax(0.0).cwiseMin(1.0)); };
+  Params s = Params::Constant(n, 0.5);
+  Point S, Sn, Sa, Sb;
+  Tangents J, Jn, Ja, Jb;
   evaluate(e, s, S, J);
   double f = 0.5 * (S - x).squaredNorm();
   constexpr double h = 1e-6;
@@ -160,13 +162,14 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
   // the element, in its Bezier coordinates s in [0, 1]^n.
   bool curvature = false;
   for (int it = 0; it < kNewtonIterations; ++it) {
-    const Eigen::VectorXd g = J.transpose() * (S - x);
+    const Params g = J.transpose() * (S - x);
     if (g.norm() <= 1e-15 * (S - x).norm() * J.norm() + 1e-300) break;
     if (it >= kGaussNewtonIterations) curvature = true;
-    Eigen::MatrixXd H = J.transpose() * J;
+    const Hessian JJ = J.transpose() * J;
+    Hessian H = JJ;
     if (curvature) {
       for (int j = 0; j < n; ++j) {
-        Eigen::VectorXd a = s, b = s;
+        Params a = s, b = s;
         a[j] += h;
         b[j] -= h;
         evaluate(e, a, Sa, Ja);
@@ -177,30 +180,29 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
     }
     // Coordinates held at a bound of the element that the gradient pushes
     // outward stay there; Newton runs on the others.
-    std::vector<int> free;
+    std::array<int, 2> free{};
+    int m = 0;
     for (int j = 0; j < n; ++j)
-      if (!((s[j] <= 0 && g[j] > 0) || (s[j] >= 1 && g[j] < 0))) free.push_back(j);
-    if (free.empty()) break;  // a corner of the element is the nearest point
-    const int m = int(free.size());
-    Eigen::MatrixXd Hf(m, m), JtJ(m, m);
-    Eigen::VectorXd gf(m);
-    const Eigen::MatrixXd JJ = J.transpose() * J;
+      if (!((s[j] <= 0 && g[j] > 0) || (s[j] >= 1 && g[j] < 0))) free[m++] = j;
+    if (m == 0) break;  // a corner of the element is the nearest point
+    Hessian Hf(m, m), JtJ(m, m);
+    Params gf(m);
     for (int a = 0; a < m; ++a) {
       gf[a] = g[free[a]];
       for (int b = 0; b < m; ++b) Hf(a, b) = H(free[a], free[b]), JtJ(a, b) = JJ(free[a], free[b]);
     }
-    Eigen::LDLT<Eigen::MatrixXd> ldlt(Hf);
+    Eigen::LDLT<Hessian> ldlt(Hf);
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0) ldlt.compute(JtJ);
-    const Eigen::VectorXd sf = -ldlt.solve(gf);
+    const Params sf = -ldlt.solve(gf);
     if (!sf.allFinite()) break;
-    Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
+    Params step = Params::Zero(n);
     for (int a = 0; a < m; ++a) step[free[a]] = sf[a];
     // Converged: a step below round-off of the coordinates (the gradient
     // itself stalls at round-off of the coordinates, far above 0 when the
     // point is away from the surface).
-    if (step.norm() <= 1e-13) break;
+    if (sf.norm() <= 1e-13) break;  // (|step| = |sf|)
     double t = 1;
-    Eigen::VectorXd next = inside(s + step);
+    Params next = inside(s + step);
     evaluate(e, next, Sn, Jn);
     while (0.5 * (Sn - x).squaredNorm() > f * (1 + 1e-13) && t > 1e-6) {  // (round-off of f tolerated)
       curvature = true;
@@ -237,10 +239,13 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) cons
   double bound = std::numeric_limits<double>::infinity();
   // A point on the surface to round-off: no other element can be nearer.
   const double on_surface = 1e-14 * (nodes_[0].hi - nodes_[0].lo).norm();
-  std::vector<int> stack{0};
-  while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
+  // Depth-first, nearer child first: at most one pending sibling per level
+  // of the median-split tree (depth log2(elements)).
+  std::array<int, 128> stack{};
+  int pending = 0;
+  stack[pending++] = 0;
+  while (pending > 0) {
+    const Node& node = nodes_[stack[--pending]];
     if (box_distance(x, node.lo, node.hi) >= bound) continue;
     if (node.left < 0) {
       for (int i = node.first; i < node.first + node.count; ++i) {
@@ -260,8 +265,9 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) cons
     // Nearer child on top of the stack: visited first.
     const double dl = box_distance(x, nodes_[node.left].lo, nodes_[node.left].hi);
     const double dr = box_distance(x, nodes_[node.right].lo, nodes_[node.right].hi);
-    if (dl <= dr) stack.insert(stack.end(), {node.right, node.left});
-    else stack.insert(stack.end(), {node.left, node.right});
+    const bool left_first = dl <= dr;
+    stack[pending++] = left_first ? node.right : node.left;
+    stack[pending++] = left_first ? node.left : node.right;
   }
   return best;
 }

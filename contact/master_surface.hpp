@@ -84,8 +84,13 @@ class MasterSurface {
     Eigen::MatrixXd points;              // rational Bezier control points (n_local x dim), first direction fastest
     Eigen::VectorXd weights;
   };
+  // Sizes bounded by 3 space and 2 parameter dimensions: the projection's
+  // inner loop (most of a two-body run's contact time) allocates nothing.
+  using Point = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+  using Params = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
+  using Tangents = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 2>;
   // The element's point S and tangents dS/ds at Bezier coordinates s.
-  void evaluate(const Element& e, const Eigen::VectorXd& s, Eigen::VectorXd& S, Eigen::MatrixXd& dS) const;
+  void evaluate(const Element& e, const Params& s, Point& S, Tangents& dS) const;
   struct Node {
     Eigen::VectorXd lo, hi;
     int left = -1, right = -1;           // children, or -1 for a leaf
