@@ -7,17 +7,33 @@
 
 namespace igac {
 
+const std::vector<MortarPointCache::Point>& MortarPointCache::at(const ContactFace& slave, const MasterSurface& master,
+                                                                 MortarIntegration integration, const Eigen::MatrixXd& u,
+                                                                 const ContactQuadrature& tabulated) {
+  if (valid_ && u_.rows() == u.rows() && u_.cols() == u.cols() && u_ == u) return points_;
+  points_.clear();
+  for_each_mortar_point(slave, master, integration, &u, [&](const MortarSlavePoint& sp) {
+    std::optional<MasterPoint> mp = master.project(sp.x);
+    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    points_.push_back({sp, std::move(*mp)});
+  }, &tabulated);
+  u_ = u;
+  valid_ = true;
+  return points_;
+}
+
 void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, MasterSurface& master,
                               MortarIntegration integration, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                              int offset, const FiniteStrainMortarTerms& out, const ContactQuadrature& tabulated) {
+                              int offset, const FiniteStrainMortarTerms& out, const ContactQuadrature& tabulated,
+                              MortarPointCache& points) {
   master.update(u);
   const int dim = dofs.dim(), pd = dim - 1;
   std::vector<int> master_local, master_cps, eq_s, eq_m, eq_block;
   Eigen::VectorXd R;
   Eigen::MatrixXd dR, P, W, H, block;
-  for_each_mortar_point(slave, master, integration, &u, [&](const MortarSlavePoint& sp) {
-    const std::optional<MasterPoint> mp = master.project(sp.x);
-    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+  for (const MortarPointCache::Point& point : points.at(slave, master, integration, u, tabulated)) {
+    const MortarSlavePoint& sp = point.slave;
+    const MasterPoint* mp = &point.master;
     double lambda_B = 0;  // sum_K lambda_K B_K at the point, times the weight
     for (size_t k = 0; k < sp.K.size(); ++k) {
       const double bw = sp.B[k] * sp.JxW;
@@ -25,7 +41,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
       lambda_B += lambda[sp.K[k]] * bw;
     }
     if (out.resultant) *out.resultant -= lambda_B * mp->normal;
-    if (!out.G) return;
+    if (!out.G) continue;
     const NurbsPatch& face = master.side_patch(mp->side);
     face.rational_basis(mp->xi, master_local, R, dR);
     const std::vector<int>& side_cps = master.side_control_points(mp->side);
@@ -47,7 +63,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
         for (int i = 0; i < dim; ++i)
           if (eq_m[b * dim + i] >= 0) out.G->emplace_back(row, eq_m[b * dim + i], -bw * R[b] * n[i]);
     }
-    if (!out.K || lambda_B == 0.0) return;
+    if (!out.K || lambda_B == 0.0) continue;
     // lambda_B Delta delta g over the local dofs: the slave's, then the master's
     const Eigen::MatrixXd a = face.jacobian(mp->xi);  // current tangents, dim x pd
     const Eigen::MatrixXd second = face.second_derivatives(mp->xi);
@@ -79,7 +95,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
     scatter_element_matrix(*out.K, out.K->valuePtr(), eq_s, block);
     block = H.bottomRightCorner(nm * dim, nm * dim);
     scatter_element_matrix(*out.K, out.K->valuePtr(), eq_m, block);
-    if (!out.K_coupling) return;
+    if (!out.K_coupling) continue;
     for (int r = 0; r < ns * dim; ++r) {
       if (eq_s[r] < 0) continue;
       for (int c = 0; c < nm * dim; ++c) {
@@ -88,7 +104,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
         out.K_coupling->emplace_back(eq_m[c], eq_s[r], H(ns * dim + c, r));
       }
     }
-  }, &tabulated);
+  }
 }
 
 }  // namespace igac

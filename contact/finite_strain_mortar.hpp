@@ -47,13 +47,37 @@ struct FiniteStrainMortarTerms {
   Eigen::VectorXd* resultant = nullptr;
 };
 
+// The slave points of one contact's mortar integral with their master
+// projections, kept for the last displacement asked about: the residual,
+// the Jacobian and the resultants of one Newton state share one cut and
+// one search (in 3D most of a two-body run's time).  Compared exactly: any
+// other u recomputes.
+class MortarPointCache {
+ public:
+  struct Point {
+    MortarSlavePoint slave;
+    MasterPoint master;
+  };
+  // The points at u; `master` already moved to u (recomputed when u differs
+  // from the last call's).
+  const std::vector<Point>& at(const ContactFace& slave, const MasterSurface& master, MortarIntegration integration,
+                               const Eigen::MatrixXd& u, const ContactQuadrature& tabulated);
+
+ private:
+  Eigen::MatrixXd u_;
+  bool valid_ = false;
+  std::vector<Point> points_;
+};
+
 // Adds contact (slave, master) at displacement u (n_cp x dim, prescribed
 // values included) to `out`: `master` is moved to u first.  lambda: the
 // multipliers of this contact (the face's numbering), weighting the
 // curvature terms; its rows start at `offset`.  `tabulated`: the slave's
-// quadrature, tabulated once by the caller (element-based integration).
+// quadrature, tabulated once by the caller (element-based integration);
+// `points`: this contact's cache.
 void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, MasterSurface& master,
                               MortarIntegration integration, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                              int offset, const FiniteStrainMortarTerms& out, const ContactQuadrature& tabulated);
+                              int offset, const FiniteStrainMortarTerms& out, const ContactQuadrature& tabulated,
+                              MortarPointCache& points);
 
 }  // namespace igac

@@ -24,6 +24,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
     for (const auto& c : s_.contacts) contact_quadratures_.emplace_back(*c.face);
+    mortar_points_.resize(s_.contacts.size());
     // K_K on the reference faces: the small-deformation operator's weights
     for (size_t k = 0; k < s_.contacts.size(); ++k) {
       const auto& c = s_.contacts[k];
@@ -73,7 +74,7 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
                                              : Eigen::VectorXd::Zero(count),
                                offset, {&out.gamma, coupling ? &out.G : nullptr, K, K_coupling,
                                         coupling ? &out.resultants[c] : nullptr},
-                               contact_quadratures_[c]);
+                               contact_quadratures_[c], mortar_points_[c]);
       continue;
     }
     // A moving obstacle stands at its reference position moved by t * motion.

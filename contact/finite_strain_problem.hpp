@@ -154,6 +154,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   RigidModes modes_;                 // of the free displacements
   BlockJacobian blocks_;             // jacobian()'s, reused across calls
   std::vector<ContactQuadrature> contact_quadratures_;  // per contact: tabulated once
+  mutable std::vector<MortarPointCache> mortar_points_;  // per contact: its last state's mortar points
   std::vector<int> offsets_;         // first multiplier of each contact
   // per contact: its master surface, moved to every state asked about (null: an obstacle)
   std::vector<std::unique_ptr<MasterSurface>> masters_;
