@@ -70,6 +70,11 @@ void MasterSurface::build_elements() {
       for (int d = 0; d < n; ++d) e.lo[d] = be.lower[d], e.hi[d] = be.upper[d], e.degree[d] = mesh.degree(d);
       e.points = be.points;
       e.weights = be.weights;
+      e.homogeneous.assign(size_t(be.points.rows()), {0, 0, 0, 0});
+      for (int a = 0; a < be.points.rows(); ++a) {
+        for (int c = 0; c < be.points.cols(); ++c) e.homogeneous[a][c] = be.weights[a] * be.points(a, c);
+        e.homogeneous[a][3] = be.weights[a];
+      }
       // The Bezier control points hold the element (positive weights).
       e.box_lo = be.points.colwise().minCoeff().transpose();
       e.box_hi = be.points.colwise().maxCoeff().transpose();
@@ -88,27 +93,25 @@ void MasterSurface::evaluate(const Element& e, const Params& s, Point& S, Tangen
   for (int d = 0; d < n; ++d) bernstein(e.degree[d], s[d], B[d].data(), dB[d].data());
   if (n == 1) B[1][0] = 1, dB[1][0] = 0;
   const int n0 = e.degree[0] + 1, n1 = n > 1 ? e.degree[1] + 1 : 1;
-  // Homogeneous sums: w, num = sum w B X, and their derivatives.
-  double w = 0;
-  std::array<double, 2> dw{0, 0};
-  Point num = Point::Zero(sd);
-  Tangents dnum = Tangents::Zero(sd, n);
+  // Homogeneous sums sum B (w x, w) and their derivatives along s_0, s_1.
+  std::array<double, 4> h{}, h0{}, h1{};
   for (int j = 0; j < n1; ++j)
     for (int i = 0; i < n0; ++i) {
-      const int a = i + n0 * j;
-      const double wa = e.weights[a];
-      const double b = B[0][i] * B[1][j];
-      const std::array<double, 2> db{dB[0][i] * B[1][j], B[0][i] * dB[1][j]};
-      w += wa * b;
-      num += (wa * b) * e.points.row(a).transpose();
-      for (int d = 0; d < n; ++d) {
-        dw[d] += wa * db[d];
-        dnum.col(d) += (wa * db[d]) * e.points.row(a).transpose();
+      const std::array<double, 4>& p = e.homogeneous[size_t(i + n0 * j)];
+      const double b = B[0][i] * B[1][j], b0 = dB[0][i] * B[1][j], b1 = B[0][i] * dB[1][j];
+      for (int c = 0; c < 4; ++c) {
+        h[c] += b * p[c];
+        h0[c] += b0 * p[c];
+        h1[c] += b1 * p[c];
       }
     }
-  S = num / w;
+  S.resize(sd);
   dS.resize(sd, n);
-  for (int d = 0; d < n; ++d) dS.col(d) = (dnum.col(d) - S * dw[d]) / w;
+  for (int c = 0; c < sd; ++c) {
+    S[c] = h[c] / h[3];
+    dS(c, 0) = (h0[c] - S[c] * h0[3]) / h[3];
+    if (n > 1) dS(c, 1) = (h1[c] - S[c] * h1[3]) / h[3];
+  }
 }
 
 int MasterSurface::build_tree(int first, int count) {

@@ -83,6 +83,9 @@ class MasterSurface {
     std::array<int, 2> degree{0, 0};
     Eigen::MatrixXd points;              // rational Bezier control points (n_local x dim), first direction fastest
     Eigen::VectorXd weights;
+    // The same in homogeneous form, 4 numbers per point: w x, w y, w z (0 in
+    // 2D), w; what evaluate() sums, in fixed-width loops.
+    std::vector<std::array<double, 4>> homogeneous;
   };
   // Sizes bounded by 3 space and 2 parameter dimensions: the projection's
   // inner loop (most of a two-body run's contact time) allocates nothing.
