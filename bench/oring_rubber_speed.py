@@ -8,7 +8,7 @@ in the same run (issue 24: time within 2x of cases/oring.toml).
 Runs, one after the other (OMP_NUM_THREADS=1), N times each:
   oring                 cases/oring.toml (K/G = 50, displacement formulation)
   rubber_kinsol         cases/oring_rubber.toml with KINSOL's line search and
-                        the extrapolating predictor (the driver before)
+                        the extrapolating predictor (the driver's defaults)
   rubber                cases/oring_rubber.toml as shipped (line_search =
                         "halving", predictor = "tangent_every_step")
   rubber_fixed_steps    as shipped with max_increment = 0.05: the load factors

@@ -2,8 +2,10 @@
 #include "contact/finite_strain_problem.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 
 #include "engine/follower_pressure.hpp"
@@ -43,6 +45,28 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     friction_ = std::make_unique<FiniteStrainFriction>(*s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale);
     mt_ = friction_->rows();
   }
+  weights_of_rows_.resize(0);
+  if (tl_->has_mixed()) {  // the u-p Newton: the element dilatations' rows, scaled at rest
+    nz_ = tl_->num_elements();
+    const int dim = s_.dofs->dim();
+    TotalLagrangianAssembler::LocalDilatation rest;
+    Eigen::VectorXd f;
+    const Eigen::VectorXd z = Eigen::VectorXd::Zero(nz_);
+    if (!tl_->assemble(Eigen::MatrixXd::Zero(s_.dofs->num_dofs() / dim, dim), f, nullptr, &z, &rest))
+      throw std::logic_error("the mixed formulation refuses the reference state");
+    local_scale_ = Eigen::VectorXd::Ones(nz_);
+    weights_of_rows_ = Eigen::VectorXd::Ones(size());
+    for (int e = 0; e < nz_; ++e) {
+      if (!(rest.shear[e] > 0) || !(rest.volume[e] > 0)) continue;  // a displacement element: z_e stays 0
+      local_scale_[e] = rest.shear[e] * std::pow(rest.volume[e], double(dim - 1) / dim);
+      weights_of_rows_[n_ + m_ + mt_ + e] = rest.stiffness[e] / (rest.volume[e] * rest.shear[e]);  // U''(1) / mu_s
+    }
+  }
+}
+
+Eigen::VectorXd FiniteStrainProblem::local_residual(const TotalLagrangianAssembler::LocalDilatation& local,
+                                                    const Eigen::VectorXd& z) const {
+  return local_scale_.cwiseProduct(local.projected - z);
 }
 
 Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorXd& x) const {
@@ -124,14 +148,17 @@ std::vector<char> FiniteStrainProblem::decide_active(const Eigen::VectorXd& gamm
 bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) {
   const Eigen::MatrixXd u = displacement(t, x);
   Eigen::VectorXd f_int;
-  if (!tl_->assemble(u, f_int, nullptr)) return false;
+  TotalLagrangianAssembler::LocalDilatation local;
+  const Eigen::VectorXd z = x.tail(nz_);
+  if (!tl_->assemble(u, f_int, nullptr, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(n_);
   for (const auto& p : s_.pressures) {
     if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
     else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   }
-  r.resize(n_ + m_ + mt_);
+  r.resize(size());
   r.head(n_) = f_int - f_ext;
+  if (nz_ > 0) r.tail(nz_) = local_residual(local, z);
   if (m_ > 0) {
     const Eigen::VectorXd lambda = normal_multipliers(x);
     ContactEval ce;
@@ -143,7 +170,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     last_gamma_ = ce.gamma;
     for (int K = 0; K < m_; ++K)
       r[n_ + K] = active[K] ? s_.complementarity_scale * ce.gamma[K] : weights_[K] * lambda[K];
-    if (friction_) friction_->residual(t, u, lambda, ce.gamma, active, x.tail(mt_), r.head(n_), r.tail(mt_));
+    if (friction_) friction_->residual(t, u, lambda, ce.gamma, active, tangential(x), r.head(n_), r.segment(n_ + m_, mt_));
   }
   return true;
 }
@@ -152,7 +179,10 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   const Eigen::MatrixXd u = displacement(t, x);
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
   if (J.K.rows() != n_ || J.K.nonZeros() != tl_->pattern().nonZeros()) J.K = tl_->pattern();  // then filled in place
-  if (!tl_->assemble(u, f_int, &J.K)) return false;
+  TotalLagrangianAssembler::LocalDilatation local;
+  const Eigen::VectorXd z = x.tail(nz_);
+  if (!tl_->assemble(u, f_int, &J.K, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
+  J.local = {};  // set last: the friction's whole matrix below is the condensed one
   J.B.resize(m_, n_);
   J.s = Eigen::VectorXd::Zero(m_);
   J.d = Eigen::VectorXd::Zero(m_);
@@ -195,16 +225,21 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     for (int c = 0; c < normal.outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator it(normal, c); it; ++it)
         trip.emplace_back(int(it.row()), int(it.col()), it.value());
-    friction_->jacobian(t, u, normal_multipliers(x), gamma, active, x.tail(mt_), J.B, trip);
-    J.K.resize(size(), size());
+    friction_->jacobian(t, u, normal_multipliers(x), gamma, active, tangential(x), J.B, trip);
+    J.K.resize(n_ + m_ + mt_, n_ + m_ + mt_);  // the element dilatations condensed (J.local, below)
     J.K.setFromTriplets(trip.begin(), trip.end());
     J.K.makeCompressed();
     J.K_factor.resize(0, 0);
     J.K_coupling.resize(0, 0);
-    J.B.resize(0, size());
+    J.B.resize(0, n_ + m_ + mt_);
     J.s.resize(0);
     J.d.resize(0);
     J.general = true;
+  }
+  if (nz_ > 0) {  // the element dilatations, condensed by the solver (BlockJacobian::local)
+    J.local.C = local.mean_B;
+    J.local.g = local.stiffness;
+    J.local.h = local_scale_;
   }
   return true;
 }
@@ -238,7 +273,7 @@ std::vector<char> FiniteStrainProblem::active_set(double t, const Eigen::VectorX
 std::vector<char> FiniteStrainProblem::friction_states(double t, const Eigen::VectorXd& x) const {
   if (!friction_) return {};
   const Eigen::VectorXd gamma = gaps_at(t, x), lambda = normal_multipliers(x);
-  return friction_->states(t, displacement(t, x), lambda, gamma, decide_active(gamma, lambda), x.tail(mt_));
+  return friction_->states(t, displacement(t, x), lambda, gamma, decide_active(gamma, lambda), tangential(x));
 }
 
 Eigen::VectorXd FiniteStrainProblem::accumulated_slip(double t, const Eigen::VectorXd& x) const {
@@ -271,7 +306,7 @@ std::vector<Eigen::VectorXd> FiniteStrainProblem::contact_resultants(double t, c
   ContactEval ce;
   evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce);
   if (friction_)
-    for (size_t k = 0; k < ce.resultants.size(); ++k) ce.resultants[k] += friction_->tangential_resultant(int(k), x.tail(mt_));
+    for (size_t k = 0; k < ce.resultants.size(); ++k) ce.resultants[k] += friction_->tangential_resultant(int(k), tangential(x));
   return ce.resultants;
 }
 
@@ -284,7 +319,7 @@ Eigen::VectorXd FiniteStrainProblem::contact_forces_on_every_dof(double t, const
   evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, true, nullptr, &every);
   for (const auto& g : ce.G) f[g.col()] += lambda[g.row()] * g.value();
   for (int i = 0; i < every.num_dofs(); ++i) out[i] = f[every.equation(i)];
-  if (friction_) out += friction_->forces_on_every_dof(x.tail(mt_));
+  if (friction_) out += friction_->forces_on_every_dof(tangential(x));
   return out;
 }
 

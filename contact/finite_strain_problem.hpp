@@ -8,7 +8,22 @@
 // Unknowns x = [u_free (n); lambda (m)], and with friction on some contact
 // the tangential multipliers [lambda_t (m (dim-1))] after them
 // (contact/finite_strain_friction.hpp; the Newton matrix is then handed over
-// whole, BlockJacobian::general).  With gamma_K(u) = int B_K g_n(X + u) dGamma_0
+// whole, BlockJacobian::general).  With a mixed patch, last, every
+// element's dilatation z_e = theta_e - 1 (the u-p Newton of the mixed
+// formulation, docs/design.md "Nearly incompressible solids"): the element
+// pressure is U'(theta_e), updated by Newton from the linearised constraint
+// (dtheta_e = Bbar_e du + Pi_e J - theta_e), not recomputed from u as
+// K (Pi_e J - 1), whose error after a rotation-like step is K times the
+// step squared.  Its rows
+//   R_z_e = mu_s V_e^{(d-1)/d} (Pi_e J - 1 - z_e)
+// (zero at the condensed formulation's solution, so the converged state is
+// the same) are condensed element by element in the linear solve
+// (BlockJacobian::local): the matrix the solvers see keeps its pattern and
+// symmetry.  Scaled with the shear modulus mu_s in the residual (the line
+// search's |R|_2), with the bulk modulus in the convergence test
+// (residual_weights): there U''(1) V_e^{(d-1)/d} |Pi_e J - theta_e|, about
+// the force the pressure error K (Pi_e J - theta_e) puts on the element's
+// nodes, must fall below the force tolerance as the displacement rows do.  With gamma_K(u) = int B_K g_n(X + u) dGamma_0
 // (weighted gaps integrated on the reference face, K_K = int B_K dGamma_0):
 //   R_u       = f_int(u) - t f_ext(u) + sum_K lambda_K dgamma_K/du,
 //   R_lambda_K = c gamma_K            where K_K lambda_K + c gamma_K < 0 (active),
@@ -80,11 +95,15 @@ struct FiniteStrainSetup {
 class FiniteStrainProblem final : public NonlinearProblem {
  public:
   explicit FiniteStrainProblem(FiniteStrainSetup setup);
-  int size() const override { return n_ + m_ + mt_; }
+  int size() const override { return n_ + m_ + mt_ + nz_; }
   int num_displacements() const { return n_; }
   int num_multipliers() const { return m_; }
   // Tangential multipliers (0 without friction), after the normal ones.
   int num_tangential() const { return mt_; }
+  // Element dilatations (the u-p Newton of a mixed patch), after them: one
+  // per element of the body, 0 without a mixed patch.
+  int num_local() const { return nz_; }
+  Eigen::VectorXd residual_weights() const override { return weights_of_rows_; }
   void begin_step(double t, const Eigen::VectorXd& x) override;
   bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override;
   bool jacobian(double t, const Eigen::VectorXd& x, Eigen::SparseMatrix<double>& J) override;
@@ -146,7 +165,14 @@ class FiniteStrainProblem final : public NonlinearProblem {
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;
-  int n_ = 0, m_ = 0, mt_ = 0;
+  int n_ = 0, m_ = 0, mt_ = 0, nz_ = 0;
+  Eigen::VectorXd tangential(const Eigen::VectorXd& x) const { return x.segment(n_ + m_, mt_); }
+  // The u-p Newton (num_local): the local rows' scale mu_s V_e^{(d-1)/d}
+  // (1 for a displacement element's z_e, which stays 0), and the weights
+  // of the convergence test (1 on the other rows, U''(1) / mu_s on these).
+  Eigen::VectorXd local_scale_, weights_of_rows_;
+  // r_z = h (Pi_e J - 1 - z) from the assembler's element values
+  Eigen::VectorXd local_residual(const TotalLagrangianAssembler::LocalDilatation& local, const Eigen::VectorXd& z) const;
   std::unique_ptr<FiniteStrainFriction> friction_;  // null: frictionless
   Eigen::VectorXd normal_multipliers(const Eigen::VectorXd& x) const { return x.segment(n_, m_); }
   std::unique_ptr<TotalLagrangianAssembler> tl_;

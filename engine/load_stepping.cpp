@@ -37,6 +37,12 @@ struct Attempt {
   // kept for KINSOL's evaluation at the same state, which follows.
   bool halving = false;
   Eigen::VectorXd x_jacobian, x_accepted, r_accepted;
+  Eigen::VectorXd weights;  // NonlinearProblem::residual_weights (empty: 1)
+  // max_i w_i |R_i| / scale: what the convergence test measures
+  double relative(const Eigen::VectorXd& r) const {
+    if (r.size() == 0) return 0;
+    return (weights.size() ? r.cwiseAbs().cwiseProduct(weights).maxCoeff() : r.cwiseAbs().maxCoeff()) / scale;
+  }
 };
 
 Eigen::Map<Eigen::VectorXd> view(N_Vector v) { return {N_VGetArrayPointer(v), N_VGetLength(v)}; }
@@ -122,7 +128,7 @@ int jacobian_fn(N_Vector u, N_Vector fu, SUNMatrix, void* data, N_Vector, N_Vect
 int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
   const Eigen::VectorXd x = view(u);
   if (a.halving) a.x_jacobian = x;
-  a.record.residual_norms.push_back(view(fu).cwiseAbs().maxCoeff() / a.scale);
+  a.record.residual_norms.push_back(a.relative(view(fu)));
   const auto set = a.problem.active_set(a.t, x);
   a.record.active_set_sizes.push_back(int(std::count(set.begin(), set.end(), 1)));
   // Active-set cycling: the same set seen again after a different one, with
@@ -226,7 +232,9 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
   view(u) = x;
   N_VConst(1.0, us);
   a.scale = std::max(a.problem.force_scale(a.t, x), 1e-300);
-  N_VConst(1.0 / a.scale, fs);
+  a.weights = a.problem.residual_weights();
+  if (a.weights.size() == n) view(fs) = a.weights / a.scale;
+  else N_VConst(1.0 / a.scale, fs), a.weights.resize(0);
   // The matrix and the linear solver are declared before the KINSOL memory
   // so that KINFree runs first, while they still exist.
   const MatrixPtr A(SUNMatNewEmpty(ctx));
@@ -354,7 +362,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     for (int attempt = 0; attempt < 2 && !done; ++attempt) {
       if (attempt == 0 && !predicted) continue;
       Eigen::VectorXd x_try = attempt == 0 ? *predicted : x;
-      Attempt a{problem, t_new, 1.0, J, solver, summary, {}, {}, {}, {}, false, {}, {}, {}};
+      Attempt a{problem, t_new, 1.0, J, solver, summary, {}, {}, {}, {}, false, {}, {}, {}, {}};
       a.record.load_factor = t_new;
       bool ok = solve_step(a, x_try, ctx, opt);
       const int first_solve = a.record.newton_iterations;  // the step's speed, augmentations aside

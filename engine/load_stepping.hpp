@@ -66,6 +66,10 @@ class NonlinearProblem {
   virtual std::vector<char> active_set(double t, const Eigen::VectorXd& x) const { return {}; }
   // Force scale at (x; t) for the relative residual (e.g. |f_ext| + |f_int|).
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
+  // Per row, the weight of |R_i| in the convergence test (and the residual
+  // norms recorded), max_i w_i |R_i| / force scale <= tolerance; the line
+  // search measures R unweighted.  Empty: every row 1.
+  virtual Eigen::VectorXd residual_weights() const { return {}; }
   // An augmented Lagrangian (an incompressible solid, engine/total_lagrangian.hpp):
   // called once Newton has converged at (t, x); the problem updates its
   // multipliers from x and returns true when the step must be solved again

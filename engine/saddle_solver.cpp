@@ -24,7 +24,9 @@ constexpr int kMaxIterations = 90;
 constexpr double kBackwardError = 1e-13;
 }  // namespace
 
-Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {
+namespace {
+// J without the local unknowns (BlockJacobian::local condensed): the fallback's input.
+Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J) {
   const int n = int(J.K.rows()), m = int(J.B.rows());
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(J.K.nonZeros() + 2 * J.B.nonZeros() + m);
@@ -44,6 +46,33 @@ Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {
   A.setFromTriplets(t.begin(), t.end());
   A.makeCompressed();
   return A;
+}
+}  // namespace
+
+Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {
+  Eigen::SparseMatrix<double> A = assemble_condensed(J);
+  const BlockJacobian::Local& L = J.local;
+  if (L.size() == 0) return A;
+  const int nr = int(A.rows()), nz = L.size();
+  // the displacement block without the condensed C^T diag(g) C, and the local rows and columns
+  const Eigen::SparseMatrix<double> CtgC =
+      Eigen::SparseMatrix<double>(L.C.transpose()) * L.g.asDiagonal() * Eigen::SparseMatrix<double>(L.C);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (int c = 0; c < CtgC.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(CtgC, c); it; ++it) t.emplace_back(it.row(), it.col(), -it.value());
+  for (int e = 0; e < nz; ++e) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L.C, e); it; ++it) {
+      t.emplace_back(int(it.col()), nr + e, L.g[e] * it.value());
+      t.emplace_back(nr + e, int(it.col()), L.h[e] * it.value());
+    }
+    t.emplace_back(nr + e, nr + e, -L.h[e]);
+  }
+  Eigen::SparseMatrix<double> F(nr + nz, nr + nz);
+  F.setFromTriplets(t.begin(), t.end());
+  F.makeCompressed();
+  return F;
 }
 
 struct SaddleSolver::Impl {
@@ -193,7 +222,7 @@ struct SaddleSolver::Impl {
   }
 
   bool factor_full(std::string& why) {
-    full = assemble_full(*J);
+    full = assemble_condensed(*J);
     lu.compute(full);
     if (lu.info() != Eigen::Success) {
       why = "singular Newton matrix";
@@ -315,11 +344,19 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   return true;
 }
 
-bool SaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) {
+bool SaddleSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x, double tolerance) {
   auto& I = *impl_;
   const Stopwatch clock;
   ++stats_.solves;
   bool ok = true;
+  // the local unknowns condensed (BlockJacobian::local): b_u += C^T diag(g) b_z / h
+  const BlockJacobian::Local& L = I.J->local;
+  const int nz = L.size(), nr = int(b_whole.size()) - nz;
+  Eigen::VectorXd b = b_whole.head(nr), bz_h;
+  if (nz > 0) {
+    bz_h = b_whole.tail(nz).cwiseQuotient(L.h);
+    b.head(L.C.cols()).noalias() += L.C.transpose() * L.g.cwiseProduct(bz_h);
+  }
   if (I.fallback) {
     x = I.lu.solve(b);
   } else {
@@ -332,6 +369,10 @@ bool SaddleSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double to
       x = I.lu.solve(b);
       ok = true;
     }
+  }
+  if (nz > 0 && ok) {  // dz = C du - b_z / h
+    x.conservativeResize(nr + nz);
+    x.tail(nz).noalias() = L.C * x.head(L.C.cols()) - bz_h;
   }
   stats_.solve_s += clock.seconds();
   if (!ok || !x.allFinite()) {

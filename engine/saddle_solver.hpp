@@ -67,9 +67,23 @@ struct BlockJacobian {
   // absorbs; n x k, orthonormal) and k equations where they are pinned.
   Eigen::MatrixXd rigid_modes;
   std::vector<int> pinned;
+  // Optional: element-local unknowns z, the last C.rows() entries of x
+  // (after the multipliers), condensed in the solve: the mixed
+  // formulation's element dilatations (u-p Newton, engine/volumetric_projection.hpp).
+  // Their rows read h (C du - dz) and the displacement rows gain
+  // C^T diag(g) dz, so dz = C du - b_z / h and what is left is
+  //   (K_uu + C^T diag(g) C) du + ... = b_u + C^T diag(g) b_z / h:
+  // K above is that condensed matrix (the pattern and symmetry of K_uu),
+  // the whole J has K - C^T diag(g) C in its displacement block.
+  // C: z x n_u, n_u the displacements, the first n_u entries of x.
+  struct Local {
+    Eigen::SparseMatrix<double, Eigen::RowMajor> C;
+    Eigen::VectorXd g, h;
+    int size() const { return int(C.rows()); }
+  } local;
 };
 
-// J as one sparse matrix (the fallback's input, and the tests').
+// J as one sparse matrix, the local unknowns included (the tests').
 Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J);
 
 struct SaddleSolverStats {

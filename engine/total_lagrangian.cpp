@@ -55,9 +55,11 @@ struct Augmentation {
   double kappa = 0;
 };
 
+// `given` (the u-p Newton, TotalLagrangianAssembler::LocalDilatation): the
+// element's theta_e - 1, at which U', U'' are taken in place of Pi_e J's.
 template <int dim>
 bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double stabilisation, Augmentation aug,
-                         Workspace<dim>& ws) {
+                         const double* given, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nq = geo.n_q;
   ws.projection.build(geo.xi, geo.JxW, pressure_degree);
@@ -74,17 +76,19 @@ bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double
   ws.d2U.resize(nq);
   VolumetricValues v;
   for (int q = 0; q < nq; ++q) {
+    const double theta = given ? 1 + *given : ws.theta[q];
     if (aug.lambda) {
-      if (!(ws.theta[q] > 0)) return false;
-      ws.dU[q] = *aug.lambda + aug.kappa * (ws.theta[q] - 1);
+      if (!(theta > 0)) return false;
+      ws.dU[q] = *aug.lambda + aug.kappa * (given ? *given : ws.theta[q] - 1);
       ws.d2U[q] = aug.kappa;
       continue;
     }
-    if (!law.volumetric(ws.theta[q], v)) return false;
+    if (!law.volumetric(theta, v)) return false;
     ws.dU[q] = v.dU;
     ws.d2U[q] = v.d2U;
   }
-  ws.pressure.noalias() = Pi * ws.dU;
+  if (given) ws.pressure = ws.dU;  // the constant U'(theta_e)
+  else ws.pressure.noalias() = Pi * ws.dU;
   // the stabilisation's pressure mu_s (J - theta): the element's volume
   // modes that the projection does not see (volumetric_projection.hpp)
   ws.pressure += stabilisation * (ws.J - ws.theta);
@@ -108,7 +112,7 @@ void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, T
 
 template <int dim>
 bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree, double stabilisation,
-                    Augmentation aug, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
+                    Augmentation aug, const double* given, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
   const bool mixed = formulation == Formulation::mixed;
@@ -129,7 +133,7 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
         for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
     if (!F.allFinite() || !(F.determinant() > 0)) return false;
   }
-  if (mixed && !condense_volumetric<dim>(law, pressure_degree, stabilisation, aug, ws)) return false;
+  if (mixed && !condense_volumetric<dim>(law, pressure_degree, stabilisation, aug, given, ws)) return false;
   if (mixed && tangent) ws.B.resize(nq, nd);
   DimMatrix<dim> P;
   TangentMatrix<dim> A;
@@ -203,8 +207,18 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vec
                   const std::vector<double>& stabilisations, const TotalLagrangianAssembler::Incompressibility* inc,
                   const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
                   const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
-                  Eigen::VectorXd* dilatations) {
+                  const Eigen::VectorXd* given, TotalLagrangianAssembler::LocalDilatation* local) {
   const bool tangent = K != nullptr;
+  // the element rows of the u-p Newton: each element's mean B, kept per element, then one matrix
+  const int n_elements = quad.num_elements();
+  std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(n_elements) : 0);
+  std::vector<std::vector<int>> mean_B_eq(mean_B.size());
+  if (local) {
+    local->projected = Eigen::VectorXd::Zero(n_elements);
+    local->stiffness = Eigen::VectorXd::Zero(n_elements);
+    local->volume = Eigen::VectorXd::Zero(n_elements);
+    local->shear = Eigen::VectorXd::Zero(n_elements);
+  }
   f_int.setZero(dofs.num_free());
   if (tangent && !has_structure(*K, pattern)) *K = pattern;
   double* val = tangent ? K->valuePtr() : nullptr;
@@ -240,23 +254,44 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vec
         Augmentation aug;
         if (inc && formulation == Formulation::mixed)
           aug = {&inc->multipliers[colour[j]], inc->penalties[inc->penalties.size() == 1 ? 0 : patch]};
-        if (!element_kernel<dim>(law, formulation, pressure_degree, stabilisation, aug, u, tangent, ws)) {
+        const double* theta_e = given && formulation == Formulation::mixed ? &(*given)[colour[j]] : nullptr;
+        if (!element_kernel<dim>(law, formulation, pressure_degree, stabilisation, aug, theta_e, u, tangent, ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
         }
-        if (dilatations && formulation == Formulation::mixed) {  // the element's mean of theta - 1 (= Pi_e (J - 1))
-          double s = 0, w = 0;
-          for (int q = 0; q < ws.geo.n_q; ++q) s += ws.geo.JxW[q] * (ws.theta[q] - 1), w += ws.geo.JxW[q];
-          (*dilatations)[colour[j]] = s / w;
-        }
         dofs.element_equations(ws.geo.cps, ws.eq);
+        if (local && formulation == Formulation::mixed) {  // the element's mean of theta - 1 (= Pi_e (J - 1)), V_e, ...
+          const int e = colour[j];
+          double s = 0, w = 0, d2U = 0;
+          for (int q = 0; q < ws.geo.n_q; ++q) {
+            s += ws.geo.JxW[q] * (ws.theta[q] - 1), w += ws.geo.JxW[q];
+            d2U += ws.geo.JxW[q] * ws.d2U[q];
+          }
+          local->projected[e] = s / w;
+          local->volume[e] = w;
+          local->stiffness[e] = d2U;
+          local->shear[e] = stabilisation;
+          if (tangent) {  // every row of Bbar = Pi_e B is the mean (constants per element)
+            mean_B[e] = ws.Bbar.row(0).transpose();
+            mean_B_eq[e] = ws.eq;
+          }
+        }
         scatter_element_vector(ws.eq, ws.fe, f);
         if (!tangent) continue;
         scatter_element_matrix(pattern, val, ws.eq, ws.Ke);
       }
     }
   }
-  return !failed.load();
+  if (failed.load()) return false;
+  if (!mean_B.empty()) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int e = 0; e < n_elements; ++e)
+      for (Eigen::Index k = 0; k < mean_B[size_t(e)].size(); ++k)
+        if (mean_B_eq[size_t(e)][size_t(k)] >= 0) t.emplace_back(e, mean_B_eq[size_t(e)][size_t(k)], mean_B[size_t(e)][k]);
+    local->mean_B.resize(n_elements, dofs.num_free());
+    local->mean_B.setFromTriplets(t.begin(), t.end());
+  }
+  return true;
 }
 
 }  // namespace
@@ -320,17 +355,29 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
 
 bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int,
                                         Eigen::SparseMatrix<double>* K) const {
+  return assemble(u, f_int, K, nullptr, nullptr);
+}
+
+bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
+                                        const Eigen::VectorXd* dilatation, LocalDilatation* local) const {
   const int dim = dofs_.dim();
   if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
     throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
+  if (dilatation && dilatation->size() != quad_.num_elements())
+    throw std::invalid_argument(fmt::format("{} element dilatations for {} elements", dilatation->size(),
+                                            quad_.num_elements()));
   const Incompressibility* inc = incompressibility_ ? &*incompressibility_ : nullptr;
   return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc, colours_,
-                                   pattern_, u, f_int, K, nullptr)
+                                   pattern_, u, f_int, K, dilatation, local)
                   : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc, colours_,
-                                    pattern_, u, f_int, K, nullptr);
+                                    pattern_, u, f_int, K, dilatation, local);
+}
+
+bool TotalLagrangianAssembler::has_mixed() const {
+  return std::find(formulations_.begin(), formulations_.end(), Formulation::mixed) != formulations_.end();
 }
 
 void TotalLagrangianAssembler::make_incompressible(double tolerance) {
@@ -349,13 +396,11 @@ void TotalLagrangianAssembler::make_incompressible(double tolerance) {
 }
 
 bool TotalLagrangianAssembler::volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const {
-  dilatation = Eigen::VectorXd::Zero(quad_.num_elements());
+  LocalDilatation local;
   Eigen::VectorXd f;
-  const Incompressibility* inc = incompressibility_ ? &*incompressibility_ : nullptr;
-  return dofs_.dim() == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc,
-                                            colours_, pattern_, u, f, nullptr, &dilatation)
-                          : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc,
-                                            colours_, pattern_, u, f, nullptr, &dilatation);
+  const bool ok = assemble(u, f, nullptr, nullptr, &local);
+  dilatation = ok ? local.projected : Eigen::VectorXd::Zero(quad_.num_elements());
+  return ok;
 }
 
 bool TotalLagrangianAssembler::element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const {

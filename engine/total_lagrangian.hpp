@@ -78,6 +78,30 @@ class TotalLagrangianAssembler {
   // std::invalid_argument when u has the wrong shape.
   bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) const;
 
+  // The u-p Newton of the mixed formulation (docs/design.md, "Nearly
+  // incompressible solids"): each mixed element's dilatation theta_e an
+  // unknown of the iteration beside u.  `dilatation` (theta_e - 1 per
+  // element) sets the element pressure p_e = U'(theta_e) and U''(theta_e) in
+  // place of their values at Pi_e J (the stabilisation keeps
+  // mu_s (J - Pi_e J)); K is then d f_int/du at fixed theta plus
+  // Bbar^T W U''(theta_e) Bbar, the matrix with theta_e condensed
+  // (engine/saddle_solver.hpp, BlockJacobian::local), of the pattern and
+  // symmetry of the other overload's.  `local`, when not null, receives
+  // what the element rows of the Newton matrix need; its mean_B only with K.
+  struct LocalDilatation {
+    Eigen::VectorXd projected;  // Pi_e J - 1 per element (0: a displacement element)
+    Eigen::VectorXd stiffness;  // V_e U''(theta_e) (0: a displacement element)
+    Eigen::VectorXd volume;     // V_e (reference)
+    Eigen::VectorXd shear;      // mu_s of the element's law (0: a displacement element)
+    // (1/V_e) int_e dJ/du dX on the free equations: the element's mean of B
+    Eigen::SparseMatrix<double, Eigen::RowMajor> mean_B;
+  };
+  bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
+                const Eigen::VectorXd* dilatation, LocalDilatation* local) const;
+  int num_elements() const { return quad_.num_elements(); }
+  // Whether any patch is in the mixed formulation.
+  bool has_mixed() const;
+
   // Zero-valued matrix with the tangent's pattern (compressed, column major,
   // sorted; contains every coupling of control points that share an element,
   // so face loads and contact on the patch's faces fit in it too).

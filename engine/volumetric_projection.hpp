@@ -37,6 +37,12 @@
 // locks (the Lame cylinder's error at nu = 0.49999 stays within 2x of
 // nu = 0.3), and with K = mu_s the formulation would be the displacement one.
 // Small strain: K Bbar^T W Bbar + mu (B - Bbar)^T W (B - Bbar).
+//
+// Large deformation iterates on theta too (the u-p Newton, since issue 24):
+// TotalLagrangianAssembler::assemble takes theta_e per element, p_e =
+// U'(theta_e), and contact/finite_strain_problem.hpp carries theta_e in
+// Newton's unknowns, condensed in the solve (docs/design.md, "The u-p
+// Newton iteration").
 #pragma once
 
 #include <Eigen/Dense>

@@ -70,7 +70,7 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   c.solution.u = x.head(n);
   c.solution.lambda = x.segment(n, mm);
   if (problem.num_tangential() > 0) {  // friction
-    c.solution.lambda_t = x.tail(problem.num_tangential());
+    c.solution.lambda_t = x.segment(n + mm, problem.num_tangential());
     c.solution.friction_state = problem.friction_states(t, x);
     c.solution.slip = problem.accumulated_slip(t, x);
   }
@@ -193,6 +193,11 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     r.load_curve.push_back(st.point);
   }
   if (!m.resume.empty()) {
+    // a state file of a mixed run written before its element dilatations joined the unknowns
+    if (m.resume.back().driver.x.size() != problem.size())
+      throw InputError(fmt::format("{}: the state file holds {} unknowns, this run has {} (written by an earlier igac?); "
+                                   "run the case again from the start",
+                                   m.spec.path, m.resume.back().driver.x.size(), problem.size()));
     opt.start = m.resume.back().driver;
     opt.steps_done = int(m.resume.size());
   }

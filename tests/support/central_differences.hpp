@@ -45,4 +45,23 @@ inline int expect_jacobian_matches_central_differences(igac::NonlinearProblem& p
   return checked;
 }
 
+// The state the load-stepping driver reaches at t = 1 from x = 0 with the
+// `primed` multipliers nearest the obstacle made active (activate_nearest),
+// in `steps` steps of at most `max_increment`: where the tangent checks
+// stand; *t gets the last step's load factor (1 to round-off).  The
+// driver's status is checked.
+template <class Problem>
+Eigen::VectorXd converged_state(Problem& problem, double* t, int steps, double max_increment = 1.0, int primed = 1) {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
+  problem.activate_nearest(x, primed);
+  igac::LoadSteppingOptions opt;
+  opt.steps = steps;
+  opt.quiet = true;
+  opt.max_increment = max_increment;
+  const igac::LoadSteppingSummary summary = igac::run_load_steps(problem, x, opt, {});
+  EXPECT_EQ(summary.status, "converged");
+  *t = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
+  return x;
+}
+
 }  // namespace igac_test

@@ -41,15 +41,8 @@ TEST(FiniteStrainTangent, MatchesCentralDifferencesWithActiveCurvedContact) {
   constexpr double kTolerance = 1e-5;  // relative to the column's largest entry
   const Model m = model_of(kSource + "/tests/data/finite_strain_curved_obstacle.toml");
   FiniteStrainProblem problem(setup_of(m));
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
-  problem.activate_nearest(x, 1);
-  LoadSteppingOptions opt;
-  opt.steps = 4;
-  opt.quiet = true;
-  opt.max_increment = 0.25;
-  const auto summary = run_load_steps(problem, x, opt, {});
-  ASSERT_EQ(summary.status, "converged");
-  const double t = summary.steps.back().load_factor;
+  double t = 0;
+  const Eigen::VectorXd x = igac_test::converged_state(problem, &t, 4, 0.25);
   const auto active = problem.active_set(t, x);
   ASSERT_GE(std::count(active.begin(), active.end(), 1), 3) << "the contact zone must be active";
   // every multiplier column and displacement columns near the contact face
