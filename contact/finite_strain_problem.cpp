@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 
 #include "engine/follower_pressure.hpp"
@@ -246,6 +247,20 @@ Eigen::VectorXd FiniteStrainProblem::accumulated_slip(double t, const Eigen::Vec
 
 void FiniteStrainProblem::begin_step(double t, const Eigen::VectorXd& x) {
   if (friction_) friction_->begin_step(t, displacement(t, x));
+}
+
+FiniteStrainProblem::History FiniteStrainProblem::history() const {
+  History h;
+  if (friction_) h.friction = friction_->history();
+  if (tl_->incompressible()) h.pressure_multipliers = tl_->incompressibility()->accepted;
+  return h;
+}
+
+void FiniteStrainProblem::restore(const History& h, const Eigen::VectorXd& x_from) {
+  if (bool(friction_) == h.friction.empty() || tl_->incompressible() != (h.pressure_multipliers.size() > 0))
+    throw std::invalid_argument("FiniteStrainProblem::restore: the history of another problem");
+  if (friction_) friction_->restore(h.friction, displacement(h.friction.from, x_from));
+  if (tl_->incompressible()) tl_->restore_multipliers(h.pressure_multipliers);
 }
 
 double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {

@@ -107,6 +107,18 @@ class FiniteStrainProblem final : public NonlinearProblem {
   std::vector<char> friction_states(double t, const Eigen::VectorXd& x) const;
   Eigen::VectorXd accumulated_slip(double t, const Eigen::VectorXd& x) const;
 
+  // What the steps carry beyond x, after a converged step: the friction
+  // history (empty without friction) and the incompressible limit's element
+  // multipliers (empty otherwise).  A restart restores them before its
+  // first step, x_from the converged state at the friction history's `from`
+  // (the driver's x_old).
+  struct History {
+    FrictionHistory friction;
+    Eigen::VectorXd pressure_multipliers;
+  };
+  History history() const;
+  void restore(const History& h, const Eigen::VectorXd& x_from);
+
   // Displacement per control point at load factor t.
   Eigen::MatrixXd displacement(double t, const Eigen::VectorXd& x) const;
   // Weighted gaps gamma_K / K_K at the current position.

@@ -141,7 +141,6 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   const Body& body = m.body;
   const FiniteStrainSetup setup = finite_strain_setup(m);
   FiniteStrainProblem problem(setup);
-  check_resumable(m);
 
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
@@ -193,8 +192,10 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     r.load_curve.push_back(st.point);
   }
   if (!m.resume.empty()) {
-    opt.start = m.resume.back().driver;
+    const StepState& from = m.resume.back();
+    opt.start = from.driver;
     opt.steps_done = int(m.resume.size());
+    problem.restore({from.friction, from.pressure_multipliers}, from.driver.x_old);
   }
   opt.max_steps = m.stop_after_step;
   LoadSteppingState latest;  // the driver's state after the step record_step sees
@@ -206,7 +207,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     }
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
-    step.step_state = StepState{int(r.load_curve.size()), latest, rec, r.load_curve.back()};
+    const FiniteStrainProblem::History history = problem.history();
+    step.step_state = StepState{int(r.load_curve.size()), latest, history.friction, history.pressure_multipliers, rec,
+                                r.load_curve.back()};
     if (on_step) on_step(step, rec.load_factor);
   };
   // Nothing loads the body: u = 0 is the solution (Newton, measuring its

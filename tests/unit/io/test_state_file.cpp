@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The restart state file (io/state_file.hpp): what is written is read back
-// bit for bit, and a file that is not one (cut short, another magic) is an
-// InputError naming it.
+// bit for bit (the friction and incompressible histories too), and a file
+// that is not one (cut short, another magic) or of an older version (2:
+// without those histories) is an InputError naming it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -22,6 +23,16 @@ TEST(StateFile, RoundTripIsBitForBit) {
   s.point.face_displacement = -1e-3 / 9;
   s.point.obstacle_displacement = 0.3;
   s.point.dirichlet_reactions = {{"left", Eigen::Vector2d(1.0 / 3, 0.0)}, {"mid plane", Eigen::Vector2d(0.0, -5.5)}};
+  s.point.tangential_forces = {Eigen::Vector2d(0.1 / 3, -2.0 / 7)};
+  s.record.augmentations = 3;
+  s.friction.position = Eigen::VectorXd::Random(4);
+  s.friction.slip = Eigen::VectorXd::Random(4) / 3;
+  s.friction.direction = Eigen::VectorXd::Random(4);
+  s.friction.alpha = Eigen::VectorXd::Random(2);
+  s.friction.state = {kStick, kSlip};
+  s.friction.schur_batches = {{0, 3}, {1}};
+  s.friction.from = 0.7;
+  s.pressure_multipliers = Eigen::VectorXd::Random(6) * 1e3 / 7;
   const auto path = (std::filesystem::temp_directory_path() / "igac_test_state_0007.bin").string();
   write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
   StateOrigin hash;
@@ -43,6 +54,34 @@ TEST(StateFile, RoundTripIsBitForBit) {
   ASSERT_EQ(r.point.dirichlet_reactions.size(), 2u);
   EXPECT_EQ(r.point.dirichlet_reactions[1].face, "mid plane");
   EXPECT_EQ(r.point.dirichlet_reactions[0].force, s.point.dirichlet_reactions[0].force);
+  ASSERT_EQ(r.point.tangential_forces.size(), 1u);
+  EXPECT_EQ(r.point.tangential_forces[0], s.point.tangential_forces[0]);
+  EXPECT_EQ(r.record.augmentations, 3);
+  EXPECT_EQ(r.friction.position, s.friction.position);
+  EXPECT_EQ(r.friction.slip, s.friction.slip);
+  EXPECT_EQ(r.friction.direction, s.friction.direction);
+  EXPECT_EQ(r.friction.alpha, s.friction.alpha);
+  EXPECT_EQ(r.friction.state, s.friction.state);
+  EXPECT_EQ(r.friction.schur_batches, s.friction.schur_batches);
+  EXPECT_EQ(r.friction.from, 0.7);
+  EXPECT_EQ(r.pressure_multipliers, s.pressure_multipliers);
+  // An older version (2: no friction or incompressible history): refused, saying so.
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    const int64_t two = 2;
+    f.seekp(8);  // after the magic
+    f.write(reinterpret_cast<const char*>(&two), sizeof two);
+  }
+  try {
+    read_state_file(path, hash);
+    ADD_FAILURE() << "a version-2 file was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": not a state file igac can restart from (written by an older igac: "
+                                                "state-file version 2, this igac reads 3; run the case again)"),
+              std::string::npos)
+        << e.what();
+  }
+  write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
   // Cut short: refused, naming the file.
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size - 3);
