@@ -45,6 +45,11 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   }
 }
 
+void FiniteStrainProblem::add_tractions(double t, Eigen::VectorXd& f_ext) const {
+  for (const TractionLoad& l : s_.tractions)
+    add_dead_traction(*s_.body, *s_.dofs, l.faces, l.curve(t) * l.value, f_ext);
+}
+
 Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorXd& x) const {
   const DofMap& d = *s_.dofs;
   const int dim = d.dim();
@@ -130,6 +135,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
     else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   }
+  add_tractions(t, f_ext);
   r.resize(n_ + m_ + mt_);
   r.head(n_) = f_int - f_ext;
   if (m_ > 0) {
@@ -269,6 +275,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   double scale = 0;
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
   for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
+  add_tractions(t, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
   // At rest with no load the forces are zero, or round-off (the mixed
   // formulation's isochoric stress at F = I is 1e-17, not 0): no scale then.

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Large-deformation frictionless contact as a NonlinearProblem for the
 // load-stepping driver (engine/load_stepping.hpp): total-Lagrangian
-// elasticity with a hyperelastic law, follower (or dead) pressure, ramped
-// prescribed displacements, and the weighted-gap contact of the paper
+// elasticity with a hyperelastic law, follower (or dead) pressure, dead
+// tractions, ramped prescribed displacements, and the weighted-gap contact of the paper
 // (Appendix 1) at the CURRENT position, solved by a semismooth Newton method.
 //
 // Unknowns x = [u_free (n); lambda (m)], and with friction on some contact
@@ -40,6 +40,15 @@ struct PressureLoad {
   LoadCurve curve;  // the pressure at t is curve(t) * value (engine/load_curve.hpp; no points: t)
 };
 
+// A dead traction t (force per unit reference area, any direction) on
+// reference faces: in total Lagrangian a constant external force
+// int N_A t dA (add_dead_traction), no load stiffness.
+struct TractionLoad {
+  std::vector<PatchSide> faces;
+  Eigen::VectorXd value;
+  LoadCurve curve;  // the traction at t is curve(t) * value (no points: t)
+};
+
 struct FiniteStrainSetup {
   const Body* body = nullptr;
   const DofMap* dofs = nullptr;               // prescribed values at full load (ramped with t)
@@ -54,6 +63,7 @@ struct FiniteStrainSetup {
   std::vector<Formulation> patch_formulations;
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
+  std::vector<TractionLoad> tractions;
   // One face pressed on one rigid obstacle; several are stacked, each with its
   // own multipliers (S^{p-2} on its face), in order.  Empty: no multipliers.
   // Or a face pressed on a face of a second deformable body (`master` not
@@ -155,6 +165,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
                         Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true,
                         std::vector<Eigen::Triplet<double>>* K_coupling = nullptr,
                         const DofMap* numbering = nullptr) const;
+  // Adds the dead tractions at t to f_ext (no load stiffness: constant in u).
+  void add_tractions(double t, Eigen::VectorXd& f_ext) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;

@@ -95,6 +95,9 @@ enum class Loading { some, none, obstacle_leaves };
 Loading loading_of(const Model& m) {
   for (const auto& p : m.spec.pressure)
     if (p.value != 0) return Loading::some;
+  for (const auto& l : m.spec.traction)
+    for (double v : l.value)
+      if (v != 0) return Loading::some;
   for (const auto& d : m.spec.dirichlet)
     if (d.value != 0) return Loading::some;
   for (double b : m.spec.body_force)
@@ -125,6 +128,9 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
     setup.patch_laws = m.patch_laws();
   }
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve});
+  for (const auto& l : m.spec.traction)
+    setup.tractions.push_back({resolve_faces(m, l.faces, "traction"),
+                               Eigen::Map<const Eigen::VectorXd>(l.value.data(), Eigen::Index(l.value.size())), l.curve});
   setup.prescribed_curves = prescribed_curves(m);
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
@@ -146,6 +152,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
     Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(m.dofs->num_free());
     for (const auto& p : setup.pressures) add_pressure_load(body, *m.dofs, p.faces, p.value, f_ref);
+    add_traction_loads(m, *m.dofs, {}, f_ref);
     check_body_is_held(m, modes, f_ref);
   }
   Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
