@@ -189,6 +189,17 @@ TEST(Restart, TwoBodyFrictionalRunsContinueAsIfUninterrupted) {
                             false);
 }
 
+// 3D: two tangential multipliers per point, the slip direction on the disc
+// (and b / |xi| of its linearised slip law) carried over: a box dragged
+// obliquely there and back, small and large deformation.
+TEST(Restart, ThreeDimensionalFrictionalRunsContinueAsIfUninterrupted) {
+  expect_restart_matches("curve_friction_box.toml", 3, false);
+  igac_test::TempDir dir("variant");
+  expect_restart_matches_at(
+      variant(dir, "tests/data/curve_friction_box.toml", {{R"(model = "linear_elastic")", R"(model = "neo_hookean")"}}),
+      2, false);
+}
+
 // The incompressible limit: each element's pressure multiplier (the
 // augmented Lagrangian's) where the step ended is in the state file; the
 // O-ring of real rubber at K = infinity, coarsened.
