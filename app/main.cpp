@@ -267,13 +267,9 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // A run in steps writes its state after each one (state_NNNN.bin, beside
   // the step's .vtu); --restart continues from there (app/restart.hpp).
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
-  // Refused before the earlier run is read: what its state files do not hold.
-  const std::string not_in_state = not_in_state_files(spec);
-  if (!restart.dir.empty() && stepped && !not_in_state.empty())
-    throw InputError(fmt::format("{}: --restart: {}", path, not_in_state));
   if ((!restart.dir.empty() || restart.stop_after_step > 0) && !stepped)
     throw InputError(fmt::format("{}: --restart and --stop-after-step need a run in steps (large deformation or load "
-                                 "curves); {}", path, not_in_state.empty() ? "this case is solved in one step" : not_in_state));
+                                 "curves); this case is solved in one step", path));
   // The state files say which case file and options wrote them: a restart
   // continues the same (app/restart.hpp).
   const StateOrigin origin{fnv1a64_of_file(path), run_options(spec)};

@@ -43,6 +43,10 @@ class ActiveSchur {
     for (size_t i = 0; i < A.size(); ++i) s[i] = slot_[A[i]];
     return S_(s, s);
   }
+  // The multipliers whose columns were computed, batch by batch in the
+  // order they were: S_active of each again, in a fresh ActiveSchur of the
+  // same factor, gives the same columns and S, bit for bit.
+  const std::vector<std::vector<int>>& batches() const { return batches_; }
   // G K^-1 G_A^T lambda_A for all multipliers (lambda zero outside A).
   Eigen::VectorXd G_solve_Gt(const std::vector<int>& A, const Eigen::VectorXd& lambda) const {
     Eigen::VectorXd y = Eigen::VectorXd::Zero(yf_face_.size());
@@ -104,6 +108,7 @@ class ActiveSchur {
     Y_ = std::move(Y);
     zone_ = std::move(zone);
     ever_ = std::move(all);
+    batches_.push_back(fresh);
     sol_.schur_columns += int(fresh.size());
   }
 
@@ -115,6 +120,7 @@ class ActiveSchur {
   Eigen::VectorXd yf_face_;       // L^-1 P f_p on face_
   SparseCholesky::Reach zone_;    // reach of the multipliers with a column
   std::vector<int> ever_;         // those multipliers, in column order
+  std::vector<std::vector<int>> batches_;  // ever_ as add_columns took them
   std::vector<int> slot_;         // multiplier -> column (-1: none yet)
   Eigen::MatrixXd Y_;             // zone_.rows x ever_
   Eigen::MatrixXd S_;             // ever_ x ever_

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/finite_strain_friction.hpp"
 
+#include <stdexcept>
+
 #include "contact/small_strain_friction.hpp"
 
 namespace igac {
@@ -87,6 +89,23 @@ void FiniteStrainFriction::begin_step(double t, const Eigen::MatrixXd& u) {
   started_ = true;
   t_prev_ = t;
   tau_prev_ = position(t, u);
+}
+
+FrictionHistory FiniteStrainFriction::history() const {
+  FrictionHistory h;
+  h.slip = slip_total_;
+  h.from = t_prev_;
+  return h;
+}
+
+void FiniteStrainFriction::restore(const FrictionHistory& h, const Eigen::MatrixXd& u_from) {
+  if (h.slip.size() != m_ * nt_) throw std::invalid_argument("FiniteStrainFriction::restore: a history of another contact");
+  // as begin_step(h.from, u_from) left it: the rows there, the slip up to there
+  assemble_rows(h.from, u_from);
+  started_ = true;
+  t_prev_ = h.from;
+  tau_prev_ = position(h.from, u_from);
+  slip_total_ = h.slip;
 }
 
 Eigen::VectorXd FiniteStrainFriction::accumulated_slip(double t, const Eigen::MatrixXd& u) const {

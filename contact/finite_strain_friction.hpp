@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "contact/mortar_gap.hpp"
+#include "contact/small_strain_friction.hpp"  // FrictionHistory
 #include "contact/weighted_gap.hpp"
 #include "engine/load_curve.hpp"
 
@@ -75,6 +76,11 @@ class FiniteStrainFriction {
   // T and t0 are taken there; a new time adds the last step's slip to the
   // accumulated one.
   void begin_step(double t, const Eigen::MatrixXd& u);
+  // The history after a converged step (the slip accumulated up to the
+  // start of the step and that start's time), and back to it: `u_from` the
+  // converged state at h.from, from which T and t0 are taken again.
+  FrictionHistory history() const;
+  void restore(const FrictionHistory& h, const Eigen::MatrixXd& u_from);
 
   // The state of each multiplier (FrictionState, small_strain_friction.hpp)
   // for the normal multipliers, their weighted gaps gamma, the normal

@@ -69,6 +69,11 @@ Eigen::VectorXd FiniteStrainProblem::local_residual(const TotalLagrangianAssembl
   return local_scale_.cwiseProduct(local.projected - z);
 }
 
+void FiniteStrainProblem::add_tractions(double t, Eigen::VectorXd& f_ext) const {
+  for (const TractionLoad& l : s_.tractions)
+    add_dead_traction(*s_.body, *s_.dofs, l.faces, l.curve(t) * l.value, f_ext);
+}
+
 Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorXd& x) const {
   const DofMap& d = *s_.dofs;
   const int dim = d.dim();
@@ -156,6 +161,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
     else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   }
+  add_tractions(t, f_ext);
   r.resize(size());
   r.head(n_) = f_int - f_ext;
   if (nz_ > 0) r.tail(nz_) = local_residual(local, z);
@@ -284,12 +290,27 @@ void FiniteStrainProblem::begin_step(double t, const Eigen::VectorXd& x) {
   if (friction_) friction_->begin_step(t, displacement(t, x));
 }
 
+FiniteStrainProblem::History FiniteStrainProblem::history() const {
+  History h;
+  if (friction_) h.friction = friction_->history();
+  if (tl_->incompressible()) h.pressure_multipliers = tl_->incompressibility()->accepted;
+  return h;
+}
+
+void FiniteStrainProblem::restore(const History& h, const Eigen::VectorXd& x_from) {
+  if (bool(friction_) == h.friction.empty() || tl_->incompressible() != (h.pressure_multipliers.size() > 0))
+    throw std::invalid_argument("FiniteStrainProblem::restore: the history of another problem");
+  if (friction_) friction_->restore(h.friction, displacement(h.friction.from, x_from));
+  if (tl_->incompressible()) tl_->restore_multipliers(h.pressure_multipliers);
+}
+
 double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   const Eigen::MatrixXd u = displacement(t, x);
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
   double scale = 0;
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
   for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
+  add_tractions(t, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
   // At rest with no load the forces are zero, or round-off (the mixed
   // formulation's isochoric stress at F = I is 1e-17, not 0): no scale then.

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Large-deformation frictionless contact as a NonlinearProblem for the
 // load-stepping driver (engine/load_stepping.hpp): total-Lagrangian
-// elasticity with a hyperelastic law, follower (or dead) pressure, ramped
-// prescribed displacements, and the weighted-gap contact of the paper
+// elasticity with a hyperelastic law, follower (or dead) pressure, dead
+// tractions, ramped prescribed displacements, and the weighted-gap contact of the paper
 // (Appendix 1) at the CURRENT position, solved by a semismooth Newton method.
 //
 // Unknowns x = [u_free (n); lambda (m)], and with friction on some contact
@@ -55,6 +55,15 @@ struct PressureLoad {
   LoadCurve curve;  // the pressure at t is curve(t) * value (engine/load_curve.hpp; no points: t)
 };
 
+// A dead traction t (force per unit reference area, any direction) on
+// reference faces: in total Lagrangian a constant external force
+// int N_A t dA (add_dead_traction), no load stiffness.
+struct TractionLoad {
+  std::vector<PatchSide> faces;
+  Eigen::VectorXd value;
+  LoadCurve curve;  // the traction at t is curve(t) * value (no points: t)
+};
+
 struct FiniteStrainSetup {
   const Body* body = nullptr;
   const DofMap* dofs = nullptr;               // prescribed values at full load (ramped with t)
@@ -69,6 +78,7 @@ struct FiniteStrainSetup {
   std::vector<Formulation> patch_formulations;
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
+  std::vector<TractionLoad> tractions;
   // One face pressed on one rigid obstacle; several are stacked, each with its
   // own multipliers (S^{p-2} on its face), in order.  Empty: no multipliers.
   // Or a face pressed on a face of a second deformable body (`master` not
@@ -126,6 +136,18 @@ class FiniteStrainProblem final : public NonlinearProblem {
   std::vector<char> friction_states(double t, const Eigen::VectorXd& x) const;
   Eigen::VectorXd accumulated_slip(double t, const Eigen::VectorXd& x) const;
 
+  // What the steps carry beyond x, after a converged step: the friction
+  // history (empty without friction) and the incompressible limit's element
+  // multipliers (empty otherwise).  A restart restores them before its
+  // first step, x_from the converged state at the friction history's `from`
+  // (the driver's x_old).
+  struct History {
+    FrictionHistory friction;
+    Eigen::VectorXd pressure_multipliers;
+  };
+  History history() const;
+  void restore(const History& h, const Eigen::VectorXd& x_from);
+
   // Displacement per control point at load factor t.
   Eigen::MatrixXd displacement(double t, const Eigen::VectorXd& x) const;
   // Weighted gaps gamma_K / K_K at the current position.
@@ -162,6 +184,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
                         Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true,
                         std::vector<Eigen::Triplet<double>>* K_coupling = nullptr,
                         const DofMap* numbering = nullptr) const;
+  // Adds the dead tractions at t to f_ext (no load stiffness: constant in u).
+  void add_tractions(double t, Eigen::VectorXd& f_ext) const;
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <set>
+#include <stdexcept>
 
 #include "contact/active_schur.hpp"
 
@@ -116,6 +117,39 @@ void SmallStrainFriction::set_load(const Eigen::VectorXd& f) {
 }
 
 void SmallStrainFriction::start_from(const WeightedGapOperator& op0) { impl_->tau_prev = op0.t0; }
+
+FrictionHistory SmallStrainFriction::history() const {
+  const Impl& s = *impl_;
+  FrictionHistory h;
+  h.position = s.tau_prev;
+  h.slip = s.slip_total;
+  h.state = s.state;
+  h.direction = Eigen::VectorXd(s.m * s.nt);
+  for (int K = 0; K < s.m; ++K)
+    for (int j = 0; j < s.nt; ++j) h.direction[K * s.nt + j] = s.dir(K, j);
+  h.alpha = s.alpha;
+  h.schur_batches = s.schur->batches();
+  return h;
+}
+
+void SmallStrainFriction::restore(const FrictionHistory& h) {
+  Impl& s = *impl_;
+  if (h.position.size() != s.m * s.nt || h.slip.size() != s.m * s.nt || int(h.state.size()) != s.m ||
+      h.direction.size() != s.m * s.nt || h.alpha.size() != s.m)
+    throw std::invalid_argument("SmallStrainFriction::restore: a history of another contact");
+  if (!s.schur->batches().empty()) throw std::logic_error("SmallStrainFriction::restore: after a step");
+  s.tau_prev = h.position;
+  s.slip_total = h.slip;
+  s.state = h.state;
+  for (int K = 0; K < s.m; ++K)
+    for (int j = 0; j < s.nt; ++j) s.dir(K, j) = h.direction[K * s.nt + j];
+  s.alpha = h.alpha;
+  for (const std::vector<int>& batch : h.schur_batches) {
+    for (int K : batch)
+      if (K < 0 || K >= s.m * (1 + s.nt)) throw std::invalid_argument("SmallStrainFriction::restore: a column beyond the rows");
+    s.schur->S_active(batch);
+  }
+}
 
 namespace {
 constexpr int kCycleRestarts = 4;

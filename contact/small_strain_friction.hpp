@@ -57,6 +57,27 @@ double slip_compliance(double alpha, double ct);
 // Per multiplier: 0 open, 1 stick, 2 slip.
 enum FrictionState : char { kOpen = 0, kStick = 1, kSlip = 2 };
 
+// What a frictional solve carries from one step to the next: its slip
+// history, as a restart reads it back from the step's state file
+// (io/state_file.hpp), so that the steps after it are the ones a run that
+// never stopped takes, bit for bit.
+//   small deformation (SmallStrainFriction): the weighted tangential
+//     position T u + t0 where the step ended, the accumulated slip, the
+//     state, slip direction (m x nt, row-major) and b / |xi| of each
+//     multiplier (the next step starts from them), and the Schur columns
+//     computed so far, in the order and the batches they were computed in
+//     (recomputed on restoring: the same columns, bit for bit);
+//   large deformation (FiniteStrainFriction): the slip accumulated up to
+//     the start of the step, and the time it started at (`from`); the rest
+//     is recomputed from the converged state there.
+struct FrictionHistory {
+  Eigen::VectorXd position, slip, direction, alpha;
+  std::vector<char> state;
+  std::vector<std::vector<int>> schur_batches;
+  double from = 0;
+  bool empty() const { return slip.size() == 0 && state.empty(); }
+};
+
 class SmallStrainFriction {
  public:
   // Factorises K (pinned rigid motions as the frictionless solve) for the
@@ -73,6 +94,10 @@ class SmallStrainFriction {
   // count from, T u + t0 with u = 0 and op0's t0 (the obstacle at time 0).
   void set_load(const Eigen::VectorXd& f);
   void start_from(const WeightedGapOperator& op0);
+  // The history after the last step, and back to it (a restart: the solver
+  // built as the run built it, then the history of the step it continues after).
+  FrictionHistory history() const;
+  void restore(const FrictionHistory& h);
 
  private:
   struct Impl;

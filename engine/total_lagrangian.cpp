@@ -435,6 +435,13 @@ void TotalLagrangianAssembler::copy_multipliers(const TotalLagrangianAssembler& 
   incompressibility_->accepted = from.incompressibility_->accepted;
 }
 
+void TotalLagrangianAssembler::restore_multipliers(const Eigen::VectorXd& accepted) {
+  if (!incompressibility_ || accepted.size() != incompressibility_->multipliers.size())
+    throw std::invalid_argument("restore_multipliers: not the element multipliers of this incompressible body");
+  incompressibility_->multipliers = accepted;
+  incompressibility_->accepted = accepted;
+}
+
 void TotalLagrangianAssembler::keep_multipliers(bool accepted) {
   if (!incompressibility_) return;
   if (accepted) incompressibility_->accepted = incompressibility_->multipliers;

@@ -135,6 +135,10 @@ class TotalLagrangianAssembler {
   // The multipliers of another assembler of the same body (e.g. the
   // reactions' one, model/reactions.hpp); makes this one incompressible.
   void copy_multipliers(const TotalLagrangianAssembler& from);
+  // The multipliers of an accepted step (a restart: the ones the step it
+  // continues after ended with, its Incompressibility::accepted).  Throws
+  // std::invalid_argument unless incompressible with that many elements.
+  void restore_multipliers(const Eigen::VectorXd& accepted);
   // theta_e - 1 = Pi_e (J - 1) per element (0 for the displacement
   // formulation's elements); false when u is inadmissible.
   bool volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const;

@@ -272,9 +272,6 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
   }
   for (const auto* t : tables(path, root, "traction")) {
     const Section s(path, "traction", *t, kTractionKeys);
-    if (c.finite_strain())
-      s.fail("value", "a traction load is applied in small deformation (linear_elastic) only; in large deformation "
-                      "use [[pressure]]");
     c.traction.push_back({s.strings("faces"), s.loads("value", size_t(dim)), {}});
     if (s.has("curve")) c.traction.back().curve = s.curve("curve");
   }

@@ -15,7 +15,9 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "state files are little-endian");
 constexpr char kMagic[8] = {'I', 'G', 'A', 'C', 'S', 'T', 'E', 'P'};
-constexpr int64_t kVersion = 2;  // 2: the run options after the case hash
+// 2: the run options after the case hash; 3: the path-dependent history
+// (friction, incompressible), the step's augmentations and tangential forces.
+constexpr int64_t kVersion = 3;
 
 struct Writer {
   std::string bytes;
@@ -30,6 +32,11 @@ struct Writer {
   void reals(const V& v) {
     integer(int64_t(v.size()));
     for (auto x : v) real(double(x));
+  }
+  template <class V>
+  void integers(const V& v) {
+    integer(int64_t(v.size()));
+    for (auto x : v) integer(int64_t(x));
   }
 };
 
@@ -74,6 +81,11 @@ struct Reader {
     const Eigen::VectorXd v = vector();
     return {v.begin(), v.end()};
   }
+  std::vector<int64_t> integers() {
+    std::vector<int64_t> v(length());  // (no more than the bytes left)
+    for (int64_t& x : v) x = integer();
+    return v;
+  }
 };
 
 }  // namespace
@@ -95,6 +107,7 @@ void write_state_file(const std::string& path, const StateOrigin& origin, const 
   w.real(s.record.load_factor);
   w.integer(s.record.newton_iterations);
   w.integer(s.record.cut_backs);
+  w.integer(s.record.augmentations);
   w.reals(s.record.residual_norms);
   w.integer(int64_t(s.record.active_set_sizes.size()));
   for (int a : s.record.active_set_sizes) w.integer(a);
@@ -107,6 +120,18 @@ void write_state_file(const std::string& path, const StateOrigin& origin, const 
     w.text(f.face);
     w.reals(f.force);
   }
+  w.integer(int64_t(s.point.tangential_forces.size()));
+  for (const Eigen::VectorXd& f : s.point.tangential_forces) w.reals(f);
+  const FrictionHistory& h = s.friction;
+  w.reals(h.position);
+  w.reals(h.slip);
+  w.reals(h.direction);
+  w.reals(h.alpha);
+  w.integers(h.state);
+  w.integer(int64_t(h.schur_batches.size()));
+  for (const std::vector<int>& b : h.schur_batches) w.integers(b);
+  w.real(h.from);
+  w.reals(s.pressure_multipliers);
   write_file_atomically(path, w.bytes);
 }
 
@@ -117,7 +142,10 @@ StepState read_state_file(const std::string& path, StateOrigin& origin) {
   char magic[8];
   r.raw(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no IGACSTEP magic");
-  if (const int64_t v = r.integer(); v != kVersion) r.fail(fmt::format("version {}, this igac reads {}", v, kVersion));
+  if (const int64_t v = r.integer(); v < kVersion)  // (2 lacks the friction and incompressible histories)
+    r.fail(fmt::format("written by an older igac: state-file version {}, this igac reads {}; run the case again", v, kVersion));
+  else if (v != kVersion)
+    r.fail(fmt::format("version {}, this igac reads {}", v, kVersion));
   origin.case_hash = r.text();
   origin.options = r.text();
   StepState s;
@@ -130,6 +158,7 @@ StepState read_state_file(const std::string& path, StateOrigin& origin) {
   s.record.load_factor = r.real();
   s.record.newton_iterations = int(r.integer());
   s.record.cut_backs = int(r.integer());
+  s.record.augmentations = int(r.integer());
   s.record.residual_norms = r.doubles();
   const size_t n = r.length();
   for (size_t i = 0; i < n; ++i) s.record.active_set_sizes.push_back(int(r.integer()));
@@ -144,6 +173,24 @@ StepState read_state_file(const std::string& path, StateOrigin& origin) {
     f.force = r.vector();
     s.point.dirichlet_reactions.push_back(std::move(f));
   }
+  const size_t tangential = r.length();
+  for (size_t i = 0; i < tangential; ++i) s.point.tangential_forces.push_back(r.vector());
+  FrictionHistory& h = s.friction;
+  h.position = r.vector();
+  h.slip = r.vector();
+  h.direction = r.vector();
+  h.alpha = r.vector();
+  for (int64_t v : r.integers()) {
+    if (v < kOpen || v > kSlip) r.fail("a friction state beyond open, stick and slip");
+    h.state.push_back(char(v));
+  }
+  const size_t batches = r.length();
+  for (size_t i = 0; i < batches; ++i) {
+    std::vector<int>& b = h.schur_batches.emplace_back();
+    for (int64_t v : r.integers()) b.push_back(int(v));
+  }
+  h.from = r.real();
+  s.pressure_multipliers = r.vector();
   if (r.at != r.bytes.size()) r.fail("bytes after the end");
   return s;
 }

@@ -5,7 +5,7 @@
 // integer an int64 and every real an IEEE-754 double, in this order:
 //
 //   "IGACSTEP"                       8 bytes, the magic
-//   version                          2
+//   version                          3 (older ones are refused: run the case again)
 //   case hash                        length, then its bytes: summary.json's input.fnv1a64
 //   run options                      length, then its bytes: the options that change the
 //                                    result (--refine, --degree, the solver's), one
@@ -14,11 +14,17 @@
 //   t, dt, dt_old                    the time reached, the next increment, the last one
 //   x                                length, then the doubles: [u_free; lambda]
 //   x_old                            length, then the doubles (the state one step before)
-//   record: load factor (t), Newton iterations, cut-backs,
+//   record: load factor (t), Newton iterations, cut-backs, augmentations,
 //           residual norms (length, doubles), active-set sizes (length, int64s)
 //   point:  load factor, contact forces (length, doubles), face displacement,
 //           obstacle displacement, reactions (count, then per face set:
-//           name (length, bytes), force (length, doubles))
+//           name (length, bytes), force (length, doubles)), tangential
+//           forces (count, then per contact: length, doubles)
+//   friction history (FrictionHistory, contact/small_strain_friction.hpp;
+//           empty vectors without friction): position, slip, direction,
+//           alpha (each length, doubles), state (length, int64s), Schur
+//           batches (count, then each: length, int64s), from (double)
+//   element pressure multipliers     length, then the doubles (incompressible; else 0)
 //
 // Written atomically (a temporary file renamed over the name), so a file
 // that exists is whole; read back it gives the same doubles, bit for bit.

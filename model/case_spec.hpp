@@ -47,7 +47,8 @@ struct PressureSpec {
 };
 
 // [[traction]]: a dead traction (force per unit reference area, any
-// direction) on faces; small deformation.
+// direction) on faces; in large deformation on the reference faces (a
+// constant force, ramped with the load factor or its curve).
 struct TractionSpec {
   std::vector<std::string> faces;
   std::vector<double> value;

@@ -131,10 +131,11 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   if (!m.contacts.empty() && !moving) fixed_op = assemble_contact_operator(m);
   // Friction depends on the path: one frictional solve (K factorised once)
   // goes through the steps, each from the state and slip history where the
-  // last one ended (the slip counted from the obstacle at time 0).
+  // last one ended (the slip counted from the obstacle at time 0); a
+  // restart builds it as the run did (at the first step's time) and takes
+  // the history of the step before the first it solves from its state file.
   bool frictional = false;
   for (const auto& c : m.contacts) frictional = frictional || c.friction > 0;
-  check_resumable(m);
   std::optional<SmallStrainFriction> friction;
   std::vector<int> friction_steps;  // active-set iterations per step
   SparseCholesky chol;
@@ -188,8 +189,11 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
       c.op = fixed_op ? *fixed_op : assemble_contact_operator_at_time(m, t);
       if (frictional) {
         if (!friction) {
-          friction.emplace(sys.K, f, c.op, modes, chol, opt);
+          const WeightedGapOperator first_op = i == 0 || fixed_op ? c.op : assemble_contact_operator_at_time(m, times[0]);
+          friction.emplace(sys.K, i == 0 ? f : load_at(times[0]), first_op, modes, chol, opt);
           friction->start_from(fixed_op ? *fixed_op : assemble_contact_operator_at_time(m, 0.0));
+          if (i > 0) friction->restore(m.resume[i - 1].friction);  // the history where step i - 1 ended
+          for (size_t j = 0; j < i; ++j) friction_steps.push_back(int(m.resume[j].record.active_set_sizes.size()));
           r.timing.factorization += clock.seconds();
           clock.restart();
         }
@@ -239,7 +243,8 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     state.driver.x = std::move(xs);
     state.record = record;
     state.point = std::move(p);
-    if (!frictional) step.step_state = std::move(state);  // (friction: the slip history is not in it, no restart)
+    if (friction) state.friction = friction->history();
+    step.step_state = std::move(state);
     r.timing.postprocess += clock.seconds();
     if (!m.quiet)
       progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s)", steps.steps.size(), t,
@@ -264,19 +269,6 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   r.timing.total = t_start.seconds();
   return r;
-}
-
-std::string not_in_state_files(const CaseSpec& spec) {
-  for (const ContactSpec& c : spec.contacts)
-    if (c.friction > 0) return "a frictional case's steps (and its slip history) are not restarted";
-  if (spec.incompressible) return "an incompressible case's steps (and its element pressures) are not restarted";
-  return "";
-}
-
-void check_resumable(const Model& m) {
-  if (m.resume.empty()) return;
-  if (const std::string why = not_in_state_files(m.spec); !why.empty())
-    throw InputError(fmt::format("{}: --restart: {}", m.spec.path, why));
 }
 
 }  // namespace igac

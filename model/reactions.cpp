@@ -71,7 +71,7 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
     else
       add_dead_pressure(m.body, all_free_, pressure_faces_[i], p, f_ext);
   }
-  add_traction_loads(m, all_free_, t, f_ext);  // (small deformation only)
+  add_traction_loads(m, all_free_, t, f_ext);
   if (!m.spec.finite_strain() && !m.spec.body_force.empty())  // (large deformation has none)
     f_ext += m.spec.body_force_curve(t) *
              body_force_load(m.body, all_free_, Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim));

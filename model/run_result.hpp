@@ -12,6 +12,7 @@
 
 #include "contact/pressure.hpp"
 #include "contact/small_strain_contact.hpp"
+#include "contact/small_strain_friction.hpp"  // FrictionHistory
 #include "engine/error_norms.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/load_stepping.hpp"
@@ -87,11 +88,18 @@ struct LoadCurvePoint {
 // One converged step of a run in steps, as a restart needs it
 // (io/state_file.hpp writes one per step next to its .vtu): the driver's
 // state after it (large deformation; along load curves in small
-// deformation t and x = [u_free; lambda], the steps being independent),
-// and what the step added to the summary and the load curve.
+// deformation t and x = [u_free; lambda]), what the path-dependent parts
+// carry to the next step, and what the step added to the summary and the
+// load curve.
 struct StepState {
   int step = 0;  // from 1
   LoadSteppingState driver;
+  // Friction's slip history (FrictionHistory: small deformation from
+  // SmallStrainFriction, large from FiniteStrainFriction), and the
+  // incompressible limit's element multipliers (lambda_e of the step's
+  // end); empty without.
+  FrictionHistory friction;
+  Eigen::VectorXd pressure_multipliers;
   LoadStepRecord record;
   LoadCurvePoint point;
 };

@@ -33,15 +33,6 @@ RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
 // the complementarity scale.  Borrows from `model`.
 FiniteStrainSetup finite_strain_setup(const Model& model);
 
-// What the state files (io/state_file.hpp) do not hold of a run of `spec`,
-// so that --restart could not continue it as it went: a frictional run's slip
-// history, an incompressible one's element pressures (its augmented
-// Lagrangian's multipliers); "" when they hold everything.
-std::string not_in_state_files(const CaseSpec& spec);
-// Throws InputError (naming the case) when `model` resumes an earlier run
-// (Model::resume) that not_in_state_files says cannot be continued.
-void check_resumable(const Model& model);
-
 // Throws InputError (naming the case) when free rigid motions (`modes`, not
 // held by Dirichlet conditions) are not held: no contact, a contact that
 // cannot stop them, or a load `f` that pulls the body off the obstacle.

@@ -95,6 +95,9 @@ enum class Loading { some, none, obstacle_leaves };
 Loading loading_of(const Model& m) {
   for (const auto& p : m.spec.pressure)
     if (p.value != 0) return Loading::some;
+  for (const auto& l : m.spec.traction)
+    for (double v : l.value)
+      if (v != 0) return Loading::some;
   for (const auto& d : m.spec.dirichlet)
     if (d.value != 0) return Loading::some;
   for (double b : m.spec.body_force)
@@ -125,6 +128,9 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
     setup.patch_laws = m.patch_laws();
   }
   for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve});
+  for (const auto& l : m.spec.traction)
+    setup.tractions.push_back({resolve_faces(m, l.faces, "traction"),
+                               Eigen::Map<const Eigen::VectorXd>(l.value.data(), Eigen::Index(l.value.size())), l.curve});
   setup.prescribed_curves = prescribed_curves(m);
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
@@ -141,12 +147,12 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   const Body& body = m.body;
   const FiniteStrainSetup setup = finite_strain_setup(m);
   FiniteStrainProblem problem(setup);
-  check_resumable(m);
 
   const RigidModes modes = free_rigid_modes(body, *m.dofs);
   if (modes.modes.cols() > 0) {  // the reference (dead) load decides whether the body is held
     Eigen::VectorXd f_ref = Eigen::VectorXd::Zero(m.dofs->num_free());
     for (const auto& p : setup.pressures) add_pressure_load(body, *m.dofs, p.faces, p.value, f_ref);
+    add_traction_loads(m, *m.dofs, {}, f_ref);
     check_body_is_held(m, modes, f_ref);
   }
   Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.size());
@@ -193,13 +199,15 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     r.load_curve.push_back(st.point);
   }
   if (!m.resume.empty()) {
+    const StepState& from = m.resume.back();
     // a state file of a mixed run written before its element dilatations joined the unknowns
-    if (m.resume.back().driver.x.size() != problem.size())
+    if (from.driver.x.size() != problem.size())
       throw InputError(fmt::format("{}: the state file holds {} unknowns, this run has {} (written by an earlier igac?); "
                                    "run the case again from the start",
-                                   m.spec.path, m.resume.back().driver.x.size(), problem.size()));
-    opt.start = m.resume.back().driver;
+                                   m.spec.path, from.driver.x.size(), problem.size()));
+    opt.start = from.driver;
     opt.steps_done = int(m.resume.size());
+    problem.restore({from.friction, from.pressure_multipliers}, from.driver.x_old);
   }
   opt.max_steps = m.stop_after_step;
   LoadSteppingState latest;  // the driver's state after the step record_step sees
@@ -211,7 +219,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     }
     RunResult step;
     r.load_curve.push_back(snapshot(rec.load_factor, xs, step));
-    step.step_state = StepState{int(r.load_curve.size()), latest, rec, r.load_curve.back()};
+    const FiniteStrainProblem::History history = problem.history();
+    step.step_state = StepState{int(r.load_curve.size()), latest, history.friction, history.pressure_multipliers, rec,
+                                r.load_curve.back()};
     if (on_step) on_step(step, rec.load_factor);
   };
   // Nothing loads the body: u = 0 is the solution (Newton, measuring its

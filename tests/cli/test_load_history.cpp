@@ -5,8 +5,8 @@
 // time and ends with the reactions of every [[dirichlet]] face set, which
 // balance the pressure at each step; summary.json gives each step its time.
 // With friction: load_curve.csv's tangential_force column and the loop's
-// panel in load_curve.svg, the console's status line; --restart refused in
-// one line.
+// panel in load_curve.svg, the console's status line (its restart:
+// tests/cli/test_restart.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -55,19 +55,13 @@ TEST(LoadHistory, PvdTimesCsvColumnsAndReactionsPerStep) {
   EXPECT_EQ(summary["status"], "converged");
 }
 
-// The sliding block of tests/unit/model/test_friction_cycle.cpp: pressed
-// over t = 0 -> 1, its plane dragged to +0.01 (t = 2) and back (t = 3).
-// A block 1 x 0.25 (nu = 0) pressed by 0.01 on a plane, its top held in x,
-// the plane then dragged to +0.01 (t = 1 -> 2) and back to 0 (2 -> 3), f = 0.3.
+// The sliding block of tests/data/curve_friction_block.toml, with `model`.
 std::string dragged_block(const std::string& model) {
-  return "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n[mesh]\ndegree = 2\nelements = [16, 4]\n"
-         "[material]\nmodel = \"" + model + "\"\nE = 1.0\nnu = 0.0\n[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
-         "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n[contact]\nface = \"bottom\"\nfriction = 0.3\n"
-         "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\nmotion = [0.01, 0.0]\n"
-         "curve = [[0, 0], [1, 0], [2, 1], [3, 0]]\n[loading]\nsteps = 2\n[output]\nvtk = false\n";
+  const std::string text = igac_test::read_file(std::string(IGAC_SOURCE_DIR) + "/tests/data/curve_friction_block.toml");
+  return std::regex_replace(text, std::regex(R"(model = "linear_elastic")"), "model = \"" + model + "\"");
 }
 
-TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
+TEST(LoadHistory, FrictionTangentialForceColumnAndLoopPanel) {
   igac_test::TempDir tmp("friction_curves");
   std::ofstream(tmp.path() / "block.toml") << dragged_block("linear_elastic");
   const auto o = igac_test::run_igac("run block.toml --quiet --out out", tmp.path());
@@ -93,19 +87,13 @@ TEST(LoadHistory, FrictionTangentialForceColumnLoopPanelAndNoRestart) {
       << loud.output;
   EXPECT_EQ(loud.output.find("Newton"), std::string::npos) << loud.output;
   EXPECT_EQ(loud.output.find("Cauchy"), std::string::npos) << loud.output;
-  const auto restart = igac_test::run_igac("run block.toml --quiet --out again --restart out", tmp.path());
-  EXPECT_EQ(restart.exit_code, 2) << restart.output;
-  EXPECT_NE(restart.output.find("--restart: a frictional case's steps (and its slip history) are not restarted"),
-            std::string::npos) << restart.output;
-  EXPECT_EQ(std::count(restart.output.begin(), restart.output.end(), '\n'), 1) << restart.output;
 }
 
 // Large deformation: the same block, Neo-Hookean,
 // through the executable: load_curve.csv's tangential_force is +f N at the
 // turn and -f N back at 0 (to its 10 printed digits and the Newton
-// tolerance); --restart refused in one line, exit 2 (the slip history is
-// not in the state files).
-TEST(LoadHistory, LargeDeformationFrictionColumnAndNoRestart) {
+// tolerance).
+TEST(LoadHistory, LargeDeformationFrictionColumn) {
   igac_test::TempDir tmp("friction_curves_large");
   std::ofstream(tmp.path() / "block.toml") << dragged_block("neo_hookean");
   const auto o = igac_test::run_igac("run block.toml --quiet --out out", tmp.path());
@@ -128,11 +116,6 @@ TEST(LoadHistory, LargeDeformationFrictionColumnAndNoRestart) {
     }
   }
   EXPECT_TRUE(turn && back);
-  const auto restart = igac_test::run_igac("run block.toml --quiet --out again --restart out", tmp.path());
-  EXPECT_EQ(restart.exit_code, 2) << restart.output;
-  EXPECT_NE(restart.output.find("--restart: a frictional case's steps (and its slip history) are not restarted"),
-            std::string::npos) << restart.output;
-  EXPECT_EQ(std::count(restart.output.begin(), restart.output.end(), '\n'), 1) << restart.output;
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 // (the Newton driver, its increments and predictor state carried over);
 // --from-step continues from an earlier step of a finished run; a restart
 // against another case file, or with other options (--refine, --degree),
-// is refused in one line.  And for real: a run killed (SIGKILL) or stopped
+// is refused in one line.  Frictional and incompressible runs too: their
+// slip history and element pressures are in the state files.  And for real: a run killed (SIGKILL) or stopped
 // (SIGTERM, SIGINT) once the state file of step K exists is continued from
 // the folder it was writing to, to the uninterrupted run's numbers; the
 // earlier finished output there survives the kill untouched.
@@ -18,6 +19,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -64,26 +66,39 @@ void expect_same(const json& a, const json& b, const std::string& where, int& nu
   }
 }
 
-// Runs `case_file` whole, then to step k and on from there; the two final
-// summaries agree (and with `vtk`, the .pvd).
-void expect_restart_matches(const std::string& case_file, int k, bool vtk) {
+// Every .csv file of `a` (load_curve.csv; pressure.csv, with friction its
+// tangential traction, slip and stick/slip state per multiplier) and every
+// state file (the steps' x, histories and records: the bits) is in `b`,
+// byte for byte.
+void expect_same_files(const fs::path& a, const fs::path& b) {
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(a))
+    if (e.path().extension() == ".csv" || e.path().extension() == ".bin") {
+      ++files;
+      EXPECT_EQ(igac_test::read_file(e.path()), igac_test::read_file(b / e.path().filename())) << e.path().filename();
+    }
+  EXPECT_GT(files, 0);
+}
+
+// Runs the case `quoted_path` whole, then to step k and on from there; the
+// two final summaries agree (and with `vtk`, the .pvd).
+void expect_restart_matches_at(const std::string& quoted_path, int k, bool vtk) {
   igac_test::TempDir tmp("restart");
-  const auto whole = igac_test::run_igac("run " + data(case_file) + " --quiet --out whole", tmp.path());
+  const auto whole = igac_test::run_igac("run " + quoted_path + " --quiet --out whole", tmp.path());
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   const auto part = igac_test::run_igac(
-      "run " + data(case_file) + " --quiet --out part --stop-after-step " + std::to_string(k), tmp.path());
+      "run " + quoted_path + " --quiet --out part --stop-after-step " + std::to_string(k), tmp.path());
   ASSERT_EQ(part.exit_code, 0) << part.output;
   const json stopped = igac_test::read_summary(tmp.path() / "part");
   EXPECT_EQ(stopped["load_steps"].size(), size_t(k));
   EXPECT_EQ(stopped["status"], "stopped after step " + std::to_string(k) + " (as asked)");
-  const auto resumed = igac_test::run_igac("run " + data(case_file) + " --quiet --out part --restart part", tmp.path());
+  const auto resumed = igac_test::run_igac("run " + quoted_path + " --quiet --out part --restart part", tmp.path());
   ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
   const json a = igac_test::read_summary(tmp.path() / "whole"), b = igac_test::read_summary(tmp.path() / "part");
   int numbers = 0;
   expect_same(a, b, "summary.json", numbers);
   EXPECT_GT(numbers, 20);
-  EXPECT_EQ(igac_test::read_file(tmp.path() / "whole" / "load_curve.csv"),
-            igac_test::read_file(tmp.path() / "part" / "load_curve.csv"));
+  expect_same_files(tmp.path() / "whole", tmp.path() / "part");
   // The .pvd plays every step, the earlier ones copied.
   const std::string pvd_a = igac_test::read_file(tmp.path() / "whole" / "solution.pvd");
   EXPECT_EQ(pvd_a.empty(), !vtk);
@@ -92,10 +107,36 @@ void expect_restart_matches(const std::string& case_file, int k, bool vtk) {
     EXPECT_TRUE(fs::exists(tmp.path() / "part" / ("solution_000" + std::to_string(step) + ".vtu"))) << step;
   // And from an earlier step of the finished run.
   const auto from = igac_test::run_igac(
-      "run " + data(case_file) + " --quiet --out from --restart whole --from-step " + std::to_string(k - 1), tmp.path());
+      "run " + quoted_path + " --quiet --out from --restart whole --from-step " + std::to_string(k - 1), tmp.path());
   ASSERT_EQ(from.exit_code, 0) << from.output;
   numbers = 0;
   expect_same(a, igac_test::read_summary(tmp.path() / "from"), "summary.json (--from-step)", numbers);
+  expect_same_files(tmp.path() / "whole", tmp.path() / "from");
+  // And from its last step: nothing left to solve, the final state taken up again.
+  const auto last = igac_test::run_igac("run " + quoted_path + " --quiet --out last --restart whole", tmp.path());
+  ASSERT_EQ(last.exit_code, 0) << last.output;
+  numbers = 0;
+  expect_same(a, igac_test::read_summary(tmp.path() / "last"), "summary.json (the last step)", numbers);
+  expect_same_files(tmp.path() / "whole", tmp.path() / "last");
+}
+
+void expect_restart_matches(const std::string& case_file, int k, bool vtk) {
+  expect_restart_matches_at(data(case_file), k, vtk);
+}
+
+// A case of tests/data (or cases/) with a few lines replaced, written into `dir`:
+// its path, quoted.
+std::string variant(const igac_test::TempDir& dir, const std::string& file,
+                    const std::vector<std::pair<std::string, std::string>>& replace) {
+  std::string text = igac_test::read_file(std::string(IGAC_SOURCE_DIR) + "/" + file);
+  for (const auto& [from, to] : replace) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  const fs::path path = dir.path() / fs::path(file).filename();
+  std::ofstream(path) << text;
+  return igac_test::quote(path.string());
 }
 
 TEST(Restart, LargeDeformationContinuesAsIfUninterrupted) { expect_restart_matches("curve_block_neohookean.toml", 3, true); }
@@ -123,21 +164,55 @@ TEST(Restart, AnotherCaseFileIsRefusedInOneLine) {
   EXPECT_NE(one_step.output.find("need a run in steps"), std::string::npos) << one_step.output;
 }
 
-// An incompressible run's element pressures (its augmented Lagrangian's
-// multipliers) are not in the state files: a restart could not go on as the
-// run went, so it is refused in one line, as a frictional one is.
-TEST(Restart, IncompressibleRunIsRefusedInOneLine) {
-  igac_test::TempDir tmp("restart");
-  std::string text = igac_test::read_file(std::string(IGAC_SOURCE_DIR) + "/cases/oring_rubber.toml");
-  text = std::regex_replace(text, std::regex(R"(file = "oring_quarter.xml")"),
-                            "file = \"" + std::string(IGAC_SOURCE_DIR) + "/cases/oring_quarter.xml\"");
-  text = std::regex_replace(text, std::regex(R"(formulation = "mixed")"), "formulation = \"mixed\"\nincompressible = true");
-  std::ofstream(tmp.path() / "rubber.toml") << text;
-  const auto o = igac_test::run_igac("run rubber.toml --quiet --out b --restart a", tmp.path());
-  EXPECT_EQ(o.exit_code, 2) << o.output;
-  EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
-  EXPECT_NE(o.output.find("--restart: an incompressible case's steps (and its element pressures) are not restarted"),
-            std::string::npos) << o.output;
+// Friction: the slip history (and, in small deformation, each multiplier's
+// stick or slip, its slip direction and the Schur columns computed so far)
+// is in the state files, so a frictional run stopped after step k goes on
+// as if it had not stopped: the sliding block dragged there and back (its
+// slip reverses after the stop), in small and large deformation, and two
+// bodies (a slider on a base, its top dragged there and back).
+TEST(Restart, FrictionalRunContinuesAsIfUninterrupted) {
+  expect_restart_matches("curve_friction_block.toml", 3, false);
+}
+
+TEST(Restart, LargeDeformationFrictionalRunContinuesAsIfUninterrupted) {
+  igac_test::TempDir dir("variant");
+  expect_restart_matches_at(
+      variant(dir, "tests/data/curve_friction_block.toml", {{R"(model = "linear_elastic")", R"(model = "neo_hookean")"}}),
+      4, false);
+}
+
+TEST(Restart, TwoBodyFrictionalRunsContinueAsIfUninterrupted) {
+  expect_restart_matches("curve_friction_two_blocks.toml", 3, false);
+  igac_test::TempDir dir("variant");
+  const std::string nh = R"(model = "neo_hookean")", linear = R"(model = "linear_elastic")";
+  expect_restart_matches_at(variant(dir, "tests/data/curve_friction_two_blocks.toml", {{linear, nh}, {linear, nh}}), 3,
+                            false);
+}
+
+// 3D: two tangential multipliers per point, the slip direction on the disc
+// (and b / |xi| of its linearised slip law) carried over: a box dragged
+// obliquely there and back, small and large deformation.
+TEST(Restart, ThreeDimensionalFrictionalRunsContinueAsIfUninterrupted) {
+  expect_restart_matches("curve_friction_box.toml", 3, false);
+  igac_test::TempDir dir("variant");
+  expect_restart_matches_at(
+      variant(dir, "tests/data/curve_friction_box.toml", {{R"(model = "linear_elastic")", R"(model = "neo_hookean")"}}),
+      2, false);
+}
+
+// The incompressible limit: each element's pressure multiplier (the
+// augmented Lagrangian's) where the step ended is in the state file; the
+// O-ring of real rubber at K = infinity, coarsened.
+TEST(Restart, IncompressibleRunContinuesAsIfUninterrupted) {
+  igac_test::TempDir dir("variant");
+  expect_restart_matches_at(
+      variant(dir, "cases/oring_rubber.toml",
+              {{R"(file = "oring_quarter.xml")", "file = \"" + std::string(IGAC_SOURCE_DIR) + "/cases/oring_quarter.xml\""},
+               {R"(formulation = "mixed")", "formulation = \"mixed\"\nincompressible = true"},
+               {"elements = [32, 16]", "elements = [16, 8]"},
+               {"steps = 20", "steps = 8"},
+               {"[loading]", "[output]\nvtk = false\n[loading]"}}),
+      4, false);
 }
 
 // A restart with other command-line options than the run it continues
@@ -176,7 +251,9 @@ bool run_and_stop_at(const std::vector<std::string>& args, const fs::path& cwd, 
   }
   if (pid < 0) return false;
   // igac re-executes itself once (the signal mask): the same process id.
-  const fs::path state = cwd / ("." + out + ".igac-tmp-" + std::to_string(pid)) / ("state_000" + std::to_string(k) + ".bin");
+  char name[32];
+  std::snprintf(name, sizeof name, "state_%04d.bin", k);
+  const fs::path state = cwd / ("." + out + ".igac-tmp-" + std::to_string(pid)) / name;
   int status = 0;
   bool ended = false;
   for (int i = 0; i < 120000 && !ended; ++i) {  // up to 2 minutes on a loaded machine
@@ -254,6 +331,12 @@ TEST(Restart, KilledLargeDeformationRunContinues) {
 // steps of about 0.15 s each at --refine 3 (time to kill it in between).
 TEST(Restart, KilledSmallDeformationRunContinues) {
   expect_stopped_run_continues("tests/data/curve_contact.toml", {"--refine", "3"}, 2, SIGKILL);
+}
+
+// Friction along load curves: Cattaneo-Mindlin cycled (32 steps of about
+// 30 ms), killed in the first drag and continued with its slip history.
+TEST(Restart, KilledFrictionalRunContinues) {
+  expect_stopped_run_continues("cases/cattaneo_mindlin_cycle.toml", {}, 11, SIGKILL);
 }
 
 // SIGTERM and SIGINT (Ctrl-C) end the run at once (app/launcher.hpp), and

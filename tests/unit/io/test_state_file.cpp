@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The restart state file (io/state_file.hpp): what is written is read back
-// bit for bit, and a file that is not one (cut short, another magic) is an
-// InputError naming it.
+// bit for bit (the friction and incompressible histories too), and a file
+// that is not one (cut short, another magic) or of an older version (2:
+// without those histories) is an InputError naming it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +12,19 @@
 
 namespace igac {
 namespace {
+
+// Reading `path` is refused in one InputError naming it and saying `why`.
+void expect_refused(const std::string& path, const std::string& why) {
+  StateOrigin origin;
+  try {
+    read_state_file(path, origin);
+    ADD_FAILURE() << path << " was read (expected: " << why << ")";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": not a state file igac can restart from (" + why + ")"),
+              std::string::npos)
+        << e.what();
+  }
+}
 
 TEST(StateFile, RoundTripIsBitForBit) {
   StepState s;
@@ -22,6 +36,16 @@ TEST(StateFile, RoundTripIsBitForBit) {
   s.point.face_displacement = -1e-3 / 9;
   s.point.obstacle_displacement = 0.3;
   s.point.dirichlet_reactions = {{"left", Eigen::Vector2d(1.0 / 3, 0.0)}, {"mid plane", Eigen::Vector2d(0.0, -5.5)}};
+  s.point.tangential_forces = {Eigen::Vector2d(0.1 / 3, -2.0 / 7)};
+  s.record.augmentations = 3;
+  s.friction.position = Eigen::VectorXd::Random(4);
+  s.friction.slip = Eigen::VectorXd::Random(4) / 3;
+  s.friction.direction = Eigen::VectorXd::Random(4);
+  s.friction.alpha = Eigen::VectorXd::Random(2);
+  s.friction.state = {kStick, kSlip};
+  s.friction.schur_batches = {{0, 3}, {1}};
+  s.friction.from = 0.7;
+  s.pressure_multipliers = Eigen::VectorXd::Random(6) * 1e3 / 7;
   const auto path = (std::filesystem::temp_directory_path() / "igac_test_state_0007.bin").string();
   write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
   StateOrigin hash;
@@ -43,16 +67,30 @@ TEST(StateFile, RoundTripIsBitForBit) {
   ASSERT_EQ(r.point.dirichlet_reactions.size(), 2u);
   EXPECT_EQ(r.point.dirichlet_reactions[1].face, "mid plane");
   EXPECT_EQ(r.point.dirichlet_reactions[0].force, s.point.dirichlet_reactions[0].force);
+  ASSERT_EQ(r.point.tangential_forces.size(), 1u);
+  EXPECT_EQ(r.point.tangential_forces[0], s.point.tangential_forces[0]);
+  EXPECT_EQ(r.record.augmentations, 3);
+  const FrictionHistory &h = r.friction, &w = s.friction;
+  for (const auto& [read, written] : {std::pair{&h.position, &w.position}, {&h.slip, &w.slip},
+                                      {&h.direction, &w.direction}, {&h.alpha, &w.alpha},
+                                      {&r.pressure_multipliers, &s.pressure_multipliers}})
+    EXPECT_EQ(*read, *written);
+  EXPECT_EQ(h.state, w.state);
+  EXPECT_EQ(h.schur_batches, w.schur_batches);
+  EXPECT_EQ(h.from, 0.7);
+  // An older version (2: no friction or incompressible history): refused, saying so.
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    const int64_t two = 2;
+    f.seekp(8);  // after the magic
+    f.write(reinterpret_cast<const char*>(&two), sizeof two);
+  }
+  expect_refused(path, "written by an older igac: state-file version 2, this igac reads 3; run the case again");
+  write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
   // Cut short: refused, naming the file.
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size - 3);
-  try {
-    read_state_file(path, hash);
-    ADD_FAILURE() << "a file cut short was read";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(path + ": not a state file igac can restart from (cut short)"), std::string::npos)
-        << e.what();
-  }
+  expect_refused(path, "cut short");
   std::ofstream(path) << "a text file";
   EXPECT_THROW(read_state_file(path, hash), InputError);
   std::filesystem::remove(path);

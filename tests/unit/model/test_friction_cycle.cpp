@@ -259,20 +259,5 @@ TEST(FrictionCycle, TwoBodiesMasterCurveThereAndBack) {
   EXPECT_NEAR(corner_x[5], 0.0, 1e-15);
 }
 
-// --restart of a frictional run along curves is refused: its slip history
-// is not in the state files.
-TEST(FrictionCycle, RestartIsRefused) {
-  CaseSpec spec = read_case(block_cycle_case(kF).string());
-  Model m = build_model(spec);
-  m.quiet = true;
-  m.resume.resize(1);
-  try {
-    solve_model(m);
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("slip history"), std::string::npos) << e.what();
-  }
-}
-
 }  // namespace
 }  // namespace igac
