@@ -144,3 +144,40 @@ TEST(Ironing, SlidingRatioAboveFrictionAndSmoothOnNurbsNotOnFacets) {
 }
 
 }  // namespace
+
+// What the ironing case rests on, in 3D: a Neo-Hookean box whose top face
+// is pushed down 0.2 and back along a curve ([[dirichlet]] value and curve,
+// large deformation) reports that face's reaction per step; hyperelastic,
+// the reaction at t = 0.5 and 1.5 (the same displacement, loading and
+// unloading) agree, it is zero back at t = 2, and the bottom's reaction
+// balances the top's at every step.
+TEST(CurvedSupport, LargeDeformation3DReportsItsReactionPerStep) {
+  igac_test::TempDir tmp("curved_support_3d");
+  std::ofstream(tmp.path() / "box.toml")
+      << "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\n[mesh]\ndegree = 2\nelements = [2, 2, 2]\n"
+         "[material]\nmodel = \"neo_hookean\"\nE = 1.0\nnu = 0.3\n"
+         "[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"x\"\n[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"y\"\n"
+         "[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"z\"\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"z\"\nvalue = -0.2\ncurve = [[0, 0], [1, 1], [2, 0]]\n"
+         "[loading]\nsteps = 2\nmax_increment = 0.5\n[output]\nvtk = false\n";
+  const auto o = igac_test::run_igac("run box.toml --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
+  ASSERT_EQ(rows.size(), 5u);  // the header and t = 0.5, 1, 1.5, 2
+  size_t top = 0, bottom = 0;
+  for (size_t c = 0; c < rows[0].size(); ++c) {
+    if (rows[0][c] == "reaction_top_z") top = c;
+    if (rows[0][c] == "reaction_bottom_z") bottom = c;
+  }
+  ASSERT_GT(top, 0u);
+  ASSERT_GT(bottom, 0u);
+  std::vector<double> rz;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    rz.push_back(std::stod(rows[i][top]));
+    EXPECT_NEAR(std::stod(rows[i][bottom]), -rz.back(), 1e-8 * std::abs(rz[0])) << "step " << i;
+  }
+  EXPECT_LT(rz[0], 0);          // the top pushed down pushes back up: the support pulls it down
+  EXPECT_LT(rz[1], 1.5 * rz[0]);  // twice the push, more than 1.5 times the force
+  EXPECT_NEAR(rz[2], rz[0], 1e-8 * std::abs(rz[0]));
+  EXPECT_NEAR(rz[3], 0, 1e-8 * std::abs(rz[0]));
+}
