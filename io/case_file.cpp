@@ -298,7 +298,10 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
       if (s.has("master_motion")) {
         if (c.finite_strain())
           s.fail("master_motion", fmt::format("moves the master body in small deformation only (material model "
-                                              "\"linear_elastic\"), not with model \"{}\"", c.model));
+                                              "\"linear_elastic\"), not with model \"{}\": move its supports "
+                                              "instead, a [[dirichlet]] value with a curve on their faces "
+                                              "(cases/ironing.toml)",
+                                              c.model));
         cs.master_motion = s.loads("master_motion", dim);
       }
       if (s.has("master_curve")) {  // (kept as the obstacle's curve: every load's curve is in CaseSpec::load_curves)

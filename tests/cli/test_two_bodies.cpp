@@ -137,11 +137,14 @@ INSTANTIATE_TEST_SUITE_P(
                   "[contact] integration: is the mortar integration of a contact between two bodies"}),
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
-// Large deformation between two bodies runs; moving the master body there
-// is not implemented, and says so in one line.
+// Large deformation between two bodies runs; master_motion there is not
+// implemented, and says so in one line with the way that works: the master
+// body's supports moved along a curve (cases/ironing.toml).
 TEST(TwoBodiesBadInput, MasterMotionInLargeDeformationIsOneLine) {
   const BadMaster b{"master_motion_large", "master = \"block:top\"", "master = \"block:top\"\nmaster_motion = [0.1, 0.0]",
-                    "[contact] master_motion: moves the master body in small deformation only"};
+                    "[contact] master_motion: moves the master body in small deformation only (material model "
+                    "\"linear_elastic\"), not with model \"neo_hookean\": move its supports instead, a [[dirichlet]] "
+                    "value with a curve on their faces (cases/ironing.toml)"};
   expect_one_line_error(edited("roller_on_block_neohookean.toml", b), b.expected);
 }
 
