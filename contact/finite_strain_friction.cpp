@@ -9,12 +9,13 @@ namespace igac {
 
 FiniteStrainFriction::FiniteStrainFriction(const Body& body, const DofMap& dofs,
                                            const std::vector<FrictionContact>& contacts, const Eigen::VectorXd& weights,
-                                           double complementarity_scale)
+                                           double complementarity_scale, const Eigen::VectorXd& tangential_scale)
     : m_(int(weights.size())),
       nt_(dofs.dim() - 1),
       n_(dofs.num_free()),
       dim_(dofs.dim()),
       c_(complementarity_scale),
+      ct_(tangential_scale),
       contacts_(contacts),
       body_(&body),
       dofs_(&dofs),
@@ -124,7 +125,7 @@ std::vector<char> FiniteStrainFriction::states(double t, const Eigen::MatrixXd& 
       continue;
     }
     const double w = weights_[K];
-    const Eigen::VectorXd xi = lambda_t.segment(K * nt_, nt_) + c_ / w * s.segment(K * nt_, nt_);
+    const Eigen::VectorXd xi = lambda_t.segment(K * nt_, nt_) + ct_[K] / w * s.segment(K * nt_, nt_);
     const double b = -friction_[K] * (lambda_n[K] + c_ * gamma[K] / w);
     out[K] = xi.norm() <= b ? kStick : kSlip;
   }
@@ -145,7 +146,7 @@ void FiniteStrainFriction::residual(double t, const Eigen::MatrixXd& u, const Ei
     if (st[K] == kStick) {
       r = c_ * s.segment(K * nt_, nt_);
     } else if (st[K] == kSlip && friction_[K] > 0) {
-      const Eigen::VectorXd xi = lt + c_ / w * s.segment(K * nt_, nt_);
+      const Eigen::VectorXd xi = lt + ct_[K] / w * s.segment(K * nt_, nt_);
       const double b = -friction_[K] * (lambda_n[K] + c_ * gamma[K] / w);
       r = w * (lt - b / xi.norm() * xi);
     } else {
@@ -175,7 +176,7 @@ void FiniteStrainFriction::jacobian(double t, const Eigen::MatrixXd& u, const Ei
       const double f = friction_[K];
       const Eigen::VectorXd lt = lambda_t.segment(K * nt_, nt_), sk = s.segment(K * nt_, nt_) / w;
       const double b = -f * (lambda_n[K] + c_ * gamma[K] / w);
-      const SlipLinearisation lin = linearise_slip(lt, sk, b, c_);
+      const SlipLinearisation lin = linearise_slip(lt, sk, b, ct_[K]);
       for (int i = 0; i < nt_; ++i) {
         for (int j = 0; j < nt_; ++j) {
           out.emplace_back(row + i, row + j, w * lin.d_lambda_t(i, j));

@@ -24,7 +24,8 @@
 // the tangent plane does not turn and T is the same at every step.
 //
 // The Coulomb cone as in small deformation (contact/small_strain_friction.hpp),
-// with c the normal complementarity scale, xi = lambda_t + c s_K / K_K and
+// with c the normal complementarity scale, c_t,K the tangential one
+// (tangential_scales), xi = lambda_t + c_t,K s_K / K_K and
 // b = -f (lambda_n + c gamma_K / K_K): K is open where its normal row is
 // inactive, stick where |xi| <= b, slip otherwise.  The residual rows
 // (forces, as the normal ones):
@@ -63,9 +64,11 @@ class FiniteStrainFriction {
  public:
   using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   // `dofs` numbers the free unknowns; `weights` K_K of every multiplier
-  // (m); c the normal rows' complementarity scale (stress per length).
+  // (m); c the normal rows' complementarity scale (stress per length), c_t
+  // the tangential one per multiplier (tangential_scales, small_strain_friction.hpp).
   FiniteStrainFriction(const Body& body, const DofMap& dofs, const std::vector<FrictionContact>& contacts,
-                       const Eigen::VectorXd& weights, double complementarity_scale);
+                       const Eigen::VectorXd& weights, double complementarity_scale,
+                       const Eigen::VectorXd& tangential_scale);
   int rows() const { return int(T_free_.rows()); }  // m (dim-1)
   int per_multiplier() const { return nt_; }
 
@@ -109,6 +112,7 @@ class FiniteStrainFriction {
  private:
   int m_ = 0, nt_ = 0, n_ = 0, dim_ = 0;
   double c_ = 1;
+  Eigen::VectorXd ct_;  // c_t per multiplier
   std::vector<FrictionContact> contacts_;
   std::vector<std::unique_ptr<MasterSurface>> masters_;  // per contact: moved to each step's start (null: an obstacle)
   const Body* body_;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "contact/small_strain_friction.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/sparsity.hpp"
 
@@ -42,7 +43,9 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
       const auto& c = s_.contacts[k];
       fc.push_back({c.face, c.obstacle, c.master, c.integration, c.motion, &c.curve, c.friction, offsets_[k]});
     }
-    friction_ = std::make_unique<FiniteStrainFriction>(*s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale);
+    friction_ = std::make_unique<FiniteStrainFriction>(
+        *s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale,
+        tangential_scales(s_.complementarity_scale, s_.mesh_size, weights_, s_.dofs->dim()));
     mt_ = friction_->rows();
   }
   weights_of_rows_.resize(0);

@@ -14,6 +14,7 @@ namespace igac {
 struct SmallStrainFriction::Impl {
   int n = 0, m = 0, nt = 0, k = 0;
   double cn = 1;
+  Eigen::VectorXd ct;  // c_t per multiplier (tangential_scales)
   int max_iterations = 100;
   const RigidModes& modes;
   SparseCholesky& chol;
@@ -41,6 +42,14 @@ double slip_compliance(double alpha, double ct) {
   return (1 - a) / (a * ct);
 }
 
+Eigen::VectorXd tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim) {
+  Eigen::VectorXd ct = Eigen::VectorXd::Constant(weights.size(), cn);
+  if (mesh_size > 0 && dim == 3)
+    for (int K = 0; K < weights.size(); ++K)
+      if (weights[K] > 0) ct[K] = cn * mesh_size / std::pow(weights[K], 1.0 / (dim - 1));
+  return ct;
+}
+
 SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::VectorXd& s, double b, double ct) {
   const Eigen::VectorXd xi = lambda_t + ct * s;
   const double norm = xi.norm();
@@ -64,6 +73,7 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   s.nt = s.m ? int(op.T.rows() / s.m) : 0;
   s.k = int(modes.modes.cols());
   s.cn = opt.complementarity_scale;
+  s.ct = tangential_scales(s.cn, opt.mesh_size, op.weights, s.nt + 1);
   s.max_iterations = std::max(opt.max_iterations, 100);
   s.Gs.resize(s.m * (1 + s.nt), s.n);
   {
@@ -167,7 +177,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   std::set<std::vector<char>> seen;
   // The tangential scale c_t of xi = lambda_t + c_t s (the normal one's
   // unless the iteration cycles, below).
-  double ct = s.cn;
+  double ct_factor = 1;
   int restarts = 0;
   Eigen::VectorXd lam = Eigen::VectorXd::Zero(rows_all), c = Eigen::VectorXd::Zero(k), Gu(rows_all);
   Eigen::VectorXd gap(m), slip(m * nt);
@@ -208,7 +218,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
           Unknown u;
           u.C = {{s.trow(K, 0), w0}, {s.trow(K, 1), w1}};
           u.H = u.C;
-          u.diagonal = op.weights[K] * slip_compliance(s.alpha[K], ct);
+          u.diagonal = op.weights[K] * slip_compliance(s.alpha[K], ct_factor * s.ct[K]);
           unknowns.push_back(std::move(u));
         }
     sol.active_set_sizes.push_back(int(unknowns.size()));
@@ -268,7 +278,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
         next[K] = kSlip;
         continue;
       }
-      const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + ct * slip.segment(K * nt, nt);
+      const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + ct_factor * s.ct[K] * slip.segment(K * nt, nt);
       const double b = std::max(0.0, -fr[K] * (lam_n[K] + s.cn * gap[K]));
       const double norm = xi.norm();
       if (std::abs(norm - b) <= tol && s.state[K] != kOpen) next[K] = s.state[K];  // on the cone to round-off
@@ -297,7 +307,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
         // elastic predictor of a return mapping, and after the first time
         // with c_t 10 times smaller (the solution does not depend on c_t).
         // Runs that do not cycle never come here: their iterations are as before.
-        if (restarts++ > 0) ct *= 0.1;
+        if (restarts++ > 0) ct_factor *= 0.1;
         seen.clear();
         for (int K = 0; K < m; ++K)
           if (next[K] != kOpen) next[K] = kStick;

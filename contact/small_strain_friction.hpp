@@ -54,6 +54,18 @@ SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::V
 inline constexpr double kMinAlpha = 1e-12;
 double slip_compliance(double alpha, double ct);
 
+// The tangential scale c_t,K of each multiplier, in 3D: E / h_K, with
+// E = c_n h (c_n = E / h the normal rows' scale, h the mesh size: the
+// largest element) and h_K = K_K^(1/2) the size of the multiplier's support
+// on the face.  c_t weighs slip against traction in xi = lambda_t + c_t s / K_K:
+// a tangential stiffness, the traction a slip of one element's size costs;
+// where the mesh is graded toward the contact (hertz3d_neohookean: h_K down
+// to h / 20) E / h underrates it, and the slip directions (the disc) took
+// more iterations to settle (docs/benchmarks.md, "Friction in large
+// deformation").  In 2D, and for h <= 0: c_n for every multiplier (2D was
+// measured but not changed: see there).
+Eigen::VectorXd tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim);
+
 // Per multiplier: 0 open, 1 stick, 2 slip.
 enum FrictionState : char { kOpen = 0, kStick = 1, kSlip = 2 };
 

@@ -147,6 +147,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   }
   ContactSolverOptions opt;
   opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+  opt.mesh_size = m.mesh_size;
   const ReactionEvaluator reactions(m);
   const LoadCurveProbe probe(m);
   LoadSteppingSummary steps;

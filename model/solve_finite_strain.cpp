@@ -137,6 +137,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
                               c.integration, c.curve, c.friction});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+  setup.mesh_size = m.mesh_size;
   if (m.spec.incompressible) setup.incompressibility_tolerance = TotalLagrangianAssembler::kIncompressibilityTolerance;
   return setup;
 }

@@ -321,6 +321,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     c->op = std::move(*op);
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
+    opt.mesh_size = m.mesh_size;
     if (!m.quiet) opt.on_iteration = report_iteration;
     progress.phase(petsc ? fmt::format("the active-set iterations with PETSc ({} equations, {} multipliers)",
                                        m.dofs->num_free(), m.num_multipliers())

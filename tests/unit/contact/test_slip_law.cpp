@@ -59,5 +59,18 @@ TEST(SlipLaw, CrossRowIsTheLawAcrossTheSlipDirection) {
   EXPECT_NEAR(w.dot(lin.d_lambda_t * w) * mu + w.dot(lin.d_s * w) * sigma, 0.0, 1e-14);
 }
 
+// In 3D c_t,K = E / h_K: E = c_n h, h_K = K_K^(1/2); in 2D or with no mesh size: c_n.
+TEST(SlipLaw, TangentialScaleIsEOverTheMultipliersSize) {
+  const Eigen::Vector2d w2(0.1, 0.05), w3(0.04, 0.01);
+  const Eigen::VectorXd ct2 = tangential_scales(10.0, 0.2, w2, 2), ct3 = tangential_scales(5.0, 0.4, w3, 3),
+                        none = tangential_scales(10.0, 0.0, w3, 3);
+  EXPECT_EQ(ct2[0], 10.0);
+  EXPECT_EQ(ct2[1], 10.0);
+  EXPECT_NEAR(ct3[0], 10.0, 1e-12);  // E = 2, h_K = 0.2
+  EXPECT_NEAR(ct3[1], 20.0, 1e-12);
+  EXPECT_EQ(none[0], 10.0);
+  EXPECT_EQ(none[1], 10.0);
+}
+
 }  // namespace
 }  // namespace igac

@@ -13,7 +13,7 @@
 // dofs, 4.5 s on a loaded machine, hence the slow label): the press alone
 // leaves 114 of 116 multipliers stuck; after the drag Q / (f N) = 0.675,
 // c = 0.0711 and the stick radius 0.0679, a 0.1035 and the contact zone's
-// 0.1021, the spacing 0.0121; active-set iterations per step 11 8 8 8 8, the
+// 0.1021, the spacing 0.0121; active-set iterations per step 11 6 7 7 6 (before c_t,K 11 8 8 8 8), the
 // frictionless press 7 (the frictional press takes 1.57x).
 // With nu = 0.3 the press alone already slips in a ring (40 of 112), and
 // the stick radius after the drag is 0.048 against c = 0.068: the law
