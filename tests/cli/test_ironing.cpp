@@ -98,11 +98,8 @@ Plateau run_ironing(const std::string& die_xml, const std::string& tag) {
   const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
   Plateau p;
   if (rows.size() < 2) return p;
-  size_t cx = 0, cy = 0;
-  for (size_t c = 0; c < rows[0].size(); ++c) {
-    if (rows[0][c] == "reaction_die:0:north_x") cx = c;
-    if (rows[0][c] == "reaction_die:0:north_y") cy = c;
-  }
+  const size_t cx = igac_test::csv_column(rows, "reaction_die:0:north_x");
+  const size_t cy = igac_test::csv_column(rows, "reaction_die:0:north_y");
   EXPECT_GT(cx, 0u);
   EXPECT_GT(cy, 0u);
   std::vector<double> travel, fx;
@@ -164,11 +161,8 @@ TEST(CurvedSupport, LargeDeformation3DReportsItsReactionPerStep) {
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
   ASSERT_EQ(rows.size(), 5u);  // the header and t = 0.5, 1, 1.5, 2
-  size_t top = 0, bottom = 0;
-  for (size_t c = 0; c < rows[0].size(); ++c) {
-    if (rows[0][c] == "reaction_top_z") top = c;
-    if (rows[0][c] == "reaction_bottom_z") bottom = c;
-  }
+  const size_t top = igac_test::csv_column(rows, "reaction_top_z");
+  const size_t bottom = igac_test::csv_column(rows, "reaction_bottom_z");
   ASSERT_GT(top, 0u);
   ASSERT_GT(bottom, 0u);
   std::vector<double> rz;

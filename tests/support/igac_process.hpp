@@ -101,4 +101,13 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::filesystem::pat
   return rows;
 }
 
+// The index of the column named `name` in a CSV's header row (0 when absent:
+// column 0 is the load factor in igac's CSVs, never a looked-up one).
+inline size_t csv_column(const std::vector<std::vector<std::string>>& rows, const std::string& name) {
+  if (rows.empty()) return 0;
+  for (size_t c = 0; c < rows[0].size(); ++c)
+    if (rows[0][c] == name) return c;
+  return 0;
+}
+
 }  // namespace igac_test
