@@ -11,6 +11,7 @@ const std::vector<MortarPointCache::Point>& MortarPointCache::at(const ContactFa
                                                                  MortarIntegration integration, const Eigen::MatrixXd& u,
                                                                  const ContactQuadrature& tabulated) {
   if (valid_ && u_.rows() == u.rows() && u_.cols() == u.cols() && u_ == u) return points_;
+  valid_ = false;  // until filled: a search that throws leaves no stale points behind
   points_.clear();
   for_each_mortar_point(slave, master, integration, &u, [&](const MortarSlavePoint& sp) {
     std::optional<MasterPoint> mp = master.project(sp.x);

@@ -176,3 +176,30 @@ TEST(FiniteStrainTwoBodies, NewtonConvergesQuadraticallyOnceTheActiveSetSettles)
   ASSERT_EQ(r.status, "converged");
   igac_test::expect_newton_order(r, kMinOrder, kRoundOffFloor);
 }
+
+TEST(FiniteStrainTwoBodies, StatesVisitedBetweenChangeNothingAtTheSameState) {
+  // Each contact keeps the mortar points of the last state (MortarPointCache):
+  // a residual and a Jacobian at x asked after another state's residual are
+  // those of a fresh problem at x, to the bit.
+  for (const char* file : {"finite_strain_two_bodies.toml", "finite_strain_two_bodies_3d.toml"}) {
+    const Model m = model_of(file);
+    FiniteStrainProblem visited(finite_strain_setup(m)), fresh(finite_strain_setup(m));
+    Eigen::VectorXd x;
+    const double t = solve(m, visited, x);
+    Eigen::VectorXd r_fresh, r_visited, r_other;
+    BlockJacobian J_fresh, J_visited;
+    ASSERT_TRUE(fresh.residual(t, x, r_fresh));
+    ASSERT_TRUE(fresh.block_jacobian(t, x, J_fresh));
+    Eigen::VectorXd other = x;
+    const int n = visited.num_displacements();  // (not a translation: that would leave the cut as it is)
+    other.head(n) += 1e-3 * Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+    ASSERT_TRUE(visited.residual(t, other, r_other));
+    ASSERT_TRUE(visited.block_jacobian(t, x, J_visited));
+    ASSERT_TRUE(visited.residual(t, x, r_visited));
+    EXPECT_GT((r_other - r_fresh).norm(), 0.0) << file;
+    EXPECT_EQ((r_visited - r_fresh).cwiseAbs().maxCoeff(), 0.0) << file;
+    EXPECT_EQ(Eigen::MatrixXd(J_visited.K - J_fresh.K).cwiseAbs().maxCoeff(), 0.0) << file;
+    EXPECT_EQ(Eigen::MatrixXd(J_visited.B - J_fresh.B).cwiseAbs().maxCoeff(), 0.0) << file;
+    EXPECT_EQ(Eigen::MatrixXd(J_visited.K_coupling - J_fresh.K_coupling).cwiseAbs().maxCoeff(), 0.0) << file;
+  }
+}
