@@ -201,9 +201,9 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   }
   if (!m.resume.empty()) {
     const StepState& from = m.resume.back();
-    // a state file of a mixed run written before its element dilatations joined the unknowns
+    // a state whose unknowns are not this problem's is refused, not read past its end
     if (from.driver.x.size() != problem.size())
-      throw InputError(fmt::format("{}: the state file holds {} unknowns, this run has {} (written by an earlier igac?); "
+      throw InputError(fmt::format("{}: the state file holds {} unknowns, this run has {}; "
                                    "run the case again from the start",
                                    m.spec.path, from.driver.x.size(), problem.size()));
     opt.start = from.driver;

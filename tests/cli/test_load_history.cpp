@@ -68,9 +68,8 @@ TEST(LoadHistory, FrictionTangentialForceColumnAndLoopPanel) {
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
   ASSERT_EQ(rows.size(), 7u);  // the header and 6 steps
-  const auto column = std::find(rows[0].begin(), rows[0].end(), "tangential_force");
-  ASSERT_NE(column, rows[0].end());
-  const size_t tc = size_t(column - rows[0].begin()), oc = 3;
+  const size_t tc = igac_test::csv_column(rows, "tangential_force"), oc = 3;
+  ASSERT_GT(tc, 0u);  // (found)
   EXPECT_EQ(rows[0][oc], "obstacle_displacement");
   // t = 2: dragged to +0.01, sliding: f N = 0.003; t = 3: back at 0, -f N.
   EXPECT_EQ(std::stod(rows[4][oc]), 0.01);
@@ -99,9 +98,8 @@ TEST(LoadHistory, LargeDeformationFrictionColumn) {
   const auto o = igac_test::run_igac("run block.toml --quiet --out out", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const auto rows = igac_test::csv_rows(tmp.path() / "out" / "load_curve.csv");
-  const auto column = std::find(rows.at(0).begin(), rows.at(0).end(), "tangential_force");
-  ASSERT_NE(column, rows[0].end());
-  const size_t tc = size_t(column - rows[0].begin()), oc = 3;
+  const size_t tc = igac_test::csv_column(rows, "tangential_force"), oc = 3;
+  ASSERT_GT(tc, 0u);  // (found)
   bool turn = false, back = false;
   for (size_t i = 1; i < rows.size(); ++i) {
     const double t = std::stod(rows[i][0]);
