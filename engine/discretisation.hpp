@@ -58,6 +58,8 @@ class PatchQuadrature {
   int num_points() const;
   int num_local() const;
   std::array<int, 3> element_index(int e) const;
+  // Elements (non-empty knot spans) per parametric direction; 1 past param_dim.
+  const std::array<int, 3>& elements_per_direction() const { return n_el_; }
   const NurbsPatch& patch() const { return patch_; }
   // Fills `out` for element e; gradients only when asked (volume patches).
   // The fixed-size form needs pd = param_dim and sd = space_dim of the patch

@@ -2,37 +2,79 @@
 #include "engine/sparsity.hpp"
 
 #include <algorithm>
+#include <fmt/format.h>
 #include <stdexcept>
 
 namespace igac {
 
-// Sparsity pattern (free numbering, values zero): equations couple when their
-// control points share an element.  Built per node rather than per element
-// pair, so the temporary memory stays at the size of the result: a node is a
-// control point with its free equations, coincident control points of a
-// collapsed face (same equations) being one node, keyed by its first free
-// equation.  Symmetric, so column r's rows are row r's columns.
-Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
-  if (e_end < 0) e_end = quad.num_elements();
-  const int dim = dofs.dim(), n_free = dofs.num_free();
-  const int n_cp = dofs.num_dofs() / dim, n_el = e_end - e_begin, nl = quad.num_local();
+namespace {
 
-  // element -> control points, and control point -> elements (CSR)
-  std::vector<int> el_cps(size_t(n_el) * nl), cps;
-  std::vector<int> cp_start(n_cp + 1, 0);
-  for (int e = 0; e < n_el; ++e) {
-    quad.control_points(e_begin + e, cps);
-    if (int(cps.size()) > nl || cps.empty()) throw std::logic_error("coupling pattern: an element larger than num_local");
-    // A patch of a lower degree (a second body): its elements padded with
-    // their first control point, which couples nothing new.
-    cps.resize(size_t(nl), cps.front());
-    std::copy(cps.begin(), cps.end(), el_cps.begin() + size_t(e) * nl);
-    for (int a : cps) ++cp_start[a + 1];
+// The units of a pattern or a colouring: elements, or blocks of elements
+// (pressure_blocks.hpp), each with its control points (CSR, each point once).
+struct Units {
+  std::vector<int> start{0}, cps;
+  std::vector<int> id;  // the element or block number of each unit
+  int size() const { return int(start.size()) - 1; }
+};
+
+Units element_units(const BodyQuadrature& quad, int e_begin, int e_end) {
+  Units u;
+  std::vector<int> cps;
+  for (int e = e_begin; e < e_end; ++e) {
+    quad.control_points(e, cps);
+    if (cps.empty()) throw std::logic_error("coupling pattern: an element without control points");
+    u.cps.insert(u.cps.end(), cps.begin(), cps.end());
+    u.start.push_back(int(u.cps.size()));
+    u.id.push_back(e);
   }
+  return u;
+}
+
+// The blocks whose elements lie in [e_begin, e_end); a block split by the
+// range is a logic error (a distributed solve must cut between blocks).
+Units block_units(const BodyQuadrature& quad, const ElementBlocks& blocks, int e_begin, int e_end) {
+  if (blocks.num_elements() != quad.num_elements())
+    throw std::logic_error("coupling pattern: pressure blocks of another body");
+  Units u;
+  std::vector<int> cps;
+  for (int b = 0; b < blocks.num_blocks(); ++b) {
+    const int* first = blocks.elements.data() + blocks.start[b];
+    const int* past = blocks.elements.data() + blocks.start[b + 1];
+    const auto inside = [&](int e) { return e >= e_begin && e < e_end; };
+    const bool any = std::any_of(first, past, inside);
+    if (!any) continue;
+    if (!std::all_of(first, past, inside))
+      throw std::logic_error(fmt::format("element range [{}, {}) splits pressure block {}", e_begin, e_end, b));
+    const size_t from = u.cps.size();
+    for (const int* e = first; e != past; ++e) {
+      quad.control_points(*e, cps);
+      u.cps.insert(u.cps.end(), cps.begin(), cps.end());
+    }
+    std::sort(u.cps.begin() + std::ptrdiff_t(from), u.cps.end());
+    u.cps.erase(std::unique(u.cps.begin() + std::ptrdiff_t(from), u.cps.end()), u.cps.end());
+    u.start.push_back(int(u.cps.size()));
+    u.id.push_back(b);
+  }
+  return u;
+}
+
+// Sparsity pattern (free numbering, values zero): equations couple when their
+// control points share a unit.  Built per node rather than per unit pair, so
+// the temporary memory stays at the size of the result: a node is a control
+// point with its free equations, coincident control points of a collapsed
+// face (same equations) being one node, keyed by its first free equation.
+// Symmetric, so column r's rows are row r's columns.
+Eigen::SparseMatrix<double> pattern_of_units(const Units& units, const DofMap& dofs) {
+  const int dim = dofs.dim(), n_free = dofs.num_free();
+  const int n_cp = dofs.num_dofs() / dim, n_units = units.size();
+
+  // control point -> units (CSR)
+  std::vector<int> cp_start(n_cp + 1, 0);
+  for (int a : units.cps) ++cp_start[a + 1];
   for (int a = 0; a < n_cp; ++a) cp_start[a + 1] += cp_start[a];
-  std::vector<int> cp_els(cp_start[n_cp]), fill(cp_start.begin(), cp_start.end() - 1);
-  for (int e = 0; e < n_el; ++e)
-    for (int k = 0; k < nl; ++k) cp_els[fill[el_cps[size_t(e) * nl + k]]++] = e;
+  std::vector<int> cp_units(cp_start[n_cp]), fill(cp_start.begin(), cp_start.end() - 1);
+  for (int e = 0; e < n_units; ++e)
+    for (int k = units.start[e]; k < units.start[e + 1]; ++k) cp_units[fill[units.cps[k]]++] = e;
 
   // node (first free equation) -> its control points
   auto first_free = [&](int a) {
@@ -46,7 +88,7 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
 
   // per node: the sorted free equations of every control point it meets
   // (each control point once: a stamp per thread, so only the 3^d p-ish
-  // distinct neighbours are sorted, not every element's copy of them)
+  // distinct neighbours are sorted, not every unit's copy of them)
   std::vector<std::vector<int>> cols(n_free);
 #pragma omp parallel
   {
@@ -56,12 +98,13 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
       auto& v = cols[r];
       for (int a : node_cps[r])
         for (int k = cp_start[a]; k < cp_start[a + 1]; ++k) {
-          const int* c = el_cps.data() + size_t(cp_els[k]) * nl;
-          for (int b = 0; b < nl; ++b) {
-            if (seen[c[b]] == r) continue;
-            seen[c[b]] = r;
-            for (int j = 0; j < dim; ++j)
-              if (const int q = dofs.equation(c[b] * dim + j); q >= 0) v.push_back(q);
+          const int e = cp_units[k];
+          for (int j = units.start[e]; j < units.start[e + 1]; ++j) {
+            const int b = units.cps[j];
+            if (seen[b] == r) continue;
+            seen[b] = r;
+            for (int i = 0; i < dim; ++i)
+              if (const int q = dofs.equation(b * dim + i); q >= 0) v.push_back(q);
           }
         }
       std::sort(v.begin(), v.end());
@@ -85,37 +128,37 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
   return K;
 }
 
-std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
-  if (e_end < 0) e_end = quad.num_elements();
-  const int dim = dofs.dim(), n_free = dofs.num_free(), n_el = e_end - e_begin;
-  // element -> the equations it writes (one per node: its first free one)
-  std::vector<int> start(n_el + 1, 0), keys, cps;
-  for (int e = 0; e < n_el; ++e) {
-    quad.control_points(e_begin + e, cps);
+// Greedy colouring of the units: no two units of a colour write to the same
+// free equation.  Returns the units' ids by colour.
+std::vector<std::vector<int>> colour_units(const Units& units, const DofMap& dofs) {
+  const int dim = dofs.dim(), n_free = dofs.num_free(), n_units = units.size();
+  // unit -> the equations it writes (one per node: its first free one)
+  std::vector<int> start(n_units + 1, 0), keys;
+  for (int e = 0; e < n_units; ++e) {
     const size_t first = keys.size();
-    for (int a : cps)
+    for (int k = units.start[e]; k < units.start[e + 1]; ++k)
       for (int i = 0; i < dim; ++i)
-        if (const int q = dofs.equation(a * dim + i); q >= 0) {
+        if (const int q = dofs.equation(units.cps[k] * dim + i); q >= 0) {
           keys.push_back(q);
           break;
         }
-    std::sort(keys.begin() + first, keys.end());
-    keys.erase(std::unique(keys.begin() + first, keys.end()), keys.end());
+    std::sort(keys.begin() + std::ptrdiff_t(first), keys.end());
+    keys.erase(std::unique(keys.begin() + std::ptrdiff_t(first), keys.end()), keys.end());
     start[e + 1] = int(keys.size());
   }
-  // equation -> elements (CSR)
+  // equation -> units (CSR)
   std::vector<int> key_start(n_free + 1, 0);
   for (int k : keys) ++key_start[k + 1];
   for (int q = 0; q < n_free; ++q) key_start[q + 1] += key_start[q];
-  std::vector<int> key_els(keys.size()), fill(key_start.begin(), key_start.end() - 1);
-  for (int e = 0; e < n_el; ++e)
-    for (int k = start[e]; k < start[e + 1]; ++k) key_els[fill[keys[k]]++] = e;
-  std::vector<int> colour(n_el, -1), stamp;  // stamp[c] == e: colour c taken by a neighbour of e
+  std::vector<int> key_units(keys.size()), fill(key_start.begin(), key_start.end() - 1);
+  for (int e = 0; e < n_units; ++e)
+    for (int k = start[e]; k < start[e + 1]; ++k) key_units[fill[keys[k]]++] = e;
+  std::vector<int> colour(n_units, -1), stamp;  // stamp[c] == e: colour c taken by a neighbour of e
   std::vector<std::vector<int>> out;
-  for (int e = 0; e < n_el; ++e) {
+  for (int e = 0; e < n_units; ++e) {
     for (int k = start[e]; k < start[e + 1]; ++k)
       for (int j = key_start[keys[k]]; j < key_start[keys[k] + 1]; ++j)
-        if (const int c = colour[key_els[j]]; c >= 0) stamp[c] = e;
+        if (const int c = colour[key_units[j]]; c >= 0) stamp[c] = e;
     int c = 0;
     while (c < int(stamp.size()) && stamp[c] == e) ++c;
     if (c == int(stamp.size())) {
@@ -123,9 +166,34 @@ std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const 
       out.emplace_back();
     }
     colour[e] = c;
-    out[c].push_back(e_begin + e);
+    out[c].push_back(units.id[e]);
   }
   return out;
+}
+
+}  // namespace
+
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  return pattern_of_units(element_units(quad, e_begin, e_end), dofs);
+}
+
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
+                                             const ElementBlocks& blocks, int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  if (blocks.per_element()) return coupling_pattern(quad, dofs, e_begin, e_end);
+  return pattern_of_units(block_units(quad, blocks, e_begin, e_end), dofs);
+}
+
+std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  return colour_units(element_units(quad, e_begin, e_end), dofs);
+}
+
+std::vector<std::vector<int>> colour_blocks(const BodyQuadrature& quad, const DofMap& dofs, const ElementBlocks& blocks,
+                                            int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  return colour_units(block_units(quad, blocks, e_begin, e_end), dofs);
 }
 
 }  // namespace igac

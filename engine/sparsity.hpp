@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "engine/assembly.hpp"
+#include "engine/pressure_blocks.hpp"
 
 namespace igac {
 
@@ -28,6 +29,15 @@ namespace igac {
 // to the last one) in the free numbering of `dofs` (n_free x n_free).
 Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
                                              int e_end = -1);
+
+// The pattern with the control points of each block of elements coupled
+// together (pressure_blocks.hpp: the mixed formulation's rank-one block
+// term reaches every control point of the block's elements): equations couple
+// when their control points share a block.  Blocks of one element give the
+// element pattern above.  The blocks in [e_begin, e_end); throws
+// std::logic_error when the range splits a block.
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
+                                             const ElementBlocks& blocks, int e_begin = 0, int e_end = -1);
 
 // Elements [e_begin, e_end) of `quad` (e_end < 0: to the last one) in
 // colours such that no two elements of one colour write to the same free
@@ -40,6 +50,13 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
 // colours.  Element numbers are those of `quad`.
 std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
                                               int e_end = -1);
+
+// The blocks of elements in [e_begin, e_end) in colours such that no two
+// blocks of one colour write to the same free equation: block numbers by
+// colour, for a loop whose thread owns a whole block (its elements and its
+// block term).  Throws std::logic_error when the range splits a block.
+std::vector<std::vector<int>> colour_blocks(const BodyQuadrature& quad, const DofMap& dofs, const ElementBlocks& blocks,
+                                            int e_begin = 0, int e_end = -1);
 
 // f[eq[r]] += fe[r] for every local row r with a free equation (prescribed
 // ones, -1, are skipped).
