@@ -52,4 +52,15 @@ ElementBlocks block_elements(const BodyQuadrature& quad, const std::vector<int>&
   return out;
 }
 
+ElementBlocks mixed_pressure_blocks(const BodyQuadrature& quad, const std::vector<Formulation>& patch_formulations) {
+  std::vector<int> widths(size_t(quad.num_patches()), 1);
+  for (int k = 0; k < quad.num_patches(); ++k) {
+    const Formulation f = patch_formulations.empty()       ? Formulation::displacement
+                          : patch_formulations.size() == 1 ? patch_formulations[0]
+                                                           : patch_formulations.at(size_t(k));
+    if (f == Formulation::mixed) widths[size_t(k)] = kPressureBlockWidth;
+  }
+  return block_elements(quad, widths);
+}
+
 }  // namespace igac

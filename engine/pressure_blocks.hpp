@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "engine/body.hpp"
+#include "engine/volumetric_projection.hpp"
 
 namespace igac {
 
@@ -40,5 +41,13 @@ struct ElementBlocks {
 // every direction (one entry: every patch's width).  Throws
 // std::invalid_argument for a width < 1 or a list of the wrong length.
 ElementBlocks block_elements(const BodyQuadrature& quad, const std::vector<int>& width_per_patch);
+
+// The mixed formulation's pressure blocks: patches in the mixed formulation
+// 2 wide, the others 1 (patch_formulations: one entry, every patch's; empty,
+// displacement everywhere).  The one definition every consumer uses (the
+// assemblies, the u-p Newton's unknowns, the state file, the recovered
+// pressure field), so a block number means the same block everywhere.
+inline constexpr int kPressureBlockWidth = 2;
+ElementBlocks mixed_pressure_blocks(const BodyQuadrature& quad, const std::vector<Formulation>& patch_formulations);
 
 }  // namespace igac

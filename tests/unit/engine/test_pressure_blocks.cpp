@@ -76,6 +76,10 @@ TEST(PressureBlocks, ShortDirectionsAndPatchesKeepTheirOwnBlocks) {
     EXPECT_EQ(blocks.start[b + 1] - blocks.start[b], b < 4 ? 4 : 1);
   }
   EXPECT_TRUE(block_elements(quad, {1}).per_element());
+  const ElementBlocks mixed = mixed_pressure_blocks(quad, {Formulation::mixed, Formulation::displacement});
+  EXPECT_EQ(mixed.block_of, blocks.block_of);
+  EXPECT_TRUE(mixed_pressure_blocks(quad, {}).per_element());
+  EXPECT_EQ(mixed_pressure_blocks(quad, {Formulation::mixed}).num_blocks(), 4 + 1);
   EXPECT_THROW(block_elements(quad, {2, 1, 1}), std::invalid_argument);
   EXPECT_THROW(block_elements(quad, {0}), std::invalid_argument);
 }
