@@ -286,7 +286,11 @@ TEST(FiniteStrainFriction, SlidingBlockOnAnElasticBlock) {
     EXPECT_LT(std::abs(sum), 1e-13 * scale) << "component " << i;
     EXPECT_GT(scale, 0.5 * kF * kP);
   }
-  igac_test::expect_newton_order(r, 1.8);
+  // Quadratic above the two bodies' round-off floor: the step to t = 0.625
+  // goes 2.0e-1, 6.7e-4, 5.1e-9 (order 2.6), 1.7e-11, and plain Newton
+  // continued from there stays between 4.5e-12 and 1.4e-11 with every
+  // multiplier slipping (measured): the last pair (order 1.3) is the floor.
+  igac_test::expect_newton_order(r, 1.8, igac_test::kTwoBodyRoundOffFloor);
 }
 
 // The shipped case cases/NAME.toml (no geometry file), `friction` set on its [contact].
