@@ -1,11 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/finite_strain_friction.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "contact/small_strain_friction.hpp"
 
 namespace igac {
+
+Eigen::VectorXd finite_strain_tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim) {
+  if (dim == 3) return tangential_scales(cn, mesh_size, weights, dim);
+  Eigen::VectorXd ct = Eigen::VectorXd::Constant(weights.size(), cn);
+  if (mesh_size > 0)
+    for (int K = 0; K < weights.size(); ++K)
+      if (weights[K] > 0) ct[K] = kTangentialScale2D * cn * mesh_size / weights[K];
+  return ct;
+}
 
 FiniteStrainFriction::FiniteStrainFriction(const Body& body, const DofMap& dofs,
                                            const std::vector<FrictionContact>& contacts, const Eigen::VectorXd& weights,
@@ -26,6 +36,9 @@ FiniteStrainFriction::FiniteStrainFriction(const Body& body, const DofMap& dofs,
     masters_.push_back(c.master ? std::make_unique<MasterSurface>(*c.master) : nullptr);
     if (c.friction > 0) friction_.segment(c.offset, c.face->num_multipliers()).setConstant(c.friction);
   }
+  on_obstacle_.assign(m_, 0);
+  for (const FrictionContact& c : contacts_)
+    if (!c.master) std::fill_n(on_obstacle_.begin() + c.offset, c.face->num_multipliers(), char(1));
   row_weights_.resize(m_ * nt_);
   for (int K = 0; K < m_; ++K) row_weights_.segment(K * nt_, nt_).setConstant(weights_[K]);
   tau_prev_ = slip_total_ = Eigen::VectorXd::Zero(m_ * nt_);
@@ -128,6 +141,10 @@ std::vector<char> FiniteStrainFriction::states(double t, const Eigen::MatrixXd& 
     const Eigen::VectorXd xi = lambda_t.segment(K * nt_, nt_) + ct_[K] / w * s.segment(K * nt_, nt_);
     const double b = -friction_[K] * (lambda_n[K] + c_ * gamma[K] / w);
     out[K] = xi.norm() <= b ? kStick : kSlip;
+    // Closed but carrying no normal force yet (lambda_n = 0: the predictor
+    // of a multiplier that was open): nothing holds it, it slips.  Between
+    // two bodies the rule cost iterations (docs/benchmarks.md): not there.
+    if (lambda_n[K] == 0.0 && on_obstacle_[K] && xi.norm() > 0) out[K] = kSlip;
   }
   return out;
 }

@@ -25,9 +25,14 @@
 //
 // The Coulomb cone as in small deformation (contact/small_strain_friction.hpp),
 // with c the normal complementarity scale, c_t,K the tangential one
-// (tangential_scales), xi = lambda_t + c_t,K s_K / K_K and
+// (finite_strain_tangential_scales), xi = lambda_t + c_t,K s_K / K_K and
 // b = -f (lambda_n + c gamma_K / K_K): K is open where its normal row is
-// inactive, stick where |xi| <= b, slip otherwise.  The residual rows
+// inactive, stick where |xi| <= b, slip otherwise; against an obstacle a
+// closed K whose normal multiplier is exactly 0 (it carries no force yet:
+// the step's predictor extrapolates the zeros of a multiplier that was
+// open) slips where xi != 0.  No converged state has such a K (an active
+// row holds gamma = 0, so lambda_n < 0): the rule changes the path, never
+// the solution.  The residual rows
 // (forces, as the normal ones):
 //   open:  K_K lambda_t = 0,   stick:  c s_K = 0,
 //   slip:  K_K (lambda_t - b xi / |xi|) = 0,
@@ -60,12 +65,21 @@ struct FrictionContact {
   int offset = 0;                      // its first multiplier
 };
 
+// The tangential scale c_t,K of large deformation: in 3D tangential_scales
+// (E / h_K: the slip directions on the disc settle with the tangential
+// stiffness), in 2D E / (10 h_K), h_K = K_K, E = c_n h (d = +-1: c_t only
+// weighs the stick/slip decision, and a smaller one keeps a stuck
+// multiplier's decision on lambda_t rather than on the slip a line-search
+// step leaves; docs/benchmarks.md, "Friction in large deformation").
+Eigen::VectorXd finite_strain_tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim);
+inline constexpr double kTangentialScale2D = 0.1;
+
 class FiniteStrainFriction {
  public:
   using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   // `dofs` numbers the free unknowns; `weights` K_K of every multiplier
   // (m); c the normal rows' complementarity scale (stress per length), c_t
-  // the tangential one per multiplier (tangential_scales, small_strain_friction.hpp).
+  // the tangential one per multiplier (finite_strain_tangential_scales).
   FiniteStrainFriction(const Body& body, const DofMap& dofs, const std::vector<FrictionContact>& contacts,
                        const Eigen::VectorXd& weights, double complementarity_scale,
                        const Eigen::VectorXd& tangential_scale);
@@ -122,6 +136,7 @@ class FiniteStrainFriction {
   Eigen::MatrixXd row_tangent_;            // per row: int B_K t_j on the slave face (m nt x dim)
   std::vector<Eigen::VectorXd> t0_;        // per contact: the rows of its motion at curve = 1 (m nt)
   Eigen::VectorXd weights_, friction_, row_weights_;  // row_weights_: K_K per tangential row
+  std::vector<char> on_obstacle_;          // per multiplier: its contact is against an obstacle (not a master)
   // history
   bool started_ = false;
   double t_prev_ = 0;

@@ -45,7 +45,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     }
     friction_ = std::make_unique<FiniteStrainFriction>(
         *s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale,
-        tangential_scales(s_.complementarity_scale, s_.mesh_size, weights_, s_.dofs->dim()));
+        finite_strain_tangential_scales(s_.complementarity_scale, s_.mesh_size, weights_, s_.dofs->dim()));
     mt_ = friction_->rows();
   }
   weights_of_rows_.resize(0);

@@ -96,7 +96,7 @@ struct FiniteStrainSetup {
   };
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
-  double mesh_size = 0;                       // h of c = E / h: friction's c_t,K = E / h_K (0: c)
+  double mesh_size = 0;                       // h of c = E / h: friction's c_t,K (finite_strain_tangential_scales; 0: c)
   // > 0: the mixed patches are incompressible (K = infinity), their element
   // pressures updated by augment() until max |theta_e - 1| <= this
   // (TotalLagrangianAssembler::make_incompressible).
