@@ -182,14 +182,18 @@ TEST(TotalLagrangian, MixedNeedsALawWithASplit) {
 
 // With the linear law's small-strain split (U = K theta^2/2), the mixed
 // tangent at u = 0 is the B-bar stiffness of assemble_linear_elasticity:
-// the two paths project the same way.
+// the two paths project the same way.  Here with pressure blocks of one
+// element (TotalLagrangianAssembler::set_blocks): the block formulation with
+// blocks of one is the per-element formulation of before, whose B-bar
+// stiffness the small-strain assembly builds.
 TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
   const Geometry g = quarter_disc(1.0);
   const NurbsPatch patch = refined(g.patch, 2, 3);
   const DofMap dofs(patch, {{g.faces.at("left"), 0, 0.0}});
   const MaterialParameters mooney{NAN, NAN, {{"C10", 0.5}, {"C01", 0.0}, {"bulk_modulus", 300.0}}};
   const auto law = make_law("mooney_rivlin", mooney);
-  const TotalLagrangianAssembler tl(patch, dofs, *law, Formulation::mixed);
+  TotalLagrangianAssembler tl(patch, dofs, *law, Formulation::mixed);
+  tl.set_blocks(block_elements(BodyQuadrature(Body(patch), gauss_points_for(2)), {1}));
   Eigen::VectorXd f;
   Eigen::SparseMatrix<double> K;
   ASSERT_TRUE(tl.assemble(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), f, &K));
