@@ -20,10 +20,13 @@
 // kernel PatchQuadrature::evaluate: 2D pays nothing for 3D; nothing is
 // allocated per element).  Elements are threaded with OpenMP colour by colour: elements of
 // one colour share no equation, so threads add straight into K and f_int
-// (memory independent of the thread count, no reduction pass).  The sparsity
-// pattern (free x free: two equations couple when their control points share
-// an element) is built once in the constructor and every tangent has exactly
-// that pattern, so a driver can analyse it once and refactorise numerically.
+// (memory independent of the thread count, no reduction pass); with the
+// mixed formulation a thread takes a whole pressure block (blocks()), its
+// elements and its block term.  The sparsity pattern (free x free: two
+// equations couple when their control points share an element, or a
+// pressure block of the mixed formulation) is built once in the constructor
+// and every tangent has exactly that pattern, so a driver can analyse it
+// once and refactorise numerically.
 //
 // Failure is reported, never carried: assemble returns false when det F <= 0
 // (or F is not finite) at a Gauss point or the law refuses F, so a Newton
@@ -55,7 +58,7 @@ class TotalLagrangianAssembler {
   // patch is a 2D or 3D volume patch matching the dof map, and
   // std::runtime_error when the geometry map folds.
   // `mixed` (engine/volumetric_projection.hpp) needs a law with a volumetric
-  // split (std::invalid_argument otherwise); the pattern is the same.
+  // split (std::invalid_argument otherwise); its pattern couples the control points of each pressure block.
   // `tangent` false: the internal force only (no sparsity pattern is built;
   // e.g. the reactions of model/reactions.hpp), and assemble throws
   // std::logic_error if given a K.
@@ -121,7 +124,8 @@ class TotalLagrangianAssembler {
 
   // Zero-valued matrix with the tangent's pattern (compressed, column major,
   // sorted; contains every coupling of control points that share an element,
-  // so face loads and contact on the patch's faces fit in it too).
+  // or a pressure block, so face loads and contact on the patch's faces fit
+  // in it too).
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
   const DofMap& dofs() const { return dofs_; }
   int dim() const { return dofs_.dim(); }
