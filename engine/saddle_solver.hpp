@@ -69,7 +69,7 @@ struct BlockJacobian {
   std::vector<int> pinned;
   // Optional: element-local unknowns z, the last C.rows() entries of x
   // (after the multipliers), condensed in the solve: the mixed
-  // formulation's element dilatations (u-p Newton, engine/volumetric_projection.hpp).
+  // formulation's block dilatations (u-p Newton, engine/volumetric_projection.hpp).
   // Their rows read h (C du - dz) and the displacement rows gain
   // C^T diag(g) dz, so dz = C du - b_z / h and what is left is
   //   (K_uu + C^T diag(g) C) du + ... = b_u + C^T diag(g) b_z / h:

@@ -41,62 +41,73 @@ struct Workspace {
   Eigen::MatrixXd B, Bbar;                            // n_q x nd: dJ/du per point, projected
 };
 
-// Element internal force and (when `tangent`) the tangent at the Gauss
-// points of ws.geo; false when F is inadmissible at a point.
-// Mixed formulation, before the point loop: theta = Pi_e J and
-// p = Pi_e U'(theta) + mu_s (J - theta) at the points
-// (volumetric_projection.hpp); false when the projected dilatation leaves
-// U's domain.
 // The augmented Lagrangian of the incompressible limit (make_incompressible):
-// U(theta) = lambda_e (theta - 1) + kappa/2 (theta - 1)^2 in place of the
-// law's, lambda_e the element's pressure multiplier.
+// U(theta) = lambda_b (theta - 1) + kappa/2 (theta - 1)^2 in place of the
+// law's, lambda_b the block's pressure multiplier.
 struct Augmentation {
   const double* lambda = nullptr;  // null: the law's U
   double kappa = 0;
 };
 
-// `given` (the u-p Newton, TotalLagrangianAssembler::LocalDilatation): the
-// element's theta_e - 1, at which U', U'' are taken in place of Pi_e J's.
-template <int dim>
-bool condense_volumetric(const HyperelasticLaw& law, int pressure_degree, double stabilisation, Augmentation aug,
-                         const double* given, Workspace<dim>& ws) {
-  const ElementValues<dim, dim>& geo = ws.geo;
-  const int nq = geo.n_q;
-  ws.projection.build(geo.xi, geo.JxW, pressure_degree);
-  const Eigen::MatrixXd& Pi = ws.projection.matrix();
-  // theta = 1 + Pi_e (J - 1): at rest theta is 1 exactly (Pi_e 1 is 1 only
-  // to round-off), so p = 0 and f_int = 0 exactly, as in the displacement
-  // formulation (a round-off residual at rest stalls Newton at load factor 0)
-  ws.J.resize(nq);
-  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant() - 1;
-  ws.theta.noalias() = Pi * ws.J;
-  ws.theta.array() += 1;
-  ws.J.array() += 1;
-  ws.dU.resize(nq);
-  ws.d2U.resize(nq);
-  VolumetricValues v;
-  for (int q = 0; q < nq; ++q) {
-    const double theta = given ? 1 + *given : ws.theta[q];
-    if (aug.lambda) {
-      if (!(theta > 0)) return false;
-      ws.dU[q] = *aug.lambda + aug.kappa * (given ? *given : ws.theta[q] - 1);
-      ws.d2U[q] = aug.kappa;
-      continue;
-    }
-    if (!law.volumetric(theta, v)) return false;
-    ws.dU[q] = v.dU;
-    ws.d2U[q] = v.d2U;
+// U'(theta_b) and U''(theta_b) of a block, z = theta_b - 1; false when
+// theta_b leaves U's domain.
+bool block_volumetric(const HyperelasticLaw& law, Augmentation aug, double z, double& dU, double& d2U) {
+  if (aug.lambda) {
+    if (!(1 + z > 0)) return false;
+    dU = *aug.lambda + aug.kappa * z;
+    d2U = aug.kappa;
+    return true;
   }
-  if (given) ws.pressure = ws.dU;  // the constant U'(theta_e)
-  else ws.pressure.noalias() = Pi * ws.dU;
-  // the stabilisation's pressure mu_s (J - theta): the element's volume
-  // modes that the projection does not see (volumetric_projection.hpp)
-  ws.pressure += stabilisation * (ws.J - ws.theta);
+  VolumetricValues v;
+  if (!law.volumetric(1 + z, v)) return false;
+  dU = v.dU;
+  d2U = v.d2U;
   return true;
 }
 
-// P += p J F^{-T} and A += p d(J F^{-T})/dF, d(J F^{-T})_iJ/dF_kL =
-// J (F^{-1}_Lk F^{-1}_Ji - F^{-1}_Jk F^{-1}_Li): the pressure's stress.
+// ws.ue and F at the Gauss points of ws.geo from u; false when F is not
+// finite or det F <= 0 at a point.
+template <int dim>
+bool element_deformation(const Eigen::MatrixXd& u, Workspace<dim>& ws) {
+  const ElementValues<dim, dim>& geo = ws.geo;
+  const int nl = geo.n_loc, nq = geo.n_q;
+  ws.ue.resize(nl, dim);
+  for (int a = 0; a < nl; ++a) ws.ue.row(a) = u.row(geo.cps[a]);
+  ws.F.resize(nq);
+  for (int q = 0; q < nq; ++q) {
+    const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
+    DimMatrix<dim>& F = ws.F[q];
+    F.setIdentity();
+    for (int a = 0; a < nl; ++a)
+      for (int J = 0; J < dim; ++J)
+        for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
+    if (!F.allFinite() || !(F.determinant() > 0)) return false;
+  }
+  return true;
+}
+
+// Mixed formulation: J and theta = Pi_e J at the points (ws.J, ws.theta)
+// from ws.F.  theta = 1 + Pi_e (J - 1): at rest theta is 1 exactly (Pi_e 1
+// is 1 only to round-off), so p = 0 and f_int = 0 exactly, as in the
+// displacement formulation (a round-off residual at rest stalls Newton at
+// load factor 0).  Returns int_e (Pi_e J - 1) dX; *volume = V_e.
+template <int dim>
+double element_dilatation(int pressure_degree, Workspace<dim>& ws, double* volume) {
+  const ElementValues<dim, dim>& geo = ws.geo;
+  const int nq = geo.n_q;
+  ws.projection.build(geo.xi, geo.JxW, pressure_degree);
+  ws.J.resize(nq);
+  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant() - 1;
+  ws.theta.noalias() = ws.projection.matrix() * ws.J;
+  double s = 0, w = 0;
+  for (int q = 0; q < nq; ++q) s += geo.JxW[q] * ws.theta[q], w += geo.JxW[q];
+  ws.theta.array() += 1;
+  ws.J.array() += 1;
+  *volume = w;
+  return s;
+}
+
+
 template <int dim>
 void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, TangentMatrix<dim>* A) {
   const double J = F.determinant();
@@ -110,30 +121,34 @@ void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, T
           (*A)(i * dim + Jd, k * dim + L) += p * J * (Fi(L, k) * Fi(Jd, i) - Fi(Jd, k) * Fi(L, i));
 }
 
+// Element internal force and (when `tangent`) the tangent at the Gauss
+// points of ws.geo; false when F is inadmissible at a point.  Mixed
+// formulation (volumetric_projection.hpp), before the point loop: the point
+// pressure p_q = U'(theta_b) + mu_s (J_q - Pi_e J), dU = U'(theta_b) of the
+// element's block; the element's tangent carries mu_s (B^T W B -
+// V_e mB_e^T mB_e) (ws.Bbar: every row mB_e), the block's rank-one term
+// V_b U''(theta_b) mB_b^T mB_b is the caller's.  *dilatation, *volume:
+// int_e (Pi_e J - 1) dX and V_e.
 template <int dim>
 bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree, double stabilisation,
-                    Augmentation aug, const double* given, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
+                    double dU, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws, double* dilatation,
+                    double* volume) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
   const bool mixed = formulation == Formulation::mixed;
-  ws.ue.resize(nl, dim);
-  for (int a = 0; a < nl; ++a) ws.ue.row(a) = u.row(geo.cps[a]);
   ws.fe.setZero(nd);
   if (tangent) {
     ws.Ke.setZero(nd, nd);
     ws.G.resize(nd, dim * dim);
   }
-  ws.F.resize(nq);
-  for (int q = 0; q < nq; ++q) {
-    const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
-    DimMatrix<dim>& F = ws.F[q];
-    F.setIdentity();
-    for (int a = 0; a < nl; ++a)
-      for (int J = 0; J < dim; ++J)
-        for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
-    if (!F.allFinite() || !(F.determinant() > 0)) return false;
+  if (!element_deformation<dim>(u, ws)) return false;
+  if (mixed) {
+    *dilatation = element_dilatation<dim>(pressure_degree, ws, volume);
+    // the stabilisation's pressure mu_s (J - Pi_e J): the element's volume
+    // modes that the block's projection does not see (volumetric_projection.hpp)
+    ws.pressure = stabilisation * (ws.J - ws.theta);
+    ws.pressure.array() += dU;
   }
-  if (mixed && !condense_volumetric<dim>(law, pressure_degree, stabilisation, aug, given, ws)) return false;
   if (mixed && tangent) ws.B.resize(nq, nd);
   DimMatrix<dim> P;
   TangentMatrix<dim> A;
@@ -194,32 +209,111 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
   if (tangent)
     for (int c = 0; c < nd; ++c)
       for (int r = (c / dim + 1) * dim; r < nd; ++r) ws.Ke(r, c) = ws.Ke(c, r);
-  if (mixed && tangent)  // + Bbar^T W U''(theta) Bbar + mu_s (B - Bbar)^T W (B - Bbar)
+  if (mixed && tangent) {  // + mu_s (B - Bbar)^T W (B - Bbar), Bbar = Pi_e B: U'' is the block's
+    ws.d2U.setZero(nq);
     add_volumetric_tangent(ws.projection.matrix(), geo.JxW, ws.d2U, stabilisation, ws.B, ws.Bbar, ws.Ke);
+  }
   return true;
 }
 
 constexpr int kElementsPerColourForThreads = 64;
 
+// Everything one assembly needs besides u and its outputs.
+struct AssemblyInput {
+  const BodyQuadrature& quad;
+  const DofMap& dofs;
+  const std::vector<const HyperelasticLaw*>& laws;
+  const std::vector<Formulation>& formulations;
+  int pressure_degree;
+  const std::vector<double>& stabilisations;
+  const TotalLagrangianAssembler::Incompressibility* inc;
+  const ElementBlocks& blocks;
+  int patch_of_block(int b) const { return quad.patch_of(blocks.elements[size_t(blocks.start[size_t(b)])]); }
+  const HyperelasticLaw& law(int patch) const { return *laws[laws.size() == 1 ? 0 : size_t(patch)]; }
+  Formulation formulation(int patch) const { return formulations[formulations.size() == 1 ? 0 : size_t(patch)]; }
+  double stabilisation(int patch) const { return stabilisations[stabilisations.size() == 1 ? 0 : size_t(patch)]; }
+  Augmentation augmentation(int b, int patch) const {
+    if (!inc) return {};
+    return {&inc->multipliers[b], inc->penalties[inc->penalties.size() == 1 ? 0 : size_t(patch)]};
+  }
+};
+
+// Pi_b J - 1 per block (0 for a displacement element's block): the block's
+// elements in order, each int_e (Pi_e J - 1) dX as the kernel sums it, so
+// the assembly's LocalDilatation::projected at the same u is the same
+// double.  False when u is inadmissible.
 template <int dim>
-bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vector<const HyperelasticLaw*>& laws,
-                  const std::vector<Formulation>& formulations, int pressure_degree,
-                  const std::vector<double>& stabilisations, const TotalLagrangianAssembler::Incompressibility* inc,
-                  const std::vector<std::vector<int>>& colours, const Eigen::SparseMatrix<double>& pattern,
-                  const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
-                  const Eigen::VectorXd* given, TotalLagrangianAssembler::LocalDilatation* local) {
+bool block_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u, Eigen::VectorXd& z) {
+  const int nb = in.blocks.num_blocks();
+  z = Eigen::VectorXd::Zero(nb);
+  std::atomic<bool> failed{false};
+#pragma omp parallel if (in.quad.num_elements() >= 4 * kElementsPerColourForThreads)
+  {
+    Workspace<dim> ws;
+#pragma omp for schedule(dynamic, 16)
+    for (int b = 0; b < nb; ++b) {
+      if (failed.load(std::memory_order_relaxed)) continue;
+      if (in.formulation(in.patch_of_block(b)) != Formulation::mixed) continue;
+      double s = 0, v = 0;
+      for (int k = in.blocks.start[size_t(b)]; k < in.blocks.start[size_t(b) + 1]; ++k) {
+        in.quad.evaluate(in.blocks.elements[size_t(k)], ws.geo, true);
+        if (!element_deformation<dim>(u, ws)) {
+          failed.store(true, std::memory_order_relaxed);
+          break;
+        }
+        double ve = 0;
+        s += element_dilatation<dim>(in.pressure_degree, ws, &ve);
+        v += ve;
+      }
+      z[b] = s / v;
+    }
+  }
+  return !failed.load();
+}
+
+// Per-thread scratch of a block: its mean of B over the free equations.
+struct BlockScratch {
+  std::vector<std::pair<int, double>> entries;  // (free equation, V_e mB_e) of its elements
+  std::vector<int> eq;                          // the block's free equations, increasing
+  Eigen::VectorXd mB;                           // mB_b on them
+  Eigen::MatrixXd Kb;                           // V_b U'' mB_b mB_b^T
+  // sums the entries by equation into eq, mB (divided by V_b)
+  void merge(double volume) {
+    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    eq.clear();
+    std::vector<double> v;
+    for (const auto& [e, x] : entries) {
+      if (!eq.empty() && eq.back() == e) v.back() += x;
+      else eq.push_back(e), v.push_back(x);
+    }
+    mB = Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())) / volume;
+  }
+};
+
+template <int dim>
+bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& colours,
+                  const Eigen::SparseMatrix<double>& pattern, const Eigen::MatrixXd& u, Eigen::VectorXd& f_int,
+                  Eigen::SparseMatrix<double>* K, const Eigen::VectorXd* given,
+                  TotalLagrangianAssembler::LocalDilatation* local) {
   const bool tangent = K != nullptr;
-  // the element rows of the u-p Newton: each element's mean B, kept per element, then one matrix
-  const int n_elements = quad.num_elements();
-  std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(n_elements) : 0);
+  const ElementBlocks& blocks = in.blocks;
+  const int nb = blocks.num_blocks();
+  // theta_b - 1: the u-p Newton's, or Pi_b J - 1 (a pass before the forces: p_b needs the whole block)
+  Eigen::VectorXd z_projected;
+  const bool mixed_body = std::find(in.formulations.begin(), in.formulations.end(), Formulation::mixed) !=
+                          in.formulations.end();
+  if (!given && mixed_body && !block_dilatations_dim<dim>(in, u, z_projected)) return false;
+  const Eigen::VectorXd* z = given ? given : &z_projected;
+  // the block rows of the u-p Newton: each block's mean B, kept per block, then one matrix
+  std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(nb) : 0);
   std::vector<std::vector<int>> mean_B_eq(mean_B.size());
   if (local) {
-    local->projected = Eigen::VectorXd::Zero(n_elements);
-    local->stiffness = Eigen::VectorXd::Zero(n_elements);
-    local->volume = Eigen::VectorXd::Zero(n_elements);
-    local->shear = Eigen::VectorXd::Zero(n_elements);
+    local->projected = Eigen::VectorXd::Zero(nb);
+    local->stiffness = Eigen::VectorXd::Zero(nb);
+    local->volume = Eigen::VectorXd::Zero(nb);
+    local->shear = Eigen::VectorXd::Zero(nb);
   }
-  f_int.setZero(dofs.num_free());
+  f_int.setZero(in.dofs.num_free());
   if (tangent && !has_structure(*K, pattern)) *K = pattern;
   double* val = tangent ? K->valuePtr() : nullptr;
   const Eigen::Index nnz = pattern.nonZeros();
@@ -230,7 +324,8 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vec
   // run on one thread, which also keeps them fast on a busy machine where a
   // descheduled thread would stall every barrier.
   int n_el = 0;
-  for (const auto& c : colours) n_el += int(c.size());
+  for (const auto& c : colours)
+    for (int b : c) n_el += blocks.start[size_t(b) + 1] - blocks.start[size_t(b)];
   const bool threaded = n_el >= kElementsPerColourForThreads * int(colours.size());
 
 #pragma omp parallel if (threaded)
@@ -240,61 +335,76 @@ bool assemble_dim(const BodyQuadrature& quad, const DofMap& dofs, const std::vec
       for (Eigen::Index k = 0; k < nnz; ++k) val[k] = 0.0;
     }
     Workspace<dim> ws;
+    BlockScratch bs;
     for (const std::vector<int>& colour : colours) {
       const int n = int(colour.size());
-      // no two elements of a colour share an equation: plain adds, no races
+      // no two blocks of a colour share an equation: plain adds, no races
 #pragma omp for schedule(dynamic, 16)
       for (int j = 0; j < n; ++j) {
         if (failed.load(std::memory_order_relaxed)) continue;
-        quad.evaluate(colour[j], ws.geo, true);
-        const int patch = laws.size() > 1 || formulations.size() > 1 ? quad.patch_of(colour[j]) : 0;
-        const HyperelasticLaw& law = *laws[laws.size() == 1 ? 0 : patch];
-        const Formulation formulation = formulations[formulations.size() == 1 ? 0 : patch];
-        const double stabilisation = stabilisations[stabilisations.size() == 1 ? 0 : patch];
-        Augmentation aug;
-        if (inc && formulation == Formulation::mixed)
-          aug = {&inc->multipliers[colour[j]], inc->penalties[inc->penalties.size() == 1 ? 0 : patch]};
-        const double* theta_e = given && formulation == Formulation::mixed ? &(*given)[colour[j]] : nullptr;
-        if (!element_kernel<dim>(law, formulation, pressure_degree, stabilisation, aug, theta_e, u, tangent, ws)) {
+        const int b = colour[j];
+        const int patch = in.laws.size() > 1 || in.formulations.size() > 1 ? in.patch_of_block(b) : 0;
+        const HyperelasticLaw& law = in.law(patch);
+        const Formulation formulation = in.formulation(patch);
+        const bool mixed = formulation == Formulation::mixed;
+        const double stabilisation = in.stabilisation(patch);
+        double dU = 0, d2U = 0;  // U'(theta_b), U''(theta_b)
+        if (mixed && !block_volumetric(law, in.augmentation(b, patch), (*z)[b], dU, d2U)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
         }
-        dofs.element_equations(ws.geo.cps, ws.eq);
-        if (local && formulation == Formulation::mixed) {  // the element's mean of theta - 1 (= Pi_e (J - 1)), V_e, ...
-          const int e = colour[j];
-          double s = 0, w = 0, d2U = 0;
-          for (int q = 0; q < ws.geo.n_q; ++q) {
-            s += ws.geo.JxW[q] * (ws.theta[q] - 1), w += ws.geo.JxW[q];
-            d2U += ws.geo.JxW[q] * ws.d2U[q];
+        double s = 0, volume = 0;  // int_b (Pi_e J - 1), V_b
+        bs.entries.clear();
+        for (int k = blocks.start[size_t(b)]; k < blocks.start[size_t(b) + 1]; ++k) {
+          in.quad.evaluate(blocks.elements[size_t(k)], ws.geo, true);
+          double se = 0, ve = 0;
+          if (!element_kernel<dim>(law, formulation, in.pressure_degree, stabilisation, dU, u, tangent, ws, &se,
+                                   &ve)) {
+            failed.store(true, std::memory_order_relaxed);
+            break;
           }
-          local->projected[e] = s / w;
-          local->volume[e] = w;
-          local->stiffness[e] = d2U;
-          local->shear[e] = stabilisation;
-          if (tangent) {  // every row of Bbar = Pi_e B is the mean (constants per element)
-            mean_B[e] = ws.Bbar.row(0).transpose();
-            mean_B_eq[e] = ws.eq;
+          in.dofs.element_equations(ws.geo.cps, ws.eq);
+          scatter_element_vector(ws.eq, ws.fe, f);
+          if (tangent) scatter_element_matrix(pattern, val, ws.eq, ws.Ke);
+          if (!mixed) continue;
+          s += se, volume += ve;
+          if (tangent)  // every row of Bbar = Pi_e B is the element's mean mB_e (constants per element)
+            for (size_t r = 0; r < ws.eq.size(); ++r)
+              if (ws.eq[r] >= 0) bs.entries.emplace_back(ws.eq[r], ve * ws.Bbar(0, Eigen::Index(r)));
+        }
+        if (!mixed || failed.load(std::memory_order_relaxed)) continue;
+        if (tangent) {  // the block's + V_b U''(theta_b) mB_b^T mB_b
+          bs.merge(volume);
+          bs.Kb.noalias() = (volume * d2U) * bs.mB * bs.mB.transpose();
+          scatter_element_matrix(pattern, val, bs.eq, bs.Kb);
+        }
+        if (local) {
+          local->projected[b] = s / volume;
+          local->volume[b] = volume;
+          local->stiffness[b] = volume * d2U;
+          local->shear[b] = stabilisation;
+          if (tangent) {
+            mean_B[size_t(b)] = bs.mB;
+            mean_B_eq[size_t(b)] = bs.eq;
           }
         }
-        scatter_element_vector(ws.eq, ws.fe, f);
-        if (!tangent) continue;
-        scatter_element_matrix(pattern, val, ws.eq, ws.Ke);
       }
     }
   }
   if (failed.load()) return false;
   if (!mean_B.empty()) {
     std::vector<Eigen::Triplet<double>> t;
-    for (int e = 0; e < n_elements; ++e)
-      for (Eigen::Index k = 0; k < mean_B[size_t(e)].size(); ++k)
-        if (mean_B_eq[size_t(e)][size_t(k)] >= 0) t.emplace_back(e, mean_B_eq[size_t(e)][size_t(k)], mean_B[size_t(e)][k]);
-    local->mean_B.resize(n_elements, dofs.num_free());
+    for (int b = 0; b < nb; ++b)
+      for (Eigen::Index k = 0; k < mean_B[size_t(b)].size(); ++k)
+        t.emplace_back(b, mean_B_eq[size_t(b)][size_t(k)], mean_B[size_t(b)][k]);
+    local->mean_B.resize(nb, in.dofs.num_free());
     local->mean_B.setFromTriplets(t.begin(), t.end());
   }
   return true;
 }
 
 }  // namespace
+
 
 TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
                                                    const HyperelasticLaw& law, Formulation formulation, bool tangent)
@@ -330,8 +440,8 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
                                               "'{}' declares none", law.name()));
     stabilisations_[k] = stabilisation_modulus(law, dim);
   }
-  if (tangent) pattern_ = coupling_pattern(quad_, dofs_);
-  colours_ = colour_elements(quad_, dofs_);
+  tangent_ = tangent;
+  set_blocks(mixed_pressure_blocks(quad_, formulations_));
   double min_det = std::numeric_limits<double>::infinity();
 #pragma omp parallel
   {
@@ -366,18 +476,43 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
-  if (dilatation && dilatation->size() != quad_.num_elements())
-    throw std::invalid_argument(fmt::format("{} element dilatations for {} elements", dilatation->size(),
+  if (dilatation && dilatation->size() != num_blocks())
+    throw std::invalid_argument(fmt::format("{} block dilatations for {} pressure blocks", dilatation->size(),
+                                            num_blocks()));
+  const AssemblyInput in{quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_,
+                         incompressibility_ ? &*incompressibility_ : nullptr, blocks_};
+  return dim == 2 ? assemble_dim<2>(in, colours_, pattern_, u, f_int, K, dilatation, local)
+                  : assemble_dim<3>(in, colours_, pattern_, u, f_int, K, dilatation, local);
+}
+
+void TotalLagrangianAssembler::set_blocks(ElementBlocks blocks) {
+  if (incompressibility_)
+    throw std::invalid_argument("set_blocks: the incompressible limit's multipliers are per block; set the blocks first");
+  if (blocks.num_elements() != quad_.num_elements() || blocks.start.back() != quad_.num_elements())
+    throw std::invalid_argument(fmt::format("set_blocks: blocks of {} elements for a body of {}", blocks.num_elements(),
                                             quad_.num_elements()));
-  const Incompressibility* inc = incompressibility_ ? &*incompressibility_ : nullptr;
-  return dim == 2 ? assemble_dim<2>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc, colours_,
-                                   pattern_, u, f_int, K, dilatation, local)
-                  : assemble_dim<3>(quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, inc, colours_,
-                                    pattern_, u, f_int, K, dilatation, local);
+  for (int b = 0; b < blocks.num_blocks(); ++b)
+    for (int k = blocks.start[size_t(b)]; k < blocks.start[size_t(b) + 1]; ++k)
+      if (quad_.patch_of(blocks.elements[size_t(k)]) != quad_.patch_of(blocks.elements[size_t(blocks.start[size_t(b)])]))
+        throw std::invalid_argument(fmt::format("set_blocks: block {} spans two patches", b));
+  blocks_ = std::move(blocks);
+  if (blocks_.per_element()) {  // the element pattern and colouring, as the displacement formulation's
+    if (tangent_) pattern_ = coupling_pattern(quad_, dofs_);
+    colours_ = colour_elements(quad_, dofs_);
+    for (auto& colour : colours_)
+      for (int& e : colour) e = blocks_.block_of[size_t(e)];
+  } else {
+    if (tangent_) pattern_ = coupling_pattern(quad_, dofs_, blocks_);
+    colours_ = colour_blocks(quad_, dofs_, blocks_);
+  }
 }
 
 bool TotalLagrangianAssembler::has_mixed() const {
   return std::find(formulations_.begin(), formulations_.end(), Formulation::mixed) != formulations_.end();
+}
+
+int TotalLagrangianAssembler::patch_of_block(int b) const {
+  return quad_.patch_of(blocks_.elements[size_t(blocks_.start[size_t(b)])]);
 }
 
 void TotalLagrangianAssembler::make_incompressible(double tolerance) {
@@ -390,24 +525,27 @@ void TotalLagrangianAssembler::make_incompressible(double tolerance) {
     VolumetricValues v;
     inc.penalties.push_back(law->volumetric(1.0, v) ? v.d2U : 0.0);
   }
-  inc.multipliers = Eigen::VectorXd::Zero(quad_.num_elements());
+  inc.multipliers = Eigen::VectorXd::Zero(num_blocks());
   inc.accepted = inc.multipliers;
   incompressibility_ = std::move(inc);
 }
 
 bool TotalLagrangianAssembler::volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const {
-  LocalDilatation local;
-  Eigen::VectorXd f;
-  const bool ok = assemble(u, f, nullptr, nullptr, &local);
-  dilatation = ok ? local.projected : Eigen::VectorXd::Zero(quad_.num_elements());
+  const int dim = dofs_.dim();
+  if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
+    throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
+                                            dofs_.num_dofs() / dim, dim));
+  const AssemblyInput in{quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, nullptr, blocks_};
+  const bool ok = dim == 2 ? block_dilatations_dim<2>(in, u, dilatation) : block_dilatations_dim<3>(in, u, dilatation);
+  if (!ok) dilatation = Eigen::VectorXd::Zero(num_blocks());
   return ok;
 }
 
 bool TotalLagrangianAssembler::element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const {
   if (!incompressibility_ || !volume_changes(u, pressure)) return false;
   const Incompressibility& inc = *incompressibility_;
-  for (int e = 0; e < quad_.num_elements(); ++e)
-    pressure[e] = inc.multipliers[e] + inc.penalties[inc.penalties.size() == 1 ? 0 : size_t(quad_.patch_of(e))] * pressure[e];
+  for (int b = 0; b < num_blocks(); ++b)
+    pressure[b] = inc.multipliers[b] + inc.penalties[inc.penalties.size() == 1 ? 0 : size_t(patch_of_block(b))] * pressure[b];
   return true;
 }
 
@@ -418,9 +556,9 @@ bool TotalLagrangianAssembler::augment(const Eigen::MatrixXd& u) {
   if (!volume_changes(u, dil)) return false;
   inc.last_volume_change = dil.cwiseAbs().maxCoeff();
   if (inc.last_volume_change <= inc.tolerance) return false;
-  for (int e = 0; e < quad_.num_elements(); ++e) {
-    const int patch = inc.penalties.size() == 1 ? 0 : quad_.patch_of(e);
-    inc.multipliers[e] += inc.penalties[size_t(patch)] * dil[e];
+  for (int b = 0; b < num_blocks(); ++b) {
+    const int patch = inc.penalties.size() == 1 ? 0 : patch_of_block(b);
+    inc.multipliers[b] += inc.penalties[size_t(patch)] * dil[b];
   }
   ++inc.augmentations;
   return true;
@@ -430,14 +568,14 @@ void TotalLagrangianAssembler::copy_multipliers(const TotalLagrangianAssembler& 
   if (!from.incompressibility_) return;
   if (!incompressibility_) make_incompressible(from.incompressibility_->tolerance);
   if (from.incompressibility_->multipliers.size() != incompressibility_->multipliers.size())
-    throw std::invalid_argument("copy_multipliers: the assemblers do not have the same elements");
+    throw std::invalid_argument("copy_multipliers: the assemblers do not have the same pressure blocks");
   incompressibility_->multipliers = from.incompressibility_->multipliers;
   incompressibility_->accepted = from.incompressibility_->accepted;
 }
 
 void TotalLagrangianAssembler::restore_multipliers(const Eigen::VectorXd& accepted) {
   if (!incompressibility_ || accepted.size() != incompressibility_->multipliers.size())
-    throw std::invalid_argument("restore_multipliers: not the element multipliers of this incompressible body");
+    throw std::invalid_argument("restore_multipliers: not the block multipliers of this incompressible body");
   incompressibility_->multipliers = accepted;
   incompressibility_->accepted = accepted;
 }

@@ -20,10 +20,13 @@
 // kernel PatchQuadrature::evaluate: 2D pays nothing for 3D; nothing is
 // allocated per element).  Elements are threaded with OpenMP colour by colour: elements of
 // one colour share no equation, so threads add straight into K and f_int
-// (memory independent of the thread count, no reduction pass).  The sparsity
-// pattern (free x free: two equations couple when their control points share
-// an element) is built once in the constructor and every tangent has exactly
-// that pattern, so a driver can analyse it once and refactorise numerically.
+// (memory independent of the thread count, no reduction pass); with the
+// mixed formulation a thread takes a whole pressure block (blocks()), its
+// elements and its block term.  The sparsity pattern (free x free: two
+// equations couple when their control points share an element, or a
+// pressure block of the mixed formulation) is built once in the constructor
+// and every tangent has exactly that pattern, so a driver can analyse it
+// once and refactorise numerically.
 //
 // Failure is reported, never carried: assemble returns false when det F <= 0
 // (or F is not finite) at a Gauss point or the law refuses F, so a Newton
@@ -42,6 +45,7 @@
 
 #include "engine/assembly.hpp"
 #include "engine/discretisation.hpp"
+#include "engine/pressure_blocks.hpp"
 #include "materials/hyperelastic.hpp"
 
 namespace igac {
@@ -54,7 +58,7 @@ class TotalLagrangianAssembler {
   // patch is a 2D or 3D volume patch matching the dof map, and
   // std::runtime_error when the geometry map folds.
   // `mixed` (engine/volumetric_projection.hpp) needs a law with a volumetric
-  // split (std::invalid_argument otherwise); the pattern is the same.
+  // split (std::invalid_argument otherwise); its pattern couples the control points of each pressure block.
   // `tangent` false: the internal force only (no sparsity pattern is built;
   // e.g. the reactions of model/reactions.hpp), and assemble throws
   // std::logic_error if given a K.
@@ -78,50 +82,67 @@ class TotalLagrangianAssembler {
   // std::invalid_argument when u has the wrong shape.
   bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) const;
 
+  // The mixed formulation's pressure blocks (engine/pressure_blocks.hpp,
+  // mixed_pressure_blocks: 2 x 2 (x 2) elements on a mixed patch, one
+  // element elsewhere): one dilatation theta_b and one pressure
+  // p_b = U'(theta_b) per block, theta_b = Pi_b J (the mean of J over the
+  // block's reference volume V_b); the stabilisation mu_s (J - Pi_e J) stays
+  // per element.  Everything "per block" below is numbered as blocks()
+  // numbers them.
+  //
   // The u-p Newton of the mixed formulation (docs/design.md, "Nearly
-  // incompressible solids"): each mixed element's dilatation theta_e an
-  // unknown of the iteration beside u.  `dilatation` (theta_e - 1 per
-  // element) sets the element pressure p_e = U'(theta_e) and U''(theta_e) in
-  // place of their values at Pi_e J (the stabilisation keeps
+  // incompressible solids"): each mixed block's dilatation theta_b an
+  // unknown of the iteration beside u.  `dilatation` (theta_b - 1 per
+  // block) sets the block pressure p_b = U'(theta_b) and U''(theta_b) in
+  // place of their values at Pi_b J (the stabilisation keeps
   // mu_s (J - Pi_e J)); K is then d f_int/du at fixed theta plus
-  // Bbar^T W U''(theta_e) Bbar, the matrix with theta_e condensed
+  // V_b U''(theta_b) mB_b^T mB_b, the matrix with theta_b condensed
   // (engine/saddle_solver.hpp, BlockJacobian::local), of the pattern and
   // symmetry of the other overload's.  `local`, when not null, receives
-  // what the element rows of the Newton matrix need; its mean_B only with K.
+  // what the block rows of the Newton matrix need; its mean_B only with K.
   struct LocalDilatation {
-    Eigen::VectorXd projected;  // Pi_e J - 1 per element (0: a displacement element)
-    Eigen::VectorXd stiffness;  // V_e U''(theta_e) (0: a displacement element)
-    Eigen::VectorXd volume;     // V_e (reference)
-    Eigen::VectorXd shear;      // mu_s of the element's law (0: a displacement element)
-    // (1/V_e) int_e dJ/du dX on the free equations: the element's mean of B
+    Eigen::VectorXd projected;  // Pi_b J - 1 per block (0: a displacement element's block)
+    Eigen::VectorXd stiffness;  // V_b U''(theta_b) (0: a displacement element's block)
+    Eigen::VectorXd volume;     // V_b (reference)
+    Eigen::VectorXd shear;      // mu_s of the block's law (0: a displacement element's block)
+    // mB_b = (1/V_b) int_b dJ/du dX on the free equations: the block's mean of B
     Eigen::SparseMatrix<double, Eigen::RowMajor> mean_B;
   };
   bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
                 const Eigen::VectorXd* dilatation, LocalDilatation* local) const;
+  const ElementBlocks& blocks() const { return blocks_; }
+  int num_blocks() const { return blocks_.num_blocks(); }
+  // Other blocks than mixed_pressure_blocks' (e.g. blocks of one element:
+  // the per-element formulation, for the tests' comparisons); rebuilds the
+  // pattern and the colouring.  Throws std::invalid_argument when the blocks
+  // are not of this body's elements, a block mixes patches, or the
+  // incompressible limit is on (its multipliers are per block).
+  void set_blocks(ElementBlocks blocks);
   int num_elements() const { return quad_.num_elements(); }
   // Whether any patch is in the mixed formulation.
   bool has_mixed() const;
 
   // Zero-valued matrix with the tangent's pattern (compressed, column major,
   // sorted; contains every coupling of control points that share an element,
-  // so face loads and contact on the patch's faces fit in it too).
+  // or a pressure block, so face loads and contact on the patch's faces fit
+  // in it too).
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
   const DofMap& dofs() const { return dofs_; }
   int dim() const { return dofs_.dim(); }
   // Smallest det J of the geometry map met at a Gauss point.
   double min_det_J() const { return min_det_J_; }
 
-  // Tolerance on max_e |theta_e - 1| of the incompressible limit's runs.
+  // Tolerance on max_b |theta_b - 1| of the incompressible limit's runs.
   static constexpr double kIncompressibilityTolerance = 1e-8;
   // The fully incompressible limit of the mixed patches (K = infinity,
-  // docs/design.md): an augmented Lagrangian, as FEBio's.  Each element's
-  // volumetric energy becomes U(theta) = lambda_e (theta - 1) +
-  // kappa/2 (theta - 1)^2, with lambda_e its pressure multiplier (0 at
+  // docs/design.md): an augmented Lagrangian, as FEBio's.  Each block's
+  // volumetric energy becomes V_b U(theta_b), U(theta) = lambda_b (theta - 1) +
+  // kappa/2 (theta - 1)^2, with lambda_b its pressure multiplier (0 at
   // first) and kappa the law's bulk modulus U''(1) as the penalty; the
   // assembly is otherwise the mixed one (same pattern, symmetric).  After a
-  // Newton solve, augment(u) updates lambda_e += kappa (theta_e - 1) (Uzawa)
-  // unless max_e |theta_e - 1| <= tolerance already; solving again and again
-  // drives theta_e = Pi_e J to 1 in every element, whatever kappa (kappa
+  // Newton solve, augment(u) updates lambda_b += kappa (theta_b - 1) (Uzawa)
+  // unless max_b |theta_b - 1| <= tolerance already; solving again and again
+  // drives theta_b = Pi_b J to 1 in every block, whatever kappa (kappa
   // only sets how fast).  Throws std::invalid_argument without a mixed patch.
   void make_incompressible(double tolerance);
   bool incompressible() const { return incompressibility_.has_value(); }
@@ -137,20 +158,20 @@ class TotalLagrangianAssembler {
   void copy_multipliers(const TotalLagrangianAssembler& from);
   // The multipliers of an accepted step (a restart: the ones the step it
   // continues after ended with, its Incompressibility::accepted).  Throws
-  // std::invalid_argument unless incompressible with that many elements.
+  // std::invalid_argument unless incompressible with that many blocks.
   void restore_multipliers(const Eigen::VectorXd& accepted);
-  // theta_e - 1 = Pi_e (J - 1) per element (0 for the displacement
-  // formulation's elements); false when u is inadmissible.
+  // theta_b - 1 = Pi_b (J - 1) per block (0 for the displacement
+  // formulation's blocks of one element); false when u is inadmissible.
   bool volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const;
-  // The incompressible limit: each element's pressure U'(theta_e) =
-  // lambda_e + kappa (theta_e - 1) at u (positive in tension); false when u
+  // The incompressible limit: each block's pressure U'(theta_b) =
+  // lambda_b + kappa (theta_b - 1) at u (positive in tension); false when u
   // is inadmissible or the body is not incompressible.
   bool element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const;
   struct Incompressibility {
     double tolerance = 0;
     std::vector<double> penalties;        // kappa per law (one, or one per patch)
-    Eigen::VectorXd multipliers, accepted;  // lambda_e per element: current, of the last accepted step
-    double last_volume_change = 0;        // max_e |theta_e - 1| at the last augment()
+    Eigen::VectorXd multipliers, accepted;  // lambda_b per block: current, of the last accepted step
+    double last_volume_change = 0;        // max_b |theta_b - 1| at the last augment()
     int augmentations = 0;                // Uzawa updates so far
   };
   const std::optional<Incompressibility>& incompressibility() const { return incompressibility_; }
@@ -163,10 +184,13 @@ class TotalLagrangianAssembler {
   std::vector<Formulation> formulations_;     // one, or one per patch
   std::vector<double> stabilisations_;        // mu_s of each law in the mixed formulation (0: none)
   int pressure_degree_;
-  Eigen::SparseMatrix<double> pattern_;
-  std::vector<std::vector<int>> colours_;  // elements by colour: one colour shares no equation
+  ElementBlocks blocks_;                  // the pressure blocks (pressure_blocks.hpp)
+  bool tangent_ = true;
+  Eigen::SparseMatrix<double> pattern_;   // of the blocks (blocks of one: the element pattern)
+  std::vector<std::vector<int>> colours_;  // blocks by colour: one colour shares no equation
   double min_det_J_ = 0;
   std::optional<Incompressibility> incompressibility_;
+  int patch_of_block(int b) const;
 };
 
 }  // namespace igac

@@ -38,11 +38,16 @@
 // nu = 0.3), and with K = mu_s the formulation would be the displacement one.
 // Small strain: K Bbar^T W Bbar + mu (B - Bbar)^T W (B - Bbar).
 //
-// Large deformation iterates on theta too (the u-p Newton, since issue 24):
-// TotalLagrangianAssembler::assemble takes theta_e per element, p_e =
-// U'(theta_e), and contact/finite_strain_problem.hpp carries theta_e in
-// Newton's unknowns, condensed in the solve (docs/design.md, "The u-p
-// Newton iteration").
+// Large deformation (engine/total_lagrangian.hpp) takes theta and p per
+// pressure block of 2 x 2 (x 2) elements (engine/pressure_blocks.hpp):
+// theta_b = Pi_b J, the mean over the block, p_b = U'(theta_b), the
+// stabilisation mu_s (J - Pi_e J) still per element, and the block's
+// V_b U''(theta_b) mB_b^T mB_b (mB_b the block's mean of B) in the tangent
+// (docs/design.md, "One pressure per 2 x 2 block of elements").  It
+// iterates on theta too (the u-p Newton): TotalLagrangianAssembler::assemble
+// takes theta_b per block, and contact/finite_strain_problem.hpp carries
+// theta_b in Newton's unknowns, condensed in the solve (docs/design.md,
+// "The u-p Newton iteration").
 #pragma once
 
 #include <Eigen/Dense>

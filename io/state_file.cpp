@@ -17,7 +17,7 @@ static_assert(std::endian::native == std::endian::little, "state files are littl
 constexpr char kMagic[8] = {'I', 'G', 'A', 'C', 'S', 'T', 'E', 'P'};
 // 2: the run options after the case hash; 3: the path-dependent history
 // (friction, incompressible), the step's augmentations and tangential forces.
-constexpr int64_t kVersion = 3;
+constexpr int64_t kVersion = 4;
 
 struct Writer {
   std::string bytes;
@@ -142,7 +142,7 @@ StepState read_state_file(const std::string& path, StateOrigin& origin) {
   char magic[8];
   r.raw(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no IGACSTEP magic");
-  if (const int64_t v = r.integer(); v < kVersion)  // (2 lacks the friction and incompressible histories)
+  if (const int64_t v = r.integer(); v < kVersion)  // (2 lacks the friction and incompressible histories; 3 holds them per element)
     r.fail(fmt::format("written by an older igac: state-file version {}, this igac reads {}; run the case again", v, kVersion));
   else if (v != kVersion)
     r.fail(fmt::format("version {}, this igac reads {}", v, kVersion));

@@ -5,14 +5,16 @@
 // integer an int64 and every real an IEEE-754 double, in this order:
 //
 //   "IGACSTEP"                       8 bytes, the magic
-//   version                          3 (older ones are refused: run the case again)
+//   version                          4 (older ones are refused: run the case again;
+//                                    3 held the mixed formulation's values per element)
 //   case hash                        length, then its bytes: summary.json's input.fnv1a64
 //   run options                      length, then its bytes: the options that change the
 //                                    result (--refine, --degree, the solver's), one
 //                                    "name=value" a line (app/restart.hpp, run_options)
 //   step                             from 1
 //   t, dt, dt_old                    the time reached, the next increment, the last one
-//   x                                length, then the doubles: [u_free; lambda]
+//   x                                length, then the doubles: [u_free; lambda; lambda_t;
+//                                    z_b per pressure block (mixed)]
 //   x_old                            length, then the doubles (the state one step before)
 //   record: load factor (t), Newton iterations, cut-backs, augmentations,
 //           residual norms (length, doubles), active-set sizes (length, int64s)
@@ -24,7 +26,8 @@
 //           empty vectors without friction): position, slip, direction,
 //           alpha (each length, doubles), state (length, int64s), Schur
 //           batches (count, then each: length, int64s), from (double)
-//   element pressure multipliers     length, then the doubles (incompressible; else 0)
+//   block pressure multipliers       length, then the doubles, one per pressure block
+//                                    (incompressible; else 0)
 //
 // Written atomically (a temporary file renamed over the name), so a file
 // that exists is whole; read back it gives the same doubles, bit for bit.

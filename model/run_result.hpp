@@ -96,8 +96,8 @@ struct StepState {
   LoadSteppingState driver;
   // Friction's slip history (FrictionHistory: small deformation from
   // SmallStrainFriction, large from FiniteStrainFriction), and the
-  // incompressible limit's element multipliers (lambda_e of the step's
-  // end); empty without.
+  // incompressible limit's multipliers (lambda_b per pressure block, at the
+  // step's end); empty without.
   FrictionHistory friction;
   Eigen::VectorXd pressure_multipliers;
   LoadStepRecord record;

@@ -202,10 +202,10 @@ TEST(Restart, ThreeDimensionalFrictionalRunsContinueAsIfUninterrupted) {
       2, false);
 }
 
-// The incompressible limit: each element's pressure multiplier (the
+// The incompressible limit: each pressure block's multiplier (the
 // augmented Lagrangian's) where the step ended is in the state file; the
 // O-ring of real rubber at K = infinity, coarsened (4 steps since the
-// mixed Newton carries the element dilatations; stopped after 2).
+// mixed Newton carries the block dilatations; stopped after 2).
 TEST(Restart, IncompressibleRunContinuesAsIfUninterrupted) {
   igac_test::TempDir dir("variant");
   expect_restart_matches_at(

@@ -148,9 +148,10 @@ TEST(TotalLagrangian, TangentMatchesFiniteDifferences3D) {
 
 // The mixed formulation (engine/volumetric_projection.hpp): its condensed
 // tangent is the derivative of its internal force too (the projected
-// dilatation's term Bbar^T U'' Bbar and the pressure's geometric term
+// dilatation's block term V_b U'' mB_b^T mB_b and the pressure's geometric term
 // included), for both laws with a split, nearly incompressible (K/mu = 2000,
-// where a missing term of U'' size would show at once), 2D and 3D, p = 2, 3.
+// where a missing term of U'' size would show at once), 2D and 3D, p = 2, 3,
+// on pressure blocks of 2 x 2 (x 2) elements and of 3 x 3 (x 3).
 TEST(TotalLagrangian, MixedTangentMatchesFiniteDifferences) {
   const MaterialParameters rubber{1.0, 0.49975, {}};  // K / mu = 2000
   const MaterialParameters mooney{NAN, NAN, {{"C10", 0.3}, {"C01", 0.05}, {"bulk_modulus", 1400.0}}};
@@ -165,10 +166,12 @@ TEST(TotalLagrangian, MixedTangentMatchesFiniteDifferences) {
         << "mooney_rivlin, p = " << p;
   }
   const Geometry b = box(1.0, 0.8, 0.6);
-  const NurbsPatch patch = distort_interior(refined(b.patch, 2, 2), 0.03, 3);
-  const DofMap dofs(patch, {{b.faces.at("bottom"), 2, 0.02}});
-  EXPECT_LE(tangent_fd_error(patch, dofs, 0.005, 6, Formulation::mixed, "neo_hookean", rubber), kFiniteDifference)
-      << "box, p = 2";
+  for (int parts : {2, 3}) {  // one pressure block of 2 x 2 x 2 elements; of 3 x 3 x 3 (the leftover joins it)
+    const NurbsPatch patch = distort_interior(refined(b.patch, 2, parts), 0.03, 3);
+    const DofMap dofs(patch, {{b.faces.at("bottom"), 2, 0.02}});
+    EXPECT_LE(tangent_fd_error(patch, dofs, 0.005, 6, Formulation::mixed, "neo_hookean", rubber), kFiniteDifference)
+        << "box, p = 2, " << parts << " elements per direction";
+  }
 }
 
 // A law without a split cannot run mixed: said at construction.
@@ -182,14 +185,18 @@ TEST(TotalLagrangian, MixedNeedsALawWithASplit) {
 
 // With the linear law's small-strain split (U = K theta^2/2), the mixed
 // tangent at u = 0 is the B-bar stiffness of assemble_linear_elasticity:
-// the two paths project the same way.
+// the two paths project the same way.  Here with pressure blocks of one
+// element (TotalLagrangianAssembler::set_blocks): the block formulation with
+// blocks of one is the per-element formulation of before, whose B-bar
+// stiffness the small-strain assembly builds.
 TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
   const Geometry g = quarter_disc(1.0);
   const NurbsPatch patch = refined(g.patch, 2, 3);
   const DofMap dofs(patch, {{g.faces.at("left"), 0, 0.0}});
   const MaterialParameters mooney{NAN, NAN, {{"C10", 0.5}, {"C01", 0.0}, {"bulk_modulus", 300.0}}};
   const auto law = make_law("mooney_rivlin", mooney);
-  const TotalLagrangianAssembler tl(patch, dofs, *law, Formulation::mixed);
+  TotalLagrangianAssembler tl(patch, dofs, *law, Formulation::mixed);
+  tl.set_blocks(block_elements(BodyQuadrature(Body(patch), gauss_points_for(2)), {1}));
   Eigen::VectorXd f;
   Eigen::SparseMatrix<double> K;
   ASSERT_TRUE(tl.assemble(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), f, &K));

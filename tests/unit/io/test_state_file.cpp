@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The restart state file (io/state_file.hpp): what is written is read back
 // bit for bit (the friction and incompressible histories too), and a file
-// that is not one (cut short, another magic) or of an older version (2:
-// without those histories) is an InputError naming it.
+// that is not one (cut short, another magic) or of an older version (3:
+// the mixed formulation's values per element, not per pressure block) is an
+// InputError naming it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -78,14 +79,15 @@ TEST(StateFile, RoundTripIsBitForBit) {
   EXPECT_EQ(h.state, w.state);
   EXPECT_EQ(h.schur_batches, w.schur_batches);
   EXPECT_EQ(h.from, 0.7);
-  // An older version (2: no friction or incompressible history): refused, saying so.
+  // An older version (3: dilatations and multipliers per element, not per
+  // pressure block): refused, saying so.
   {
     std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
-    const int64_t two = 2;
+    const int64_t three = 3;
     f.seekp(8);  // after the magic
-    f.write(reinterpret_cast<const char*>(&two), sizeof two);
+    f.write(reinterpret_cast<const char*>(&three), sizeof three);
   }
-  expect_refused(path, "written by an older igac: state-file version 2, this igac reads 3; run the case again");
+  expect_refused(path, "written by an older igac: state-file version 3, this igac reads 4; run the case again");
   write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
   // Cut short: refused, naming the file.
   const auto size = std::filesystem::file_size(path);

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The O-ring in the fully incompressible limit (cases/oring_rubber.toml with
-// [material] incompressible = true: K = infinity, the element pressures
+// [material] incompressible = true: K = infinity, the block pressures
 // found by augmented-Lagrangian updates around each load step, with
-// contact): it converges without cut-backs, every element keeps its volume
+// contact): it converges without cut-backs, every pressure block keeps its volume
 // (mean J = 1 to the run's tolerance), its force-squeeze curve lies within
 // a few percent of the real rubber's (K/G = 2000) and above it, and the
-// mid-plane's reaction is the contact force (the reactions see the element
+// mid-plane's reaction is the contact force (the reactions see the block
 // pressures).
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@ namespace {
 struct ORingRun {
   RunResult r;
   double volume_change = NAN;
-  Eigen::VectorXd dilatations;  // theta_e - 1 per element
+  Eigen::VectorXd dilatations;  // theta_b - 1 per pressure block
   int newton = 0, augmentations = 0;
 };
 
@@ -73,12 +73,12 @@ TEST(FiniteStrainCases, ORingIncompressibleLimitIsNearRealRubber) {
   EXPECT_GT(f_inc, f_rub);  // the stiffer limit
   EXPECT_LT(worst, 0.03);
   // the pressure field ParaView shows (RunResult::element_pressures): the
-  // element pressures of the limit, close to K/G = 2000's K (theta_e - 1)
+  // block pressures of the limit, close to K/G = 2000's K (theta_b - 1)
   ASSERT_EQ(inc.r.element_pressures.size(), rubber.dilatations.size());
   EXPECT_TRUE(rubber.r.element_pressures.size() == 0);
   const Eigen::VectorXd p_rubber = 1920.0 * rubber.dilatations;  // U' = K (J - 1), K = 1920 MPa
   EXPECT_LT((inc.r.element_pressures - p_rubber).cwiseAbs().maxCoeff(), 0.02 * p_rubber.cwiseAbs().maxCoeff());
-  // the mid-plane holds what the plate pushes (reactions with the element pressures)
+  // the mid-plane holds what the plate pushes (reactions with the block pressures)
   for (const FaceReaction& f : inc.r.dirichlet_reactions)
     if (f.face == "mid_plane") EXPECT_NEAR(std::abs(f.force[1]), f_inc, 1e-6 * f_inc);
 }

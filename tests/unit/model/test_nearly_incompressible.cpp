@@ -130,7 +130,7 @@ TEST(NearlyIncompressible, InflatedTubeMatchesTheIncompressibleClosedForm) {
 }
 
 // The incompressible limit (incompressible = true: K = infinity, the
-// element pressures found by augmented-Lagrangian updates): every element's
+// block pressures found by augmented-Lagrangian updates): every block's
 // mean J is 1 to the run's tolerance 1e-8, and the bore matches the
 // closed form of the incompressible solid at least as well as K/mu = 5000.
 TEST(NearlyIncompressible, InflatedTubeInTheIncompressibleLimit) {
