@@ -194,7 +194,10 @@ TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
   Eigen::SparseMatrix<double> K;
   ASSERT_TRUE(tl.assemble(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), f, &K));
   const LinearElastic lin = small_strain_material(*law, 2);
-  const LinearSystem bbar = assemble_linear_elasticity(patch, dofs, lin, Eigen::VectorXd::Zero(2), {}, Formulation::mixed);
+  // (per element: blocks of one, as long as the large-deformation assembler
+  // projects per element; the small-strain one projects per 2 x 2 block)
+  const LinearSystem bbar = assemble_linear_elasticity(patch, dofs, {lin}, Eigen::VectorXd::Zero(2), {},
+                                                       {Formulation::mixed}, block_elements(BodyQuadrature(patch, 3), {1}));
   const LinearSystem plain = assemble_linear_elasticity(patch, dofs, lin, Eigen::VectorXd::Zero(2));
   const Eigen::MatrixXd Kd(K), Kb(bbar.K), Kp(plain.K);
   EXPECT_LE(max_abs(Kd - Kb), kRoundoff * 1e2 * max_abs(Kb));
