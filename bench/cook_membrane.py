@@ -8,7 +8,8 @@ and 3.
 
 Writes results/cook_membrane.csv (formulation, degree, elements per side,
 unknowns, tip u_y) and results/cook_membrane.png (tip u_y against N, with
-the literature's 7.7).  Needs the Python module (build/python).
+the literature's 7.7), and prints Aitken's extrapolation of the last three
+meshes.  Needs the Python module (build/python).
 
     PYTHONPATH=build/python /usr/bin/python3 bench/cook_membrane.py [--elements 2 4 8 16 32 64] [--degrees 2 3]
 """
@@ -50,6 +51,13 @@ def main():
                 rows.append({"formulation": f, "degree": p, "elements": n, "dofs": dofs, "tip_uy": uy})
                 print(f"{f:12s} p={p} {n:3d} x {n:<3d} {dofs:6d} dofs  tip u_y {uy:.5f}", flush=True)
     write_rows(args.csv, rows)
+    # Aitken's extrapolation of the last three meshes (the mixed values converge at first order)
+    for p in args.degrees:
+        for f in FORMULATIONS:
+            u = [x["tip_uy"] for x in rows if x["formulation"] == f and x["degree"] == p]
+            if len(u) >= 3 and (u[-1] - u[-2]) != (u[-2] - u[-3]):
+                d1, d2 = u[-2] - u[-3], u[-1] - u[-2]
+                print(f"{f:12s} p={p} extrapolated (Aitken, last three meshes) {u[-1] - d2 * d2 / (d2 - d1):.4f}")
     plt = pyplot()
     if plt is None:
         return

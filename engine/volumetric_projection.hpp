@@ -1,53 +1,57 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The mixed formulation of nearly incompressible solids: the volumetric
-// quantity projected element by element, so the global unknowns stay the
-// displacements (docs/design.md, "Nearly incompressible solids").
+// quantity projected onto one constant per pressure block, a 2 x 2 (x 2)
+// group of neighbouring elements of a patch (engine/pressure_blocks.hpp,
+// mixed_pressure_blocks), so the displacement stays the one global field
+// the contact solvers see (docs/design.md, "Nearly incompressible solids").
 //
 // Three-field (Simo-Taylor-Pister) Hu-Washizu functional with the dilatation
-// theta and the pressure p in the same discontinuous space Q_h (polynomials
-// of degree pressure_degree(p) in each parametric direction, per Bezier
-// element: constants, the mean dilatation; the .cpp says why), for a law
-// split as Psi = W_iso(F) + U(J):
+// theta and the pressure p constant on each block b (constants per element
+// are not inf-sup stable with C^{p-1} NURBS displacements, beta_h ~ h; per
+// 2 x 2 block they are, docs/benchmarks.md "Inf-sup"), for a law split as
+// Psi = W_iso(F) + U(J):
 //   Pi(u, theta, p) = int W_iso(F) + U(theta) + p (J - theta) dX - work.
-// Its theta and p equations are element-local and are solved in closed form
-// (static condensation), with Pi_e the L2(Omega_e) projection onto Q_h
-// (weights JxW of the reference configuration):
-//   theta = Pi_e J,   p = Pi_e U'(theta),
-//   f_(a,i) = int (P_iso + p J F^{-T})_iJ dN_a/dX_J dX,
-//   K = int dN A_iso dN + int p dN d(J F^{-T})/dF dN + int Bbar^T U''(theta) Bbar,
-// with B_q = dJ/du at point q (J F^{-T} : Grad N) and Bbar = Pi_e B: the
-// projected ("B-bar") dilatation.  f is the gradient of
-// E(u) = int W_iso(F) + U(Pi_e J) dX, so K is symmetric, has the pattern of
-// the displacement formulation, and the contact solvers see no difference.
+// Its theta and p equations are local to the block, with Pi_b the L2
+// projection onto constants on the block, Pi_b f = sum_{e in b} int_e f dX
+// / V_b (weights JxW of the reference configuration, V_b the block's
+// reference volume):
+//   theta_b = Pi_b J,   p_b = U'(theta_b),
+// and what is left is the gradient of
+//   E(u) = int W_iso(F) dX + sum_b V_b U(Pi_b J) + mu_s/2 int (J - Pi_e J)^2 dX,
+// whose tangent is, per element, the isochoric and initial-stress parts and
+// the stabilisation mu_s (B^T W B - V_e mB_e^T mB_e), and per block the
+// rank-one V_b U''(theta_b) mB_b^T mB_b, with B_q = dJ/du at point q
+// (J F^{-T} : Grad N), mB_e its element mean and mB_b = sum_e V_e mB_e / V_b
+// its block mean: symmetric, with the pattern widened to the blocks
+// (coupling_pattern with blocks, engine/sparsity.hpp).  Blocks of one
+// element (width 1, the displacement patches' blocks) give the element
+// projection Pi_e of before the blocks, term for term.
 // Small strain (the linear law): U = K theta^2 / 2, W_iso = mu |dev eps|^2
 // (3D deviator, plane strain included), so the element matrix is the
-// displacement one with lambda - K = -2 mu / 3 in place of lambda plus
-// K Bbar^T W Bbar, B_q = div N: the B-bar method of Hughes (1980) with
-// the projection of Elguedj et al. (2008) made element-local.
+// displacement one with lambda - K = -2 mu / 3 in place of lambda plus the
+// stabilisation mu (B^T W B - V_e mB_e^T mB_e), and each block adds
+// K V_b mB_b^T mB_b, B_q = div N: the B-bar method of Hughes (1980) with the
+// projection of Elguedj et al. (2008) made local to the block
+// (assemble_linear_elasticity, engine/assembly.hpp).
 //
-// Stabilised (since issue 24): the element's dilatation modes of zero mean
-// are invisible to Pi_e, so with constants per element only the isochoric
-// energy resists them; near a contact point on the O-ring at K/G = 2000 one
-// element's J ranged 0.68 ... 1.16 and the contact pressure wiggled 6 % of
-// its mean there.  The functional carries a shear-sized penalty on them,
-//   + mu_s / 2 int (J - theta)^2 dX,   mu_s = the law's shear modulus at rest,
-// so the point pressure is p_q = (Pi_e U'(theta))_q + mu_s (J_q - theta_q) and
-// the tangent gains mu_s (B - Bbar)^T W (B - Bbar).  mu_s does not grow with
-// K: the modes are held as stiffly as shear holds them, no more, so nothing
-// locks (the Lame cylinder's error at nu = 0.49999 stays within 2x of
-// nu = 0.3), and with K = mu_s the formulation would be the displacement one.
-// Small strain: K Bbar^T W Bbar + mu (B - Bbar)^T W (B - Bbar).
+// Stabilised (since issue 24): the dilatation modes of zero element mean
+// are invisible to the projection, so with the volumetric energy alone only
+// the isochoric energy resists them; near a contact point on the O-ring at
+// K/G = 2000 one element's J ranged 0.68 ... 1.16 and the contact pressure
+// wiggled 6 % of its mean there.  The functional carries a shear-sized
+// penalty on them, element by element,
+//   + mu_s / 2 int (J - Pi_e J)^2 dX,   mu_s = the law's shear modulus at rest,
+// so the point pressure is p_q = p_b + mu_s (J_q - (Pi_e J)_q) and the
+// tangent gains mu_s (B - Pi_e B)^T W (B - Pi_e B) = mu_s (B^T W B - V_e
+// mB_e^T mB_e).  mu_s does not grow with K: the modes are held as stiffly as
+// shear holds them, no more, so nothing locks (the Lame cylinder's error at
+// nu = 0.49999 stays within 2x of nu = 0.3), and with K = mu_s and blocks of
+// one element the formulation would be the displacement one.
 //
-// Large deformation (engine/total_lagrangian.hpp) takes theta and p per
-// pressure block of 2 x 2 (x 2) elements (engine/pressure_blocks.hpp):
-// theta_b = Pi_b J, the mean over the block, p_b = U'(theta_b), the
-// stabilisation mu_s (J - Pi_e J) still per element, and the block's
-// V_b U''(theta_b) mB_b^T mB_b (mB_b the block's mean of B) in the tangent
-// (docs/design.md, "One pressure per 2 x 2 block of elements").  It
-// iterates on theta too (the u-p Newton): TotalLagrangianAssembler::assemble
-// takes theta_b per block, and contact/finite_strain_problem.hpp carries
-// theta_b in Newton's unknowns, condensed in the solve (docs/design.md,
-// "The u-p Newton iteration").
+// Large deformation iterates on theta too (the u-p Newton, since issue 24):
+// TotalLagrangianAssembler::assemble takes the dilatations, p = U'(theta),
+// and contact/finite_strain_problem.hpp carries them in Newton's unknowns,
+// condensed in the solve (docs/design.md, "The u-p Newton iteration").
 #pragma once
 
 #include <Eigen/Dense>

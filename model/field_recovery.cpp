@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <stdexcept>
 
+#include "engine/assembly.hpp"
+#include "engine/pressure_blocks.hpp"
 #include "engine/quadrature.hpp"
 #include "engine/spline/refinement.hpp"
 #include "engine/volumetric_projection.hpp"
@@ -179,55 +182,92 @@ StressLaw model_stress_law(const Model& model) {
 RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures) {
   const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
   if (pd != dim) throw std::invalid_argument("volume recovery needs a volume mesh");
-  const bool mixed = model.spec.formulation == Formulation::mixed, small = !model.spec.finite_strain();
-  const StressLaw law = model_stress_law(model);
-  const double bulk = model.material.lambda() + 2 * model.material.mu() / 3;
+  const BodyQuadrature quad(model.body, gauss_points_for(model.body.degree()));
+  if (mesh.num_elements() != quad.num_elements())
+    throw std::invalid_argument(fmt::format("volume recovery: a mesh of {} elements for a body of {}",
+                                            mesh.num_elements(), quad.num_elements()));
+  const bool small = !model.spec.finite_strain();
+  const std::vector<Formulation> formulations = model.patch_formulations();
+  const std::vector<LinearElastic> materials = model.patch_materials();
+  const std::vector<const HyperelasticLaw*> laws = model.patch_laws();
+  const auto per_patch = [](const auto& v, int k) { return v[v.size() == 1 ? 0 : size_t(k)]; };
+  // The pointwise law of each patch (the displacement formulation's -tr sigma / 3).
+  std::vector<StressLaw> stress_laws;
+  if (model.parts.size() <= 1) {
+    stress_laws.push_back(model_stress_law(model));
+  } else {
+    for (const Model::Part& part : model.parts)
+      stress_laws.insert(stress_laws.end(), size_t(part.num_patches), cauchy_stress(part.law, small));
+  }
+  const ElementBlocks blocks = mixed_pressure_blocks(quad, formulations);
+  const int n_blocks = blocks.num_blocks();
   const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
   const int nq = int(rule.points.size());
+  Eigen::VectorXd R;
+  Eigen::MatrixXd dR, Jm(dim, dim), G(dim, dim), M(nl, nl), B(nl, 2);
+  // grad u at point q of element e, and its weight
+  const auto gradient = [&](const BezierElement& el, int q, double& weight) {
+    mesh.basis(el, rule.points[size_t(q)], R, &dR);
+    Jm.noalias() = el.points.transpose() * dR;
+    G.noalias() = el.fields[0].transpose() * dR;
+    Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
+    grad.topLeftCorner(dim, dim) = G * Jm.inverse();
+    weight = rule.weights[size_t(q)] * std::abs(Jm.determinant());
+    return grad;
+  };
+  // Pass 1: theta_b = Pi_b tr eps (small strain) or Pi_b J on the mixed blocks.
+  std::vector<double> integral(size_t(n_blocks), 0.0), volume(size_t(n_blocks), 0.0);
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    if (per_patch(formulations, quad.patch_of(e)) != Formulation::mixed) continue;
+    const size_t b = size_t(blocks.block_of[size_t(e)]);
+    for (int q = 0; q < nq; ++q) {
+      double w = 0;
+      const Eigen::Matrix3d grad = gradient(mesh.element(e), q, w);
+      integral[b] += w * (small ? grad.trace() : (Eigen::Matrix3d::Identity() + grad).determinant());
+      volume[b] += w;
+    }
+  }
+  // The block pressures: the run's own (the incompressible limit's
+  // multipliers: one per block; per element from a run that numbered them
+  // so), or U'(theta_b) (small strain K theta_b).
+  const bool given_per_block = element_pressures.size() == n_blocks;
+  const bool given_per_element = !given_per_block && element_pressures.size() == mesh.num_elements();
+  std::vector<double> block_pressure(size_t(n_blocks), 0.0);
+  for (int b = 0; b < n_blocks; ++b) {
+    if (volume[size_t(b)] == 0) continue;  // not mixed
+    const int k = quad.patch_of(blocks.elements[size_t(blocks.start[b])]);
+    const double theta = integral[size_t(b)] / volume[size_t(b)];
+    if (given_per_block) {
+      block_pressure[size_t(b)] = -element_pressures[b];
+    } else if (small) {
+      const LinearElastic& mat = per_patch(materials, k);
+      block_pressure[size_t(b)] = -(mat.lambda() + 2 * mat.mu() / 3) * theta;
+    } else {
+      VolumetricValues v;
+      block_pressure[size_t(b)] =
+          per_patch(laws, k)->volumetric(theta, v) ? -v.dU : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  // Pass 2: J and the pressure projected onto each element's Bezier basis.
   RecoveredVolume out;
   out.jacobian.resize(mesh.num_points());
   out.pressure.resize(mesh.num_points());
-  Eigen::VectorXd R, Jq(nq), pq(nq), wq(nq);
-  Eigen::MatrixXd dR, Jm(dim, dim), G(dim, dim), M(nl, nl), B(nl, 2);
-  std::vector<Eigen::Vector2d> s2(nq);
-  std::vector<Eigen::Vector3d> s3(nq);
-  std::vector<double> w(nq);
-  ElementProjection projection;
   for (int e = 0; e < mesh.num_elements(); ++e) {
     const BezierElement& el = mesh.element(e);
+    const int k = quad.patch_of(e);
+    const bool mixed = per_patch(formulations, k) == Formulation::mixed;
+    const StressLaw& law = per_patch(stress_laws, k);
     M.setZero();
-    std::vector<Eigen::VectorXd> basis(nq);
-    for (int q = 0; q < nq; ++q) {
-      mesh.basis(el, rule.points[q], R, &dR);
-      basis[q] = R;
-      Jm.noalias() = el.points.transpose() * dR;
-      G.noalias() = el.fields[0].transpose() * dR;
-      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
-      grad.topLeftCorner(dim, dim) = G * Jm.inverse();
-      Jq[q] = (Eigen::Matrix3d::Identity() + grad).determinant();
-      // small strain, mixed: the projected quantity is tr eps (stored in pq first)
-      pq[q] = mixed ? (small ? grad.trace() : 0.0) : -law(grad).trace() / 3;
-      w[q] = wq[q] = rule.weights[q] * std::abs(Jm.determinant());
-      if (dim == 2) s2[q] = rule.points[q].head<2>(); else s3[q] = rule.points[q].head<3>();
-      M.selfadjointView<Eigen::Lower>().rankUpdate(R, wq[q]);
-    }
-    if (mixed) {
-      if (dim == 2) projection.build(s2, w, pressure_degree(max_degree(mesh)));
-      else projection.build(s3, w, pressure_degree(max_degree(mesh)));
-      if (small) {
-        pq = -bulk * (projection.matrix() * pq);
-      } else {
-        const Eigen::VectorXd theta = projection.matrix() * Jq;
-        VolumetricValues v;
-        for (int q = 0; q < nq; ++q) pq[q] = model.law->volumetric(theta[q], v) ? v.dU : std::numeric_limits<double>::quiet_NaN();
-        if (element_pressures.size() == mesh.num_elements()) pq.setConstant(element_pressures[e]);  // (one body, same elements)
-        pq = -(projection.matrix() * pq);
-      }
-    }
     B.setZero();
     for (int q = 0; q < nq; ++q) {
-      B.col(0) += wq[q] * Jq[q] * basis[q];
-      B.col(1) += wq[q] * pq[q] * basis[q];
+      double w = 0;
+      const Eigen::Matrix3d grad = gradient(el, q, w);
+      const double pressure = !mixed                ? -law(grad).trace() / 3
+                              : given_per_element ? -element_pressures[e]
+                                                  : block_pressure[size_t(blocks.block_of[size_t(e)])];
+      M.selfadjointView<Eigen::Lower>().rankUpdate(R, w);
+      B.col(0) += w * (Eigen::Matrix3d::Identity() + grad).determinant() * R;
+      B.col(1) += w * pressure * R;
     }
     const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
     out.jacobian.segment(e * nl, nl) = C.col(0);

@@ -81,16 +81,21 @@ BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int firs
 RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u);
 
 // J = det F and the hydrostatic pressure -tr(sigma)/3, projected onto each
-// element's Bezier basis like the stress (rows as recover_stress).  With
-// [material] formulation = "mixed" the pressure is the formulation's own,
-// -Pi_e U'(Pi_e J) (engine/volumetric_projection.hpp; small strain
-// -K Pi_e tr eps), not the pointwise law's, whose J oscillates at the scale
-// the projection removes.
+// element's Bezier basis like the stress (rows as recover_stress), for
+// `mesh` = body_bezier_mesh(model.body, u) (every patch: std::invalid_argument
+// for another number of elements).  On a patch in the mixed formulation the
+// pressure is the formulation's own, one constant per pressure block
+// (mixed_pressure_blocks, engine/pressure_blocks.hpp): -U'(Pi_b J), small
+// strain -K Pi_b tr eps (engine/volumetric_projection.hpp), not the pointwise
+// law's, whose J oscillates at the scale the projection removes, and without
+// the stabilisation's mu_s (J - Pi_e J).  Pi_b is integrated with this
+// recovery's own Gauss rule.
 struct RecoveredVolume {
   Eigen::VectorXd jacobian, pressure;  // num_points each
 };
 // `element_pressures` (RunResult's, the incompressible limit): the pressure
-// of each element of the mesh, which the law's U' at theta = 1 is not.
+// of each block, which the law's U' at theta = 1 is not (one per element is
+// read per element, as a run numbered them before the blocks).
 RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures = {});
 
 struct ContactPartFields {

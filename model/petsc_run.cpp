@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "model/petsc_run.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #ifdef IGAC_WITH_PETSC
@@ -65,7 +66,13 @@ std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> spline_hierarchy(const
 ElementRange process_elements(const Model& m) {
   if (!uses_petsc(m)) return {};
   const auto [b, e] = process_share(m.body.num_elements());
-  return {b, e};
+  // The mixed formulation's pressure blocks stay whole: the cuts move up to
+  // the next cut between blocks (every process moves them alike, so the
+  // ranges still tile the body).
+  const std::vector<Formulation> formulations = m.patch_formulations();
+  if (std::find(formulations.begin(), formulations.end(), Formulation::mixed) == formulations.end()) return {b, e};
+  const BodyQuadrature quad(m.body, gauss_points_for(m.body.degree()));
+  return whole_blocks(mixed_pressure_blocks(quad, formulations), {b, e});
 }
 
 void sum_over_processes(Eigen::VectorXd& f) {
