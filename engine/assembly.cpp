@@ -217,7 +217,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
       // stabilisation mu (B^T W B - V_e mB_e^T mB_e) per element, and the
       // block's K V_b mB_b^T mB_b after its elements (volumetric_projection.hpp)
       const bool mixed = !formulations.empty() &&
-                         formulations[formulations.size() == 1 ? 0 : patch] == Formulation::mixed;
+                         is_mixed(formulations[formulations.size() == 1 ? 0 : patch]);
       const double bulk = mat.lambda() + 2 * mat.mu() / 3;
       const double lambda = mixed ? -2 * mat.mu() / 3 : mat.lambda(), mu = mat.mu();
       min_det = std::min(min_det, ed.min_det_J);

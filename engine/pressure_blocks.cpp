@@ -58,7 +58,7 @@ ElementBlocks mixed_pressure_blocks(const BodyQuadrature& quad, const std::vecto
     const Formulation f = patch_formulations.empty()       ? Formulation::displacement
                           : patch_formulations.size() == 1 ? patch_formulations[0]
                                                            : patch_formulations.at(size_t(k));
-    if (f == Formulation::mixed) widths[size_t(k)] = kPressureBlockWidth;
+    if (f == Formulation::mixed) widths[size_t(k)] = kPressureBlockWidth;  // mixed_element: blocks of one
   }
   return block_elements(quad, widths);
 }

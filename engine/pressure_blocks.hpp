@@ -43,7 +43,7 @@ struct ElementBlocks {
 ElementBlocks block_elements(const BodyQuadrature& quad, const std::vector<int>& width_per_patch);
 
 // The mixed formulation's pressure blocks: patches in the mixed formulation
-// 2 wide, the others 1 (patch_formulations: one entry, every patch's; empty,
+// 2 wide, the others (mixed_element and displacement) 1 (patch_formulations: one entry, every patch's; empty,
 // displacement everywhere).  The one definition every consumer uses (the
 // assemblies, the u-p Newton's unknowns, the state file, the recovered
 // pressure field), so a block number means the same block everywhere.

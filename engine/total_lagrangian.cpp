@@ -135,7 +135,7 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
                     double* volume) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
-  const bool mixed = formulation == Formulation::mixed;
+  const bool mixed = is_mixed(formulation);
   ws.fe.setZero(nd);
   if (tangent) {
     ws.Ke.setZero(nd, nd);
@@ -253,7 +253,7 @@ bool block_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u, Ei
 #pragma omp for schedule(dynamic, 16)
     for (int b = 0; b < nb; ++b) {
       if (failed.load(std::memory_order_relaxed)) continue;
-      if (in.formulation(in.patch_of_block(b)) != Formulation::mixed) continue;
+      if (!is_mixed(in.formulation(in.patch_of_block(b)))) continue;
       double s = 0, v = 0;
       for (int k = in.blocks.start[size_t(b)]; k < in.blocks.start[size_t(b) + 1]; ++k) {
         in.quad.evaluate(in.blocks.elements[size_t(k)], ws.geo, true);
@@ -300,7 +300,7 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
   const int nb = blocks.num_blocks();
   // theta_b - 1: the u-p Newton's, or Pi_b J - 1 (a pass before the forces: p_b needs the whole block)
   Eigen::VectorXd z_projected;
-  const bool mixed_body = std::find(in.formulations.begin(), in.formulations.end(), Formulation::mixed) !=
+  const bool mixed_body = std::find_if(in.formulations.begin(), in.formulations.end(), is_mixed) !=
                           in.formulations.end();
   if (!given && mixed_body && !block_dilatations_dim<dim>(in, u, z_projected)) return false;
   const Eigen::VectorXd* z = given ? given : &z_projected;
@@ -346,7 +346,7 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
         const int patch = in.laws.size() > 1 || in.formulations.size() > 1 ? in.patch_of_block(b) : 0;
         const HyperelasticLaw& law = in.law(patch);
         const Formulation formulation = in.formulation(patch);
-        const bool mixed = formulation == Formulation::mixed;
+        const bool mixed = is_mixed(formulation);
         const double stabilisation = in.stabilisation(patch);
         double dU = 0, d2U = 0;  // U'(theta_b), U''(theta_b)
         if (mixed && !block_volumetric(law, in.augmentation(b, patch), (*z)[b], dU, d2U)) {
@@ -434,7 +434,7 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
   stabilisations_.assign(std::max(laws_.size(), formulations_.size()), 0.0);
   for (size_t k = 0; k < stabilisations_.size(); ++k) {
     const HyperelasticLaw& law = *laws_[laws_.size() == 1 ? 0 : k];
-    if (formulations_[formulations_.size() == 1 ? 0 : k] != Formulation::mixed) continue;
+    if (!is_mixed(formulations_[formulations_.size() == 1 ? 0 : k])) continue;
     if (!law.has_volumetric_split())
       throw std::invalid_argument(fmt::format("the mixed formulation needs a law with an isochoric/volumetric split; "
                                               "'{}' declares none", law.name()));
@@ -508,7 +508,7 @@ void TotalLagrangianAssembler::set_blocks(ElementBlocks blocks) {
 }
 
 bool TotalLagrangianAssembler::has_mixed() const {
-  return std::find(formulations_.begin(), formulations_.end(), Formulation::mixed) != formulations_.end();
+  return std::any_of(formulations_.begin(), formulations_.end(), is_mixed);
 }
 
 int TotalLagrangianAssembler::patch_of_block(int b) const {
@@ -517,7 +517,7 @@ int TotalLagrangianAssembler::patch_of_block(int b) const {
 
 void TotalLagrangianAssembler::make_incompressible(double tolerance) {
   if (!(tolerance > 0)) throw std::invalid_argument("the incompressibility tolerance must be positive");
-  if (std::find(formulations_.begin(), formulations_.end(), Formulation::mixed) == formulations_.end())
+  if (std::none_of(formulations_.begin(), formulations_.end(), is_mixed))
     throw std::invalid_argument("the incompressible limit needs the mixed formulation");
   Incompressibility inc;
   inc.tolerance = tolerance;

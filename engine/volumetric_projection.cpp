@@ -10,10 +10,18 @@ namespace igac {
 std::optional<Formulation> parse_formulation(std::string_view name) {
   if (name == "displacement") return Formulation::displacement;
   if (name == "mixed") return Formulation::mixed;
+  if (name == "mixed_element") return Formulation::mixed_element;
   return std::nullopt;
 }
 
-std::string_view formulation_name(Formulation f) { return f == Formulation::mixed ? "mixed" : "displacement"; }
+std::string_view formulation_name(Formulation f) {
+  switch (f) {
+    case Formulation::mixed: return "mixed";
+    case Formulation::mixed_element: return "mixed_element";
+    case Formulation::displacement: break;
+  }
+  return "displacement";
+}
 
 // Constants per Bezier element, whatever p.  A C^{p-1} spline displacement
 // has about dim unknowns per element, so an element-local space of more than

@@ -63,9 +63,14 @@
 
 namespace igac {
 
-enum class Formulation { displacement, mixed };
+// mixed: one pressure per 2 x 2 (x 2) block of elements (inf-sup stable);
+// mixed_element: one per element (the pair of before the blocks: not
+// uniformly inf-sup stable, a pressure twice finer; docs/design.md, "One
+// pressure per element on request").
+enum class Formulation { displacement, mixed, mixed_element };
+constexpr bool is_mixed(Formulation f) { return f != Formulation::displacement; }
 
-// "displacement" or "mixed"; nullopt for any other name.
+// "displacement", "mixed" or "mixed_element"; nullopt for any other name.
 std::optional<Formulation> parse_formulation(std::string_view name);
 std::string_view formulation_name(Formulation f);
 

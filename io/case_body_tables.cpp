@@ -146,10 +146,10 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
     {  // engine/volumetric_projection.hpp
       const std::string f = mat.string("formulation", "displacement");
       const auto parsed = parse_formulation(f);
-      if (!parsed) mat.fail("formulation", fmt::format("unknown formulation '{}' (available: displacement, mixed)", f));
+      if (!parsed) mat.fail("formulation", fmt::format("unknown formulation '{}' (available: displacement, mixed, mixed_element)", f));
       c.formulation = *parsed;
       c.incompressible = mat.boolean("incompressible", false);
-      if (c.incompressible && c.formulation != Formulation::mixed)
+      if (c.incompressible && !is_mixed(c.formulation))
         mat.fail("incompressible", "incompressible = true is the limit of formulation = \"mixed\" (K = infinity, the "
                                    "element pressures as multipliers): give formulation = \"mixed\"");
       if (c.incompressible && !c.finite_strain())
@@ -173,10 +173,10 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
       const MaterialParameters linear = small_strain_equivalent(model, given);
       const auto law = make_law(model, given);  // the law's own cross-checks (e.g. C10 + C01 > 0)
       // mixed: the small-strain path needs only K and mu; large deformation the law's split
-      if (c.formulation == Formulation::mixed && c.finite_strain() && !law->has_volumetric_split())
-        mat.fail("formulation", fmt::format("formulation = \"mixed\" needs a law with an isochoric/volumetric split "
+      if (is_mixed(c.formulation) && c.finite_strain() && !law->has_volumetric_split())
+        mat.fail("formulation", fmt::format("formulation = \"{}\" needs a law with an isochoric/volumetric split "
                                             "(neo_hookean, mooney_rivlin, or linear_elastic in small deformation); "
-                                            "'{}' declares none", model));
+                                            "'{}' declares none", formulation_name(c.formulation), model));
       try {  // its stiffness at F = I, as both paths use it: blamed on the keys the user gave
         static_cast<void>(small_strain_material(*law, dim));
       } catch (const MaterialParameterError&) {

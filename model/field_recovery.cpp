@@ -218,7 +218,7 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
   // Pass 1: theta_b = Pi_b tr eps (small strain) or Pi_b J on the mixed blocks.
   std::vector<double> integral(size_t(n_blocks), 0.0), volume(size_t(n_blocks), 0.0);
   for (int e = 0; e < mesh.num_elements(); ++e) {
-    if (per_patch(formulations, quad.patch_of(e)) != Formulation::mixed) continue;
+    if (!is_mixed(per_patch(formulations, quad.patch_of(e)))) continue;
     const size_t b = size_t(blocks.block_of[size_t(e)]);
     for (int q = 0; q < nq; ++q) {
       double w = 0;
@@ -255,7 +255,7 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
   for (int e = 0; e < mesh.num_elements(); ++e) {
     const BezierElement& el = mesh.element(e);
     const int k = quad.patch_of(e);
-    const bool mixed = per_patch(formulations, k) == Formulation::mixed;
+    const bool mixed = is_mixed(per_patch(formulations, k));
     const StressLaw& law = per_patch(stress_laws, k);
     M.setZero();
     B.setZero();

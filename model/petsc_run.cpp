@@ -70,7 +70,7 @@ ElementRange process_elements(const Model& m) {
   // the next cut between blocks (every process moves them alike, so the
   // ranges still tile the body).
   const std::vector<Formulation> formulations = m.patch_formulations();
-  if (std::find(formulations.begin(), formulations.end(), Formulation::mixed) == formulations.end()) return {b, e};
+  if (std::find(formulations.begin(), formulations.end(), Formulation::mixed) == formulations.end()) return {b, e};  // blocks of one
   const BodyQuadrature quad(m.body, gauss_points_for(m.body.degree()));
   return whole_blocks(mixed_pressure_blocks(quad, formulations), {b, e});
 }

@@ -22,7 +22,7 @@ ReactionEvaluator::ReactionEvaluator(const Model& m) : model_(m), all_free_(m.bo
   // formulation: f_int = K u of the solve's own assembler (one material and
   // formulation per patch); otherwise the law's internal force.
   const std::vector<Formulation> formulations = m.patch_formulations();
-  const bool mixed = std::find(formulations.begin(), formulations.end(), Formulation::mixed) != formulations.end();
+  const bool mixed = std::any_of(formulations.begin(), formulations.end(), is_mixed);
   if (!m.spec.finite_strain() && (m.parts.size() > 1 || mixed))
     linear_K_ = assemble_linear_elasticity(m.body, all_free_, m.patch_materials(),
                                            Eigen::VectorXd::Zero(m.body.space_dim()), {}, formulations).K;
