@@ -107,7 +107,8 @@ double element_dilatation(int pressure_degree, Workspace<dim>& ws, double* volum
   return s;
 }
 
-
+// P += p J F^{-T} and A += p d(J F^{-T})/dF, d(J F^{-T})_iJ/dF_kL =
+// J (F^{-1}_Lk F^{-1}_Ji - F^{-1}_Jk F^{-1}_Li): the pressure's stress.
 template <int dim>
 void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, TangentMatrix<dim>* A) {
   const double J = F.determinant();
@@ -404,7 +405,6 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
 }
 
 }  // namespace
-
 
 TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMap& dofs,
                                                    const HyperelasticLaw& law, Formulation formulation, bool tangent)
