@@ -10,11 +10,7 @@ namespace igac {
 
 Eigen::VectorXd finite_strain_tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim) {
   if (dim == 3) return tangential_scales(cn, mesh_size, weights, dim);
-  Eigen::VectorXd ct = Eigen::VectorXd::Constant(weights.size(), cn);
-  if (mesh_size > 0)
-    for (int K = 0; K < weights.size(); ++K)
-      if (weights[K] > 0) ct[K] = kTangentialScale2D * cn * mesh_size / weights[K];
-  return ct;
+  return per_multiplier_scales(cn, mesh_size, weights, dim, kTangentialScale2D);
 }
 
 FiniteStrainFriction::FiniteStrainFriction(const Body& body, const DofMap& dofs,

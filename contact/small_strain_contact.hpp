@@ -48,7 +48,7 @@ struct ContactSolverOptions {
   // c_n in the active-set rule, in units of stress per length (E / size).
   double complementarity_scale = 1.0;
   // The mesh size h of complementarity_scale = E / h: with friction the
-  // tangential scale is E / h_K per multiplier (tangential_scales,
+  // tangential scale is E / h_K per multiplier in 3D (tangential_scales,
   // contact/small_strain_friction.hpp); 0: the normal scale.
   double mesh_size = 0;
   // Initial active set: weighted initial gap <= this (the paper's 1e-9).

@@ -42,12 +42,18 @@ double slip_compliance(double alpha, double ct) {
   return (1 - a) / (a * ct);
 }
 
-Eigen::VectorXd tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim) {
+Eigen::VectorXd per_multiplier_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim,
+                                      double factor) {
   Eigen::VectorXd ct = Eigen::VectorXd::Constant(weights.size(), cn);
-  if (mesh_size > 0 && dim == 3)
+  if (mesh_size > 0)
     for (int K = 0; K < weights.size(); ++K)
-      if (weights[K] > 0) ct[K] = cn * mesh_size / std::pow(weights[K], 1.0 / (dim - 1));
+      if (weights[K] > 0) ct[K] = factor * cn * mesh_size / std::pow(weights[K], 1.0 / (dim - 1));
   return ct;
+}
+
+Eigen::VectorXd tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim) {
+  if (dim == 3) return per_multiplier_scales(cn, mesh_size, weights, dim, 1.0);
+  return Eigen::VectorXd::Constant(weights.size(), cn);
 }
 
 SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::VectorXd& s, double b, double ct) {

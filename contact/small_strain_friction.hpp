@@ -62,9 +62,15 @@ double slip_compliance(double alpha, double ct);
 // where the mesh is graded toward the contact (hertz3d_neohookean: h_K down
 // to h / 20) E / h underrates it, and the slip directions (the disc) took
 // more iterations to settle (docs/benchmarks.md, "Friction in large
-// deformation").  In 2D, and for h <= 0: c_n for every multiplier (2D was
-// measured but not changed: see there).
+// deformation").  In 2D, and for h <= 0: c_n for every multiplier (small
+// deformation; large deformation's 2D scale is finite_strain_tangential_scales,
+// contact/finite_strain_friction.hpp).
 Eigen::VectorXd tangential_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim);
+// factor * E / h_K, h_K = K_K^(1/(dim-1)), for every multiplier of positive
+// weight in any dimension (c_n where h <= 0 or K_K = 0): the one formula of
+// both tangential scales.
+Eigen::VectorXd per_multiplier_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim,
+                                      double factor);
 
 // Per multiplier: 0 open, 1 stick, 2 slip.
 enum FrictionState : char { kOpen = 0, kStick = 1, kSlip = 2 };
