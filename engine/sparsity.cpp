@@ -58,6 +58,32 @@ Units block_units(const BodyQuadrature& quad, const ElementBlocks& blocks, int e
   return u;
 }
 
+// The units of elements [e_begin, e_end) and of the pressure functions the
+// range owns (pressure_space.hpp: a function belongs to the range holding
+// the first element of its support, whose other elements it reaches
+// wherever they lie), in that order.  With `elements` false only the
+// functions.
+Units space_units(const BodyQuadrature& quad, const PressureSpace& space, int e_begin, int e_end, bool elements) {
+  if (space.num_elements() != quad.num_elements())
+    throw std::logic_error("coupling pattern: a pressure space of another body");
+  Units u = elements ? element_units(quad, e_begin, e_end) : Units{};
+  std::vector<int> cps;
+  for (int a = 0; a < space.num_functions(); ++a) {
+    const int* first = space.support_begin(a);
+    if (first == space.support_end(a) || *first < e_begin || *first >= e_end) continue;
+    const size_t from = u.cps.size();
+    for (const int* e = first; e != space.support_end(a); ++e) {
+      quad.control_points(*e, cps);
+      u.cps.insert(u.cps.end(), cps.begin(), cps.end());
+    }
+    std::sort(u.cps.begin() + std::ptrdiff_t(from), u.cps.end());
+    u.cps.erase(std::unique(u.cps.begin() + std::ptrdiff_t(from), u.cps.end()), u.cps.end());
+    u.start.push_back(int(u.cps.size()));
+    u.id.push_back(a);
+  }
+  return u;
+}
+
 // Sparsity pattern (free numbering, values zero): equations couple when their
 // control points share a unit.  Built per node rather than per unit pair, so
 // the temporary memory stays at the size of the result: a node is a control
@@ -194,6 +220,19 @@ std::vector<std::vector<int>> colour_blocks(const BodyQuadrature& quad, const Do
                                             int e_begin, int e_end) {
   if (e_end < 0) e_end = quad.num_elements();
   return colour_units(block_units(quad, blocks, e_begin, e_end), dofs);
+}
+
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
+                                             const PressureSpace& space, int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  if (space.per_element()) return coupling_pattern(quad, dofs, e_begin, e_end);
+  return pattern_of_units(space_units(quad, space, e_begin, e_end, true), dofs);
+}
+
+std::vector<std::vector<int>> colour_functions(const BodyQuadrature& quad, const DofMap& dofs,
+                                               const PressureSpace& space, int e_begin, int e_end) {
+  if (e_end < 0) e_end = quad.num_elements();
+  return colour_units(space_units(quad, space, e_begin, e_end, false), dofs);
 }
 
 }  // namespace igac

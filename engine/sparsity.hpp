@@ -22,6 +22,7 @@
 
 #include "engine/assembly.hpp"
 #include "engine/pressure_blocks.hpp"
+#include "engine/pressure_space.hpp"
 
 namespace igac {
 
@@ -38,6 +39,16 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
 // std::logic_error when the range splits a block.
 Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
                                              const ElementBlocks& blocks, int e_begin = 0, int e_end = -1);
+
+// The pattern of elements [e_begin, e_end) with, in addition, the control
+// points of each pressure function's support coupled together (the mixed
+// formulation's rank-one term per function, pressure_space.hpp, reaches
+// every control point of its support).  A function belongs to the range
+// holding the first element of its support, and reaches its other elements
+// wherever they lie (a distributed assembly evaluates them again).  A space
+// of constants per element gives the element pattern.
+Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
+                                             const PressureSpace& space, int e_begin = 0, int e_end = -1);
 
 // Elements [e_begin, e_end) of `quad` (e_end < 0: to the last one) in
 // colours such that no two elements of one colour write to the same free
@@ -57,6 +68,13 @@ std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const 
 // block term).  Throws std::logic_error when the range splits a block.
 std::vector<std::vector<int>> colour_blocks(const BodyQuadrature& quad, const DofMap& dofs, const ElementBlocks& blocks,
                                             int e_begin = 0, int e_end = -1);
+
+// The pressure functions the range [e_begin, e_end) owns (as above) in
+// colours such that no two functions of one colour write to the same free
+// equation: function numbers by colour, for the loop over functions that adds
+// each one's rank-one term.
+std::vector<std::vector<int>> colour_functions(const BodyQuadrature& quad, const DofMap& dofs,
+                                               const PressureSpace& space, int e_begin = 0, int e_end = -1);
 
 // f[eq[r]] += fe[r] for every local row r with a free equation (prescribed
 // ones, -1, are skipped).
