@@ -49,8 +49,8 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     mt_ = friction_->rows();
   }
   weights_of_rows_.resize(0);
-  if (tl_->has_mixed()) {  // the u-p Newton: the block dilatations' rows, scaled at rest
-    nz_ = tl_->num_blocks();
+  if (tl_->has_mixed()) {  // the u-p Newton: the pressure functions' dilatation rows, scaled at rest
+    nz_ = tl_->num_pressures();
     const int dim = s_.dofs->dim();
     TotalLagrangianAssembler::LocalDilatation rest;
     Eigen::VectorXd f;
@@ -59,8 +59,8 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
       throw std::logic_error("the mixed formulation refuses the reference state");
     local_scale_ = Eigen::VectorXd::Ones(nz_);
     weights_of_rows_ = Eigen::VectorXd::Ones(size());
-    for (int e = 0; e < nz_; ++e) {  // e: a pressure block
-      if (!(rest.shear[e] > 0) || !(rest.volume[e] > 0)) continue;  // a displacement element: z_e stays 0
+    for (int e = 0; e < nz_; ++e) {  // e: a pressure function
+      if (!(rest.shear[e] > 0) || !(rest.volume[e] > 0)) continue;  // a displacement patch's: z_e stays 0
       local_scale_[e] = rest.shear[e] * std::pow(rest.volume[e], double(dim - 1) / dim);
       weights_of_rows_[n_ + m_ + mt_ + e] = rest.stiffness[e] / (rest.volume[e] * rest.shear[e]);  // U''(1) / mu_s
     }
@@ -235,7 +235,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
       for (Eigen::SparseMatrix<double>::InnerIterator it(normal, c); it; ++it)
         trip.emplace_back(int(it.row()), int(it.col()), it.value());
     friction_->jacobian(t, u, normal_multipliers(x), gamma, active, tangential(x), J.B, trip);
-    J.K.resize(n_ + m_ + mt_, n_ + m_ + mt_);  // the block dilatations condensed (J.local, below)
+    J.K.resize(n_ + m_ + mt_, n_ + m_ + mt_);  // the dilatations condensed (J.local, below)
     J.K.setFromTriplets(trip.begin(), trip.end());
     J.K.makeCompressed();
     J.K_factor.resize(0, 0);
@@ -245,7 +245,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     J.d.resize(0);
     J.general = true;
   }
-  if (nz_ > 0) {  // the block dilatations, condensed by the solver (BlockJacobian::local)
+  if (nz_ > 0) {  // the dilatations, condensed by the solver (BlockJacobian::local)
     J.local.C = local.mean_B;
     J.local.g = local.stiffness;
     J.local.h = local_scale_;

@@ -9,21 +9,22 @@
 // the tangential multipliers [lambda_t (m (dim-1))] after them
 // (contact/finite_strain_friction.hpp; the Newton matrix is then handed over
 // whole, BlockJacobian::general).  With a mixed patch, last, every pressure
-// block's dilatation z_b = theta_b - 1 (the u-p Newton of the mixed
-// formulation, docs/design.md "Nearly incompressible solids"; one per block
-// of TotalLagrangianAssembler::blocks(), 2 x 2 (x 2) elements on a mixed
-// patch, one element elsewhere): the block pressure is U'(theta_b), updated
-// by Newton from the linearised constraint (dtheta_b = mB_b du + Pi_b J -
-// theta_b), not recomputed from u as K (Pi_b J - 1), whose error after a
-// rotation-like step is K times the step squared.  Its rows
-//   R_z_b = mu_s V_b^{(d-1)/d} (Pi_b J - 1 - z_b)
+// function's dilatation z_A = theta_A - 1 (the u-p Newton of the mixed
+// formulation, docs/design.md "Nearly incompressible solids"; one per
+// function of TotalLagrangianAssembler::pressure_space(), continuous on a
+// mixed patch, one per element elsewhere): the pressure is U'(theta_A),
+// updated by Newton from the linearised constraint (dtheta_A = mB_A du +
+// Pi_A J - theta_A, Pi_A J = (1/m_A) int N_A J dX), not recomputed from u
+// as K (Pi_A J - 1), whose error after a rotation-like step is K times the
+// step squared.  Its rows
+//   R_z_A = mu_s m_A^{(d-1)/d} (Pi_A J - 1 - z_A)
 // (zero at the condensed formulation's solution, so the converged state is
-// the same) are condensed block by block in the linear solve
+// the same) are condensed function by function in the linear solve
 // (BlockJacobian::local): the matrix the solvers see keeps its pattern and
 // symmetry.  Scaled with the shear modulus mu_s in the residual (the line
 // search's |R|_2), with the bulk modulus in the convergence test
-// (residual_weights): there U''(1) V_b^{(d-1)/d} |Pi_b J - theta_b|, about
-// the force the pressure error K (Pi_b J - theta_b) puts on the block's
+// (residual_weights): there U''(1) m_A^{(d-1)/d} |Pi_A J - theta_A|, about
+// the force the pressure error K (Pi_A J - theta_A) puts on the support's
 // nodes, must fall below the force tolerance as the displacement rows do.  With gamma_K(u) = int B_K g_n(X + u) dGamma_0
 // (weighted gaps integrated on the reference face, K_K = int B_K dGamma_0):
 //   R_u       = f_int(u) - t f_ext(u) + sum_K lambda_K dgamma_K/du,
@@ -98,8 +99,8 @@ struct FiniteStrainSetup {
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
   double mesh_size = 0;                       // h of c = E / h: friction's c_t,K (finite_strain_tangential_scales; 0: c)
-  // > 0: the mixed patches are incompressible (K = infinity), their block
-  // pressures updated by augment() until max |theta_b - 1| <= this
+  // > 0: the mixed patches are incompressible (K = infinity), their
+  // pressures updated by augment() until max |theta_A - 1| <= this
   // (TotalLagrangianAssembler::make_incompressible).
   double incompressibility_tolerance = 0;
 };
@@ -112,8 +113,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   int num_multipliers() const { return m_; }
   // Tangential multipliers (0 without friction), after the normal ones.
   int num_tangential() const { return mt_; }
-  // Block dilatations (the u-p Newton of a mixed patch), after them: one
-  // per pressure block of the body, 0 without a mixed patch.
+  // Dilatations (the u-p Newton of a mixed patch), after them: one per
+  // pressure function of the body, 0 without a mixed patch.
   int num_local() const { return nz_; }
   Eigen::VectorXd residual_weights() const override { return weights_of_rows_; }
   void begin_step(double t, const Eigen::VectorXd& x) override;
@@ -131,7 +132,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // The incompressible limit's Uzawa update (TotalLagrangianAssembler::augment).
   bool augment(double t, const Eigen::VectorXd& x) override { return tl_->augment(displacement(t, x)); }
   void keep_augmentation(bool accepted) override { tl_->keep_multipliers(accepted); }
-  // The body's assembler (its block pressures in the incompressible limit).
+  // The body's assembler (its pressures in the incompressible limit).
   const TotalLagrangianAssembler& assembler() const { return *tl_; }
   // Friction: per multiplier open, stick or slip (FrictionState) at (t, x),
   // and the slip accumulated from t = 0 (per tangential multiplier, / K_K).
@@ -140,7 +141,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
 
   // What the steps carry beyond x, after a converged step: the friction
   // history (empty without friction) and the incompressible limit's
-  // block multipliers (empty otherwise).  A restart restores them before its
+  // pressure multipliers (empty otherwise).  A restart restores them before its
   // first step, x_from the converged state at the friction history's `from`
   // (the driver's x_old).
   struct History {
@@ -193,11 +194,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   FiniteStrainSetup s_;
   int n_ = 0, m_ = 0, mt_ = 0, nz_ = 0;
   Eigen::VectorXd tangential(const Eigen::VectorXd& x) const { return x.segment(n_ + m_, mt_); }
-  // The u-p Newton (num_local): the block rows' scale mu_s V_b^{(d-1)/d}
-  // (1 for a displacement element's z_b, which stays 0), and the weights
+  // The u-p Newton (num_local): the dilatation rows' scale mu_s m_A^{(d-1)/d}
+  // (1 for a displacement patch's z_A, which stays 0), and the weights
   // of the convergence test (1 on the other rows, U''(1) / mu_s on these).
   Eigen::VectorXd local_scale_, weights_of_rows_;
-  // r_z = h (Pi_b J - 1 - z) from the assembler's block values
+  // r_z = h (Pi_A J - 1 - z) from the assembler's per-function values
   Eigen::VectorXd local_residual(const TotalLagrangianAssembler::LocalDilatation& local, const Eigen::VectorXd& z) const;
   std::unique_ptr<FiniteStrainFriction> friction_;  // null: frictionless
   Eigen::VectorXd normal_multipliers(const Eigen::VectorXd& x) const { return x.segment(n_, m_); }

@@ -108,22 +108,15 @@ void PressureSpace::values(int e, const double* xi, std::vector<double>& out, Sc
   for (int d = 0; d < P.param_dim; ++d) {
     const KnotVector& kv = P.knots[size_t(d)];
     np[size_t(d)] = kv.degree() + 1;
-    if (kv.degree() == 0) {
-      scratch.table[size_t(d)].assign(1, std::vector<double>{1.0});
-      continue;
-    }
-    kv.basis_derivatives(span[size_t(d)], xi[d], 0, scratch.table[size_t(d)]);
+    kv.basis_values(span[size_t(d)], xi[d], scratch.table[size_t(d)].data());
   }
+  for (int d = P.param_dim; d < 3; ++d) scratch.table[size_t(d)][0] = 1.0;
   out.resize(size_t(np[0] * np[1] * np[2]));
   size_t i = 0;
   for (int k2 = 0; k2 < np[2]; ++k2)
     for (int k1 = 0; k1 < np[1]; ++k1)
-      for (int k0 = 0; k0 < np[0]; ++k0) {
-        double v = scratch.table[0][0][size_t(k0)];
-        if (P.param_dim > 1) v *= scratch.table[1][0][size_t(k1)];
-        if (P.param_dim > 2) v *= scratch.table[2][0][size_t(k2)];
-        out[i++] = v;
-      }
+      for (int k0 = 0; k0 < np[0]; ++k0) out[i++] = scratch.table[0][size_t(k0)] * scratch.table[1][size_t(k1)] *
+                                                    scratch.table[2][size_t(k2)];
 }
 
 void PressureSpace::values_local(int e, const double* s, std::vector<double>& out, Scratch& scratch) const {

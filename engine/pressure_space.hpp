@@ -74,7 +74,7 @@ class PressureSpace {
   // first param_dim entries used): out[i] for functions_begin(e)[i].
   // `scratch` keeps the univariate tables between calls (one per thread).
   struct Scratch {
-    std::array<std::vector<std::vector<double>>, 3> table;
+    std::array<std::array<double, 16>, 3> table{};  // univariate values per direction
   };
   void values(int e, const double* xi, std::vector<double>& out, Scratch& scratch) const;
   // The same at the element's local coordinates s in [0, 1]^param_dim (its

@@ -39,19 +39,48 @@ struct Workspace {
   ElementProjection projection;
   Eigen::VectorXd J, theta, dU, pressure, d2U;
   Eigen::MatrixXd B, Bbar;                            // n_q x nd: dJ/du per point, projected
+  // the element's pressure functions (pressure_space.hpp): N(q, i) = N_{A_i}(x_q)
+  PressureSpace::Scratch space_scratch;
+  std::vector<double> values;
+  Eigen::MatrixXd N;
+  Eigen::VectorXd base;                               // sum_i N(q, i) U'(theta_{A_i}) per point
 };
 
+// ws.N: the values of element e's pressure functions at the points of ws.geo.
+template <int dim>
+void element_pressure_functions(const PressureSpace& space, int e, Workspace<dim>& ws) {
+  const int nq = ws.geo.n_q, nf = space.num_element_functions(e);
+  ws.N.resize(nq, nf);
+  for (int q = 0; q < nq; ++q) {
+    space.values(e, ws.geo.xi[size_t(q)].data(), ws.values, ws.space_scratch);
+    for (int i = 0; i < nf; ++i) ws.N(q, i) = ws.values[size_t(i)];
+  }
+}
+
+// c[i] = int_e N_{A_i} (J - 1) dX from ws.F and ws.N: the element's part of
+// m_A (theta_A - 1), the one sum the projection pass and the assembly share
+// (so LocalDilatation::projected is volume_changes' double).
+template <int dim>
+void element_function_dilatations(const Workspace<dim>& ws, double* c) {
+  const int nq = ws.geo.n_q, nf = int(ws.N.cols());
+  for (int i = 0; i < nf; ++i) c[i] = 0;
+  for (int q = 0; q < nq; ++q) {
+    const double w = ws.geo.JxW[size_t(q)] * (ws.F[size_t(q)].determinant() - 1);
+    for (int i = 0; i < nf; ++i) c[i] += ws.N(q, i) * w;
+  }
+}
+
 // The augmented Lagrangian of the incompressible limit (make_incompressible):
-// U(theta) = lambda_b (theta - 1) + kappa/2 (theta - 1)^2 in place of the
-// law's, lambda_b the block's pressure multiplier.
+// U(theta) = lambda_A (theta - 1) + kappa/2 (theta - 1)^2 in place of the
+// law's, lambda_A the pressure function's multiplier.
 struct Augmentation {
   const double* lambda = nullptr;  // null: the law's U
   double kappa = 0;
 };
 
-// U'(theta_b) and U''(theta_b) of a block, z = theta_b - 1; false when
-// theta_b leaves U's domain.
-bool block_volumetric(const HyperelasticLaw& law, Augmentation aug, double z, double& dU, double& d2U) {
+// U'(theta_A) and U''(theta_A) of a pressure function, z = theta_A - 1;
+// false when theta_A leaves U's domain.
+bool function_volumetric(const HyperelasticLaw& law, Augmentation aug, double z, double& dU, double& d2U) {
   if (aug.lambda) {
     if (!(1 + z > 0)) return false;
     dU = *aug.lambda + aug.kappa * z;
@@ -125,15 +154,13 @@ void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, T
 // Element internal force and (when `tangent`) the tangent at the Gauss
 // points of ws.geo; false when F is inadmissible at a point.  Mixed
 // formulation (volumetric_projection.hpp), before the point loop: the point
-// pressure p_q = U'(theta_b) + mu_s (J_q - Pi_e J), dU = U'(theta_b) of the
-// element's block; the element's tangent carries mu_s (B^T W B -
-// V_e mB_e^T mB_e) (ws.Bbar: every row mB_e), the block's rank-one term
-// V_b U''(theta_b) mB_b^T mB_b is the caller's.  *dilatation, *volume:
-// int_e (Pi_e J - 1) dX and V_e.
+// pressure p_q = ws.base[q] + mu_s (J_q - Pi_e J), ws.base[q] = sum_A
+// N_A(x_q) U'(theta_A) the caller's; the element's tangent carries mu_s (B^T W B -
+// V_e mB_e^T mB_e) (ws.Bbar: every row mB_e), the pressure functions'
+// rank-one terms (U''(theta_A)/m_A) g_A g_A^T are the caller's, from ws.B.
 template <int dim>
 bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pressure_degree, double stabilisation,
-                    double dU, const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws, double* dilatation,
-                    double* volume) {
+                    const Eigen::MatrixXd& u, bool tangent, Workspace<dim>& ws) {
   const ElementValues<dim, dim>& geo = ws.geo;
   const int nl = geo.n_loc, nq = geo.n_q, nd = nl * dim;
   const bool mixed = is_mixed(formulation);
@@ -144,11 +171,12 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
   }
   if (!element_deformation<dim>(u, ws)) return false;
   if (mixed) {
-    *dilatation = element_dilatation<dim>(pressure_degree, ws, volume);
+    double volume = 0;
+    element_dilatation<dim>(pressure_degree, ws, &volume);
     // the stabilisation's pressure mu_s (J - Pi_e J): the element's volume
-    // modes that the block's projection does not see (volumetric_projection.hpp)
+    // modes that the pressure space does not see (volumetric_projection.hpp)
     ws.pressure = stabilisation * (ws.J - ws.theta);
-    ws.pressure.array() += dU;
+    ws.pressure += ws.base;
   }
   if (mixed && tangent) ws.B.resize(nq, nd);
   DimMatrix<dim> P;
@@ -210,7 +238,7 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
   if (tangent)
     for (int c = 0; c < nd; ++c)
       for (int r = (c / dim + 1) * dim; r < nd; ++r) ws.Ke(r, c) = ws.Ke(c, r);
-  if (mixed && tangent) {  // + mu_s (B - Bbar)^T W (B - Bbar), Bbar = Pi_e B: U'' is the block's
+  if (mixed && tangent) {  // + mu_s (B - Bbar)^T W (B - Bbar), Bbar = Pi_e B: U'' is the functions'
     ws.d2U.setZero(nq);
     add_volumetric_tangent(ws.projection.matrix(), geo.JxW, ws.d2U, stabilisation, ws.B, ws.Bbar, ws.Ke);
   }
@@ -228,57 +256,70 @@ struct AssemblyInput {
   int pressure_degree;
   const std::vector<double>& stabilisations;
   const TotalLagrangianAssembler::Incompressibility* inc;
-  const ElementBlocks& blocks;
-  int patch_of_block(int b) const { return quad.patch_of(blocks.elements[size_t(blocks.start[size_t(b)])]); }
+  const PressureSpace& space;
+  const TotalLagrangianAssembler::PressureLayout& layout;
   const HyperelasticLaw& law(int patch) const { return *laws[laws.size() == 1 ? 0 : size_t(patch)]; }
   Formulation formulation(int patch) const { return formulations[formulations.size() == 1 ? 0 : size_t(patch)]; }
   double stabilisation(int patch) const { return stabilisations[stabilisations.size() == 1 ? 0 : size_t(patch)]; }
-  Augmentation augmentation(int b, int patch) const {
+  bool mixed_function(int a) const { return is_mixed(formulation(space.patch_of_function(a))); }
+  Augmentation augmentation(int a, int patch) const {
     if (!inc) return {};
-    return {&inc->multipliers[b], inc->penalties[inc->penalties.size() == 1 ? 0 : size_t(patch)]};
+    return {&inc->multipliers[a], inc->penalties[inc->penalties.size() == 1 ? 0 : size_t(patch)]};
   }
 };
 
-// Pi_b J - 1 per block (0 for a displacement element's block): the block's
-// elements in order, each int_e (Pi_e J - 1) dX as the kernel sums it, so
-// the assembly's LocalDilatation::projected at the same u is the same
-// double.  False when u is inadmissible.
+// Sums the elements' parts c (element e's at layout.function_entry[e], in
+// the order of its functions) into one value per function, divided by m_A:
+// theta_A - 1 (0 for the functions of displacement patches).  Elements in
+// increasing order, so the sum does not depend on the threads.
+Eigen::VectorXd gather_dilatations(const AssemblyInput& in, const std::vector<double>& c) {
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(in.space.num_functions());
+  for (int e = 0; e < in.space.num_elements(); ++e) {
+    const int* a = in.space.functions_begin(e);
+    const size_t first = size_t(in.layout.function_entry[size_t(e)]);
+    for (int i = 0; i < in.space.num_element_functions(e); ++i) z[a[i]] += c[first + size_t(i)];
+  }
+  for (int a = 0; a < z.size(); ++a) z[a] = in.mixed_function(a) ? z[a] / in.layout.volume[a] : 0.0;
+  return z;
+}
+
+// theta_A - 1 = (1/m_A) int N_A (J - 1) dX per pressure function (0 for a
+// displacement patch's): a pass before the forces, as p_A needs the whole
+// support.  False when u is inadmissible.
 template <int dim>
-bool block_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u, Eigen::VectorXd& z) {
-  const int nb = in.blocks.num_blocks();
-  z = Eigen::VectorXd::Zero(nb);
+bool function_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u, Eigen::VectorXd& z) {
+  const int n_el = in.quad.num_elements();
+  std::vector<double> c(in.layout.function_entry.back(), 0.0);
   std::atomic<bool> failed{false};
-#pragma omp parallel if (in.quad.num_elements() >= 4 * kElementsPerColourForThreads)
+#pragma omp parallel if (n_el >= 4 * kElementsPerColourForThreads)
   {
     Workspace<dim> ws;
 #pragma omp for schedule(dynamic, 16)
-    for (int b = 0; b < nb; ++b) {
+    for (int e = 0; e < n_el; ++e) {
       if (failed.load(std::memory_order_relaxed)) continue;
-      if (!is_mixed(in.formulation(in.patch_of_block(b)))) continue;
-      double s = 0, v = 0;
-      for (int k = in.blocks.start[size_t(b)]; k < in.blocks.start[size_t(b) + 1]; ++k) {
-        in.quad.evaluate(in.blocks.elements[size_t(k)], ws.geo, true);
-        if (!element_deformation<dim>(u, ws)) {
-          failed.store(true, std::memory_order_relaxed);
-          break;
-        }
-        double ve = 0;
-        s += element_dilatation<dim>(in.pressure_degree, ws, &ve);
-        v += ve;
+      if (!is_mixed(in.formulation(in.quad.patch_of(e)))) continue;
+      in.quad.evaluate(e, ws.geo, true);
+      if (!element_deformation<dim>(u, ws)) {
+        failed.store(true, std::memory_order_relaxed);
+        continue;
       }
-      z[b] = s / v;
+      element_pressure_functions<dim>(in.space, e, ws);
+      element_function_dilatations<dim>(ws, c.data() + in.layout.function_entry[size_t(e)]);
     }
   }
-  return !failed.load();
+  if (failed.load()) return false;
+  z = gather_dilatations(in, c);
+  return true;
 }
 
-// Per-thread scratch of a block: its mean of B over the free equations.
-struct BlockScratch {
-  std::vector<std::pair<int, double>> entries;  // (free equation, V_e mB_e) of its elements
-  std::vector<int> eq;                          // the block's free equations, increasing
-  Eigen::VectorXd mB;                           // mB_b on them
-  Eigen::MatrixXd Kb;                           // V_b U'' mB_b mB_b^T
-  // sums the entries by equation into eq, mB (divided by V_b)
+// Per-thread scratch of a pressure function's rank-one term: g_A on its
+// support's free equations.
+struct FunctionScratch {
+  std::vector<std::pair<int, double>> entries;  // (free equation, int_e N_A B) of its elements
+  std::vector<int> eq;                          // its free equations, increasing
+  Eigen::VectorXd mB;                           // g_A / m_A on them
+  Eigen::MatrixXd Kb;                           // m_A U'' mB mB^T = (U''/m_A) g_A g_A^T
+  // sums the entries by equation into eq, mB (divided by m_A)
   void merge(double volume) {
     std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     eq.clear();
@@ -293,27 +334,31 @@ struct BlockScratch {
 
 template <int dim>
 bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& colours,
-                  const Eigen::SparseMatrix<double>& pattern, const Eigen::MatrixXd& u, Eigen::VectorXd& f_int,
-                  Eigen::SparseMatrix<double>* K, const Eigen::VectorXd* given,
-                  TotalLagrangianAssembler::LocalDilatation* local) {
+                  const std::vector<std::vector<int>>& function_colours, const Eigen::SparseMatrix<double>& pattern,
+                  const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
+                  const Eigen::VectorXd* given, TotalLagrangianAssembler::LocalDilatation* local) {
   const bool tangent = K != nullptr;
-  const ElementBlocks& blocks = in.blocks;
-  const int nb = blocks.num_blocks();
-  // theta_b - 1: the u-p Newton's, or Pi_b J - 1 (a pass before the forces: p_b needs the whole block)
-  Eigen::VectorXd z_projected;
+  const PressureSpace& space = in.space;
+  const TotalLagrangianAssembler::PressureLayout& layout = in.layout;
+  const int nf = space.num_functions();
   const bool mixed_body = std::find_if(in.formulations.begin(), in.formulations.end(), is_mixed) !=
                           in.formulations.end();
-  if (!given && mixed_body && !block_dilatations_dim<dim>(in, u, z_projected)) return false;
+  // theta_A - 1: the u-p Newton's, or (1/m_A) int N_A (J - 1) (a pass before the forces)
+  Eigen::VectorXd z_projected;
+  if (!given && mixed_body && !function_dilatations_dim<dim>(in, u, z_projected)) return false;
   const Eigen::VectorXd* z = given ? given : &z_projected;
-  // the block rows of the u-p Newton: each block's mean B, kept per block, then one matrix
-  std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(nb) : 0);
-  std::vector<std::vector<int>> mean_B_eq(mean_B.size());
-  if (local) {
-    local->projected = Eigen::VectorXd::Zero(nb);
-    local->stiffness = Eigen::VectorXd::Zero(nb);
-    local->volume = Eigen::VectorXd::Zero(nb);
-    local->shear = Eigen::VectorXd::Zero(nb);
-  }
+  // U'(theta_A), U''(theta_A) per function
+  Eigen::VectorXd dU = Eigen::VectorXd::Zero(nf), d2U = Eigen::VectorXd::Zero(nf);
+  if (mixed_body)
+    for (int a = 0; a < nf; ++a) {
+      if (!in.mixed_function(a)) continue;
+      const int patch = space.patch_of_function(a);
+      if (!function_volumetric(in.law(patch), in.augmentation(a, patch), (*z)[a], dU[a], d2U[a])) return false;
+    }
+  // per element (mixed patches): its int_e N_A B (tangent) and int_e N_A (J - 1) (local), and its equations
+  std::vector<double> g_store(mixed_body && tangent ? size_t(layout.g_entry.back()) : 0);
+  std::vector<double> c_store(mixed_body && local ? size_t(layout.function_entry.back()) : 0);
+  std::vector<int> eq_store(mixed_body && tangent ? size_t(layout.eq_entry.back()) : 0);
   f_int.setZero(in.dofs.num_free());
   if (tangent && !has_structure(*K, pattern)) *K = pattern;
   double* val = tangent ? K->valuePtr() : nullptr;
@@ -324,10 +369,9 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
   // gives each thread real work.  Small meshes (tests, finite differences)
   // run on one thread, which also keeps them fast on a busy machine where a
   // descheduled thread would stall every barrier.
-  int n_el = 0;
-  for (const auto& c : colours)
-    for (int b : c) n_el += blocks.start[size_t(b) + 1] - blocks.start[size_t(b)];
-  const bool threaded = n_el >= kElementsPerColourForThreads * int(colours.size());
+  const bool threaded = in.quad.num_elements() >= kElementsPerColourForThreads * int(colours.size());
+  std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(nf) : 0);
+  std::vector<std::vector<int>> mean_B_eq(mean_B.size());
 
 #pragma omp parallel if (threaded)
   {
@@ -336,69 +380,92 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
       for (Eigen::Index k = 0; k < nnz; ++k) val[k] = 0.0;
     }
     Workspace<dim> ws;
-    BlockScratch bs;
+    // Pass 1, the elements: no two elements of a colour share an equation
     for (const std::vector<int>& colour : colours) {
       const int n = int(colour.size());
-      // no two blocks of a colour share an equation: plain adds, no races
 #pragma omp for schedule(dynamic, 16)
       for (int j = 0; j < n; ++j) {
         if (failed.load(std::memory_order_relaxed)) continue;
-        const int b = colour[j];
-        const int patch = in.laws.size() > 1 || in.formulations.size() > 1 ? in.patch_of_block(b) : 0;
-        const HyperelasticLaw& law = in.law(patch);
+        const int e = colour[size_t(j)];
+        const int patch = in.laws.size() > 1 || in.formulations.size() > 1 ? in.quad.patch_of(e) : 0;
         const Formulation formulation = in.formulation(patch);
         const bool mixed = is_mixed(formulation);
-        const double stabilisation = in.stabilisation(patch);
-        double dU = 0, d2U = 0;  // U'(theta_b), U''(theta_b)
-        if (mixed && !block_volumetric(law, in.augmentation(b, patch), (*z)[b], dU, d2U)) {
+        in.quad.evaluate(e, ws.geo, true);
+        if (mixed) {
+          element_pressure_functions<dim>(space, e, ws);
+          const int* a = space.functions_begin(e);
+          ws.base.setZero(ws.geo.n_q);
+          for (int i = 0; i < int(ws.N.cols()); ++i) ws.base += dU[a[i]] * ws.N.col(i);
+        }
+        if (!element_kernel<dim>(in.law(patch), formulation, in.pressure_degree, in.stabilisation(patch), u, tangent,
+                                 ws)) {
           failed.store(true, std::memory_order_relaxed);
           continue;
         }
-        double s = 0, volume = 0;  // int_b (Pi_e J - 1), V_b
-        bs.entries.clear();
-        for (int k = blocks.start[size_t(b)]; k < blocks.start[size_t(b) + 1]; ++k) {
-          in.quad.evaluate(blocks.elements[size_t(k)], ws.geo, true);
-          double se = 0, ve = 0;
-          if (!element_kernel<dim>(law, formulation, in.pressure_degree, stabilisation, dU, u, tangent, ws, &se,
-                                   &ve)) {
-            failed.store(true, std::memory_order_relaxed);
-            break;
-          }
-          in.dofs.element_equations(ws.geo.cps, ws.eq);
-          scatter_element_vector(ws.eq, ws.fe, f);
-          if (tangent) scatter_element_matrix(pattern, val, ws.eq, ws.Ke);
-          if (!mixed) continue;
-          s += se, volume += ve;
-          if (tangent)  // every row of Bbar = Pi_e B is the element's mean mB_e (constants per element)
-            for (size_t r = 0; r < ws.eq.size(); ++r)
-              if (ws.eq[r] >= 0) bs.entries.emplace_back(ws.eq[r], ve * ws.Bbar(0, Eigen::Index(r)));
-        }
-        if (!mixed || failed.load(std::memory_order_relaxed)) continue;
-        if (tangent) {  // the block's + V_b U''(theta_b) mB_b^T mB_b
-          bs.merge(volume);
-          bs.Kb.noalias() = (volume * d2U) * bs.mB * bs.mB.transpose();
-          scatter_element_matrix(pattern, val, bs.eq, bs.Kb);
-        }
-        if (local) {
-          local->projected[b] = s / volume;
-          local->volume[b] = volume;
-          local->stiffness[b] = volume * d2U;
-          local->shear[b] = stabilisation;
-          if (tangent) {
-            mean_B[size_t(b)] = bs.mB;
-            mean_B_eq[size_t(b)] = bs.eq;
-          }
+        in.dofs.element_equations(ws.geo.cps, ws.eq);
+        scatter_element_vector(ws.eq, ws.fe, f);
+        if (tangent) scatter_element_matrix(pattern, val, ws.eq, ws.Ke);
+        if (!mixed) continue;
+        if (local) element_function_dilatations<dim>(ws, c_store.data() + layout.function_entry[size_t(e)]);
+        if (tangent) {  // G(i, :) = int_e N_{A_i} B dX, the element's part of g_{A_i}
+          const Eigen::Map<const Eigen::VectorXd> w(ws.geo.JxW.data(), ws.geo.n_q);
+          const Eigen::Index nd = ws.B.cols();
+          Eigen::Map<Eigen::MatrixXd> G(g_store.data() + layout.g_entry[size_t(e)], nd, ws.N.cols());
+          G.noalias() = ws.B.transpose() * (w.asDiagonal() * ws.N);
+          std::copy(ws.eq.begin(), ws.eq.end(), eq_store.begin() + layout.eq_entry[size_t(e)]);
         }
       }
     }
+    // Pass 2, the functions' rank-one terms (U''(theta_A)/m_A) g_A g_A^T:
+    // no two functions of a colour share an equation
+    FunctionScratch fs;
+    if (tangent && mixed_body)
+      for (const std::vector<int>& colour : function_colours) {
+        const int n = int(colour.size());
+#pragma omp for schedule(dynamic, 16)
+        for (int j = 0; j < n; ++j) {
+          if (failed.load(std::memory_order_relaxed)) continue;
+          const int a = colour[size_t(j)];
+          if (!in.mixed_function(a)) continue;
+          fs.entries.clear();
+          for (const int* e = space.support_begin(a); e != space.support_end(a); ++e) {
+            const int i = int(std::find(space.functions_begin(*e), space.functions_end(*e), a) - space.functions_begin(*e));
+            const int nd = layout.eq_entry[size_t(*e) + 1] - layout.eq_entry[size_t(*e)];
+            const double* g = g_store.data() + layout.g_entry[size_t(*e)] + size_t(i) * size_t(nd);
+            const int* eq = eq_store.data() + layout.eq_entry[size_t(*e)];
+            for (int r = 0; r < nd; ++r)
+              if (eq[r] >= 0) fs.entries.emplace_back(eq[r], g[r]);
+          }
+          const double m = layout.volume[a];
+          fs.merge(m);
+          fs.Kb.noalias() = (m * d2U[a]) * fs.mB * fs.mB.transpose();
+          scatter_element_matrix(pattern, val, fs.eq, fs.Kb);
+          if (local) {
+            mean_B[size_t(a)] = fs.mB;
+            mean_B_eq[size_t(a)] = fs.eq;
+          }
+        }
+      }
   }
   if (failed.load()) return false;
+  if (local) {
+    local->projected = mixed_body ? gather_dilatations(in, c_store) : Eigen::VectorXd::Zero(nf);
+    local->stiffness = Eigen::VectorXd::Zero(nf);
+    local->volume = Eigen::VectorXd::Zero(nf);
+    local->shear = Eigen::VectorXd::Zero(nf);
+    for (int a = 0; a < nf; ++a) {
+      if (!in.mixed_function(a)) continue;
+      local->volume[a] = layout.volume[a];
+      local->stiffness[a] = layout.volume[a] * d2U[a];
+      local->shear[a] = in.stabilisation(space.patch_of_function(a));
+    }
+  }
   if (!mean_B.empty()) {
     std::vector<Eigen::Triplet<double>> t;
-    for (int b = 0; b < nb; ++b)
-      for (Eigen::Index k = 0; k < mean_B[size_t(b)].size(); ++k)
-        t.emplace_back(b, mean_B_eq[size_t(b)][size_t(k)], mean_B[size_t(b)][k]);
-    local->mean_B.resize(nb, in.dofs.num_free());
+    for (int a = 0; a < nf; ++a)
+      for (Eigen::Index k = 0; k < mean_B[size_t(a)].size(); ++k)
+        t.emplace_back(a, mean_B_eq[size_t(a)][size_t(k)], mean_B[size_t(a)][k]);
+    local->mean_B.resize(nf, in.dofs.num_free());
     local->mean_B.setFromTriplets(t.begin(), t.end());
   }
   return true;
@@ -441,7 +508,7 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
     stabilisations_[k] = stabilisation_modulus(law, dim);
   }
   tangent_ = tangent;
-  set_blocks(mixed_pressure_blocks(quad_, formulations_));
+  set_pressure_space(mixed_pressure_space(quad_, formulations_));
   double min_det = std::numeric_limits<double>::infinity();
 #pragma omp parallel
   {
@@ -476,43 +543,64 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                                             dofs_.num_dofs() / dim, dim));
   if (K && pattern_.rows() != dofs_.num_free())
     throw std::logic_error("TotalLagrangianAssembler: a tangent asked of an assembler built without one");
-  if (dilatation && dilatation->size() != num_blocks())
-    throw std::invalid_argument(fmt::format("{} block dilatations for {} pressure blocks", dilatation->size(),
-                                            num_blocks()));
+  if (dilatation && dilatation->size() != num_pressures())
+    throw std::invalid_argument(fmt::format("{} dilatations for {} pressure functions", dilatation->size(),
+                                            num_pressures()));
   const AssemblyInput in{quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_,
-                         incompressibility_ ? &*incompressibility_ : nullptr, blocks_};
-  return dim == 2 ? assemble_dim<2>(in, colours_, pattern_, u, f_int, K, dilatation, local)
-                  : assemble_dim<3>(in, colours_, pattern_, u, f_int, K, dilatation, local);
+                         incompressibility_ ? &*incompressibility_ : nullptr, space_, layout_};
+  return dim == 2 ? assemble_dim<2>(in, colours_, function_colours_, pattern_, u, f_int, K, dilatation, local)
+                  : assemble_dim<3>(in, colours_, function_colours_, pattern_, u, f_int, K, dilatation, local);
 }
 
-void TotalLagrangianAssembler::set_blocks(ElementBlocks blocks) {
+void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
   if (incompressibility_)
-    throw std::invalid_argument("set_blocks: the incompressible limit's multipliers are per block; set the blocks first");
-  if (blocks.num_elements() != quad_.num_elements() || blocks.start.back() != quad_.num_elements())
-    throw std::invalid_argument(fmt::format("set_blocks: blocks of {} elements for a body of {}", blocks.num_elements(),
-                                            quad_.num_elements()));
-  for (int b = 0; b < blocks.num_blocks(); ++b)
-    for (int k = blocks.start[size_t(b)]; k < blocks.start[size_t(b) + 1]; ++k)
-      if (quad_.patch_of(blocks.elements[size_t(k)]) != quad_.patch_of(blocks.elements[size_t(blocks.start[size_t(b)])]))
-        throw std::invalid_argument(fmt::format("set_blocks: block {} spans two patches", b));
-  blocks_ = std::move(blocks);
-  if (blocks_.per_element()) {  // the element pattern and colouring, as the displacement formulation's
-    if (tangent_) pattern_ = coupling_pattern(quad_, dofs_);
-    colours_ = colour_elements(quad_, dofs_);
-    for (auto& colour : colours_)
-      for (int& e : colour) e = blocks_.block_of[size_t(e)];
-  } else {
-    if (tangent_) pattern_ = coupling_pattern(quad_, dofs_, blocks_);
-    colours_ = colour_blocks(quad_, dofs_, blocks_);
+    throw std::invalid_argument(
+        "set_pressure_space: the incompressible limit's multipliers are per pressure function; set the space first");
+  if (space.num_elements() != quad_.num_elements())
+    throw std::invalid_argument(fmt::format("set_pressure_space: a space on {} elements for a body of {}",
+                                            space.num_elements(), quad_.num_elements()));
+  space_ = std::move(space);
+  // the pattern (the element pattern for constants per element), the colourings
+  if (tangent_) pattern_ = coupling_pattern(quad_, dofs_, space_);
+  colours_ = colour_elements(quad_, dofs_);
+  function_colours_ = colour_functions(quad_, dofs_, space_);
+  // the assembly's per-element storage, and m_A = int N_A dX
+  const int n_el = quad_.num_elements(), dim = dofs_.dim();
+  layout_ = PressureLayout{};
+  layout_.function_entry.assign(1, 0);
+  layout_.g_entry.assign(1, 0);
+  layout_.eq_entry.assign(1, 0);
+  layout_.volume = Eigen::VectorXd::Zero(space_.num_functions());
+  ElementValues<2, 2> g2;
+  ElementValues<3, 3> g3;
+  PressureSpace::Scratch scratch;
+  std::vector<double> values;
+  for (int e = 0; e < n_el; ++e) {
+    const int k = quad_.patch_of(e), nf = space_.num_element_functions(e);
+    const bool mixed = is_mixed(formulations_[formulations_.size() == 1 ? 0 : size_t(k)]);
+    const int nd = mixed ? quad_.patch_quadrature(k).num_local() * dim : 0;
+    layout_.function_entry.push_back(layout_.function_entry.back() + nf);
+    layout_.g_entry.push_back(layout_.g_entry.back() + nf * nd);
+    layout_.eq_entry.push_back(layout_.eq_entry.back() + nd);
+    const auto add_volume = [&](const auto& geo) {
+      const int* a = space_.functions_begin(e);
+      for (int q = 0; q < geo.n_q; ++q) {
+        space_.values(e, geo.xi[size_t(q)].data(), values, scratch);
+        for (int i = 0; i < nf; ++i) layout_.volume[a[i]] += values[size_t(i)] * geo.JxW[size_t(q)];
+      }
+    };
+    if (dim == 2) {
+      quad_.evaluate(e, g2, false);
+      add_volume(g2);
+    } else {
+      quad_.evaluate(e, g3, false);
+      add_volume(g3);
+    }
   }
 }
 
 bool TotalLagrangianAssembler::has_mixed() const {
   return std::any_of(formulations_.begin(), formulations_.end(), is_mixed);
-}
-
-int TotalLagrangianAssembler::patch_of_block(int b) const {
-  return quad_.patch_of(blocks_.elements[size_t(blocks_.start[size_t(b)])]);
 }
 
 void TotalLagrangianAssembler::make_incompressible(double tolerance) {
@@ -525,7 +613,7 @@ void TotalLagrangianAssembler::make_incompressible(double tolerance) {
     VolumetricValues v;
     inc.penalties.push_back(law->volumetric(1.0, v) ? v.d2U : 0.0);
   }
-  inc.multipliers = Eigen::VectorXd::Zero(num_blocks());
+  inc.multipliers = Eigen::VectorXd::Zero(num_pressures());
   inc.accepted = inc.multipliers;
   incompressibility_ = std::move(inc);
 }
@@ -535,17 +623,19 @@ bool TotalLagrangianAssembler::volume_changes(const Eigen::MatrixXd& u, Eigen::V
   if (u.rows() * dim != dofs_.num_dofs() || u.cols() != dim)
     throw std::invalid_argument(fmt::format("displacement is {} x {}, the body needs {} x {}", u.rows(), u.cols(),
                                             dofs_.num_dofs() / dim, dim));
-  const AssemblyInput in{quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, nullptr, blocks_};
-  const bool ok = dim == 2 ? block_dilatations_dim<2>(in, u, dilatation) : block_dilatations_dim<3>(in, u, dilatation);
-  if (!ok) dilatation = Eigen::VectorXd::Zero(num_blocks());
+  const AssemblyInput in{quad_, dofs_, laws_, formulations_, pressure_degree_, stabilisations_, nullptr, space_, layout_};
+  const bool ok =
+      dim == 2 ? function_dilatations_dim<2>(in, u, dilatation) : function_dilatations_dim<3>(in, u, dilatation);
+  if (!ok) dilatation = Eigen::VectorXd::Zero(num_pressures());
   return ok;
 }
 
 bool TotalLagrangianAssembler::element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const {
   if (!incompressibility_ || !volume_changes(u, pressure)) return false;
   const Incompressibility& inc = *incompressibility_;
-  for (int b = 0; b < num_blocks(); ++b)
-    pressure[b] = inc.multipliers[b] + inc.penalties[inc.penalties.size() == 1 ? 0 : size_t(patch_of_block(b))] * pressure[b];
+  for (int a = 0; a < num_pressures(); ++a)
+    pressure[a] = inc.multipliers[a] +
+                  inc.penalties[inc.penalties.size() == 1 ? 0 : size_t(space_.patch_of_function(a))] * pressure[a];
   return true;
 }
 
@@ -556,8 +646,8 @@ bool TotalLagrangianAssembler::augment(const Eigen::MatrixXd& u) {
   if (!volume_changes(u, dil)) return false;
   inc.last_volume_change = dil.cwiseAbs().maxCoeff();
   if (inc.last_volume_change <= inc.tolerance) return false;
-  for (int b = 0; b < num_blocks(); ++b) {
-    const int patch = inc.penalties.size() == 1 ? 0 : patch_of_block(b);
+  for (int b = 0; b < num_pressures(); ++b) {
+    const int patch = inc.penalties.size() == 1 ? 0 : space_.patch_of_function(b);
     inc.multipliers[b] += inc.penalties[size_t(patch)] * dil[b];
   }
   ++inc.augmentations;
@@ -568,14 +658,14 @@ void TotalLagrangianAssembler::copy_multipliers(const TotalLagrangianAssembler& 
   if (!from.incompressibility_) return;
   if (!incompressibility_) make_incompressible(from.incompressibility_->tolerance);
   if (from.incompressibility_->multipliers.size() != incompressibility_->multipliers.size())
-    throw std::invalid_argument("copy_multipliers: the assemblers do not have the same pressure blocks");
+    throw std::invalid_argument("copy_multipliers: the assemblers do not have the same pressure space");
   incompressibility_->multipliers = from.incompressibility_->multipliers;
   incompressibility_->accepted = from.incompressibility_->accepted;
 }
 
 void TotalLagrangianAssembler::restore_multipliers(const Eigen::VectorXd& accepted) {
   if (!incompressibility_ || accepted.size() != incompressibility_->multipliers.size())
-    throw std::invalid_argument("restore_multipliers: not the block multipliers of this incompressible body");
+    throw std::invalid_argument("restore_multipliers: not the pressure multipliers of this incompressible body");
   incompressibility_->multipliers = accepted;
   incompressibility_->accepted = accepted;
 }

@@ -21,10 +21,11 @@
 // allocated per element).  Elements are threaded with OpenMP colour by colour: elements of
 // one colour share no equation, so threads add straight into K and f_int
 // (memory independent of the thread count, no reduction pass); with the
-// mixed formulation a thread takes a whole pressure block (blocks()), its
-// elements and its block term.  The sparsity pattern (free x free: two
-// equations couple when their control points share an element, or a
-// pressure block of the mixed formulation) is built once in the constructor
+// mixed formulation the pressure functions' rank-one terms follow in a
+// second pass, function colour by function colour.  The sparsity pattern
+// (free x free: two equations couple when their control points share an
+// element, or the support of a pressure function of the mixed formulation)
+// is built once in the constructor
 // and every tangent has exactly that pattern, so a driver can analyse it
 // once and refactorise numerically.
 //
@@ -45,7 +46,7 @@
 
 #include "engine/assembly.hpp"
 #include "engine/discretisation.hpp"
-#include "engine/pressure_blocks.hpp"
+#include "engine/pressure_space.hpp"
 #include "materials/hyperelastic.hpp"
 
 namespace igac {
@@ -58,7 +59,8 @@ class TotalLagrangianAssembler {
   // patch is a 2D or 3D volume patch matching the dof map, and
   // std::runtime_error when the geometry map folds.
   // `mixed` (engine/volumetric_projection.hpp) needs a law with a volumetric
-  // split (std::invalid_argument otherwise); its pattern couples the control points of each pressure block.
+  // split (std::invalid_argument otherwise); its pattern couples the control
+  // points of each pressure function's support.
   // `tangent` false: the internal force only (no sparsity pattern is built;
   // e.g. the reactions of model/reactions.hpp), and assemble throws
   // std::logic_error if given a K.
@@ -82,49 +84,60 @@ class TotalLagrangianAssembler {
   // std::invalid_argument when u has the wrong shape.
   bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K) const;
 
-  // The mixed formulation's pressure blocks (engine/pressure_blocks.hpp,
-  // mixed_pressure_blocks: 2 x 2 (x 2) elements on a mixed patch, one
-  // element elsewhere): one dilatation theta_b and one pressure
-  // p_b = U'(theta_b) per block, theta_b = Pi_b J (the mean of J over the
-  // block's reference volume V_b); the stabilisation mu_s (J - Pi_e J) stays
-  // per element.  Everything "per block" below is numbered as blocks()
-  // numbers them.
+  // The mixed formulation's pressure space (engine/pressure_space.hpp,
+  // mixed_pressure_space: on a `mixed` patch the continuous B-splines of
+  // degree p - 1 on breakpoints twice coarser, on a `mixed_element` or
+  // displacement patch one constant per element): one dilatation theta_A and
+  // one pressure p_A = U'(theta_A) per function N_A,
+  //   theta_A = (1/m_A) int N_A J dX,   m_A = int N_A dX
+  // (the L2 projection with the pressure mass lumped, so local), the point
+  // pressure sum_A N_A p_A, and the stabilisation mu_s (J - Pi_e J) per
+  // element.  Everything "per pressure" below is numbered as
+  // pressure_space() numbers its functions.
   //
   // The u-p Newton of the mixed formulation (docs/design.md, "Nearly
-  // incompressible solids"): each mixed block's dilatation theta_b an
-  // unknown of the iteration beside u.  `dilatation` (theta_b - 1 per
-  // block) sets the block pressure p_b = U'(theta_b) and U''(theta_b) in
-  // place of their values at Pi_b J (the stabilisation keeps
-  // mu_s (J - Pi_e J)); K is then d f_int/du at fixed theta plus
-  // V_b U''(theta_b) mB_b^T mB_b, the matrix with theta_b condensed
+  // incompressible solids"): each mixed function's dilatation theta_A an
+  // unknown of the iteration beside u.  `dilatation` (theta_A - 1 per
+  // function) sets p_A = U'(theta_A) and U''(theta_A) in place of their
+  // values at the projection of J (the stabilisation keeps mu_s (J - Pi_e J));
+  // K is then d f_int/du at fixed theta plus the sum over functions of
+  // m_A U''(theta_A) mB_A^T mB_A, the matrix with theta condensed
   // (engine/saddle_solver.hpp, BlockJacobian::local), of the pattern and
-  // symmetry of the other overload's.  `local`, when not null, receives
-  // what the block rows of the Newton matrix need; its mean_B only with K.
+  // symmetry of the other overload's.  `local`, when not null, receives what
+  // the pressure rows of the Newton matrix need; its mean_B only with K.
   struct LocalDilatation {
-    Eigen::VectorXd projected;  // Pi_b J - 1 per block (0: a displacement element's block)
-    Eigen::VectorXd stiffness;  // V_b U''(theta_b) (0: a displacement element's block)
-    Eigen::VectorXd volume;     // V_b (reference)
-    Eigen::VectorXd shear;      // mu_s of the block's law (0: a displacement element's block)
-    // mB_b = (1/V_b) int_b dJ/du dX on the free equations: the block's mean of B
+    Eigen::VectorXd projected;  // (1/m_A) int N_A (J - 1) dX per function (0: a displacement patch's)
+    Eigen::VectorXd stiffness;  // m_A U''(theta_A) (0: a displacement patch's)
+    Eigen::VectorXd volume;     // m_A (reference; 0: a displacement patch's)
+    Eigen::VectorXd shear;      // mu_s of the function's law (0: a displacement patch's)
+    // mB_A = (1/m_A) int N_A dJ/du dX on the free equations
     Eigen::SparseMatrix<double, Eigen::RowMajor> mean_B;
   };
   bool assemble(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
                 const Eigen::VectorXd* dilatation, LocalDilatation* local) const;
-  const ElementBlocks& blocks() const { return blocks_; }
-  int num_blocks() const { return blocks_.num_blocks(); }
-  // Other blocks than mixed_pressure_blocks' (e.g. blocks of one element:
-  // the per-element formulation, for the tests' comparisons); rebuilds the
-  // pattern and the colouring.  Throws std::invalid_argument when the blocks
-  // are not of this body's elements, a block mixes patches, or the
-  // incompressible limit is on (its multipliers are per block).
-  void set_blocks(ElementBlocks blocks);
+  const PressureSpace& pressure_space() const { return space_; }
+  int num_pressures() const { return space_.num_functions(); }
+  // Another pressure space than mixed_pressure_space's (e.g. constants per
+  // element: the pair before the sub-grid space, for the tests'
+  // comparisons); rebuilds the pattern and the colourings.  Throws
+  // std::invalid_argument when the space is not of this body's elements or
+  // the incompressible limit is on (its multipliers are per function).
+  void set_pressure_space(PressureSpace space);
+  // The assembly's per-element storage: element e's entries start at
+  // function_entry[e] (one per function of e), g_entry[e] (int_e N_A B per
+  // function, a mixed element's nd values each) and eq_entry[e] (its nd
+  // equations); volume: m_A per function.
+  struct PressureLayout {
+    std::vector<int> function_entry, g_entry, eq_entry;
+    Eigen::VectorXd volume;
+  };
   int num_elements() const { return quad_.num_elements(); }
   // Whether any patch is in the mixed formulation.
   bool has_mixed() const;
 
   // Zero-valued matrix with the tangent's pattern (compressed, column major,
   // sorted; contains every coupling of control points that share an element,
-  // or a pressure block, so face loads and contact on the patch's faces fit
+  // or a pressure function's support, so face loads and contact on the patch's faces fit
   // in it too).
   const Eigen::SparseMatrix<double>& pattern() const { return pattern_; }
   const DofMap& dofs() const { return dofs_; }
@@ -132,18 +145,20 @@ class TotalLagrangianAssembler {
   // Smallest det J of the geometry map met at a Gauss point.
   double min_det_J() const { return min_det_J_; }
 
-  // Tolerance on max_b |theta_b - 1| of the incompressible limit's runs.
+  // Tolerance on max_A |theta_A - 1| of the incompressible limit's runs.
   static constexpr double kIncompressibilityTolerance = 1e-8;
   // The fully incompressible limit of the mixed patches (K = infinity,
-  // docs/design.md): an augmented Lagrangian, as FEBio's.  Each block's
-  // volumetric energy becomes V_b U(theta_b), U(theta) = lambda_b (theta - 1) +
-  // kappa/2 (theta - 1)^2, with lambda_b its pressure multiplier (0 at
-  // first) and kappa the law's bulk modulus U''(1) as the penalty; the
-  // assembly is otherwise the mixed one (same pattern, symmetric).  After a
-  // Newton solve, augment(u) updates lambda_b += kappa (theta_b - 1) (Uzawa)
-  // unless max_b |theta_b - 1| <= tolerance already; solving again and again
-  // drives theta_b = Pi_b J to 1 in every block, whatever kappa (kappa
-  // only sets how fast).  Throws std::invalid_argument without a mixed patch.
+  // docs/design.md): an augmented Lagrangian, as FEBio's.  Each pressure
+  // function's volumetric energy becomes m_A U(theta_A), U(theta) =
+  // lambda_A (theta - 1) + kappa/2 (theta - 1)^2, with lambda_A its pressure
+  // multiplier (0 at first) and kappa the law's bulk modulus U''(1) as the
+  // penalty; the assembly is otherwise the mixed one (same pattern,
+  // symmetric).  After a Newton solve, augment(u) updates lambda_A +=
+  // kappa (theta_A - 1) (Uzawa) unless max_A |theta_A - 1| <= tolerance
+  // already; solving again and again drives int N_A (J - 1) dX to 0 for
+  // every function, the constraint of the consistent (unlumped) mixed method,
+  // whatever kappa (kappa only sets how fast).  Throws
+  // std::invalid_argument without a mixed patch.
   void make_incompressible(double tolerance);
   bool incompressible() const { return incompressibility_.has_value(); }
   // Updates the multipliers from u and returns true when the constraint was
@@ -158,20 +173,20 @@ class TotalLagrangianAssembler {
   void copy_multipliers(const TotalLagrangianAssembler& from);
   // The multipliers of an accepted step (a restart: the ones the step it
   // continues after ended with, its Incompressibility::accepted).  Throws
-  // std::invalid_argument unless incompressible with that many blocks.
+  // std::invalid_argument unless incompressible with one per pressure function.
   void restore_multipliers(const Eigen::VectorXd& accepted);
-  // theta_b - 1 = Pi_b (J - 1) per block (0 for the displacement
-  // formulation's blocks of one element); false when u is inadmissible.
+  // theta_A - 1 = (1/m_A) int N_A (J - 1) dX per pressure function (0 for a
+  // displacement patch's); false when u is inadmissible.
   bool volume_changes(const Eigen::MatrixXd& u, Eigen::VectorXd& dilatation) const;
-  // The incompressible limit: each block's pressure U'(theta_b) =
-  // lambda_b + kappa (theta_b - 1) at u (positive in tension); false when u
+  // The incompressible limit: each function's pressure U'(theta_A) =
+  // lambda_A + kappa (theta_A - 1) at u (positive in tension); false when u
   // is inadmissible or the body is not incompressible.
   bool element_pressures(const Eigen::MatrixXd& u, Eigen::VectorXd& pressure) const;
   struct Incompressibility {
     double tolerance = 0;
     std::vector<double> penalties;        // kappa per law (one, or one per patch)
-    Eigen::VectorXd multipliers, accepted;  // lambda_b per block: current, of the last accepted step
-    double last_volume_change = 0;        // max_b |theta_b - 1| at the last augment()
+    Eigen::VectorXd multipliers, accepted;  // lambda_A per pressure function: current, of the last accepted step
+    double last_volume_change = 0;        // max_A |theta_A - 1| at the last augment()
     int augmentations = 0;                // Uzawa updates so far
   };
   const std::optional<Incompressibility>& incompressibility() const { return incompressibility_; }
@@ -184,13 +199,13 @@ class TotalLagrangianAssembler {
   std::vector<Formulation> formulations_;     // one, or one per patch
   std::vector<double> stabilisations_;        // mu_s of each law in the mixed formulation (0: none)
   int pressure_degree_;
-  ElementBlocks blocks_;                  // the pressure blocks (pressure_blocks.hpp)
+  PressureSpace space_;                   // the pressure functions (pressure_space.hpp)
+  PressureLayout layout_;
   bool tangent_ = true;
-  Eigen::SparseMatrix<double> pattern_;   // of the blocks (blocks of one: the element pattern)
-  std::vector<std::vector<int>> colours_;  // blocks by colour: one colour shares no equation
+  Eigen::SparseMatrix<double> pattern_;   // with the functions' supports (constants per element: the element pattern)
+  std::vector<std::vector<int>> colours_, function_colours_;  // by colour: one colour shares no equation
   double min_det_J_ = 0;
   std::optional<Incompressibility> incompressibility_;
-  int patch_of_block(int b) const;
 };
 
 }  // namespace igac

@@ -143,6 +143,25 @@ std::vector<int> KnotVector::element_spans() const {
   return s;
 }
 
+void KnotVector::basis_values(int span, double u, double* out) const {
+  // Piegl & Tiller A2.2.
+  const int p = degree_;
+  if (p >= 15) throw SplineError(fmt::format("degree {} is above the supported 14", p));
+  double left[16], right[16];
+  out[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - knots_[size_t(span + 1 - j)];
+    right[j] = knots_[size_t(span + j)] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = out[r] / (right[r + 1] + left[j - r]);
+      out[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    out[j] = saved;
+  }
+}
+
 void KnotVector::basis_derivatives(int span, double u, int n_derivs,
                                    std::vector<std::vector<double>>& ders) const {
   // Piegl & Tiller A2.3.

@@ -64,6 +64,10 @@ class KnotVector {
   void basis_derivatives(int span, double u, int n_derivs,
                          std::vector<std::vector<double>>& out) const;
 
+  // Values only of the degree+1 basis functions nonzero on span s at u:
+  // out[j] = N_{s-degree+j}(u) (Piegl & Tiller A2.2; allocates nothing).
+  void basis_values(int span, double u, double* out) const;
+
   // Greville abscissae (knot averages), one per basis function.
   std::vector<double> greville() const;
 

@@ -185,10 +185,9 @@ TEST(TotalLagrangian, MixedNeedsALawWithASplit) {
 
 // With the linear law's small-strain split (U = K theta^2/2), the mixed
 // tangent at u = 0 is the B-bar stiffness of assemble_linear_elasticity:
-// the two paths project the same way.  Here with pressure blocks of one
-// element (TotalLagrangianAssembler::set_blocks): the block formulation with
-// blocks of one is the per-element formulation of before, whose B-bar
-// stiffness the small-strain assembly builds.
+// the two paths project the same way, for the sub-grid continuous pressure
+// (`mixed`, 3 x 3 elements: one pressure span of 3 elements per direction)
+// and for constants per element (`mixed_element`).
 TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
   const Geometry g = quarter_disc(1.0);
   const NurbsPatch patch = refined(g.patch, 2, 3);
@@ -198,20 +197,16 @@ TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
   const LinearElastic lin = small_strain_material(*law, 2);
   const LinearSystem plain = assemble_linear_elasticity(patch, dofs, lin, Eigen::VectorXd::Zero(2));
   const Eigen::MatrixXd Kp(plain.K);
-  // the default blocks (3 x 3 elements: one block of 3 x 3, an odd
-  // direction's leftover joining its last block), and blocks of one element
-  const BodyQuadrature quad(Body(patch), gauss_points_for(2));
-  for (int width : {kPressureBlockWidth, 1}) {
-    TotalLagrangianAssembler tl(patch, dofs, *law, Formulation::mixed);
-    if (width == 1) tl.set_blocks(block_elements(quad, {1}));
+  for (const Formulation formulation : {Formulation::mixed, Formulation::mixed_element}) {
+    const TotalLagrangianAssembler tl(patch, dofs, *law, formulation);
     Eigen::VectorXd f;
     Eigen::SparseMatrix<double> K;
     ASSERT_TRUE(tl.assemble(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), f, &K));
-    const LinearSystem bbar = assemble_linear_elasticity(patch, dofs, {lin}, Eigen::VectorXd::Zero(2), {},
-                                                         {Formulation::mixed}, block_elements(quad, {width}));
+    const LinearSystem bbar =
+        assemble_linear_elasticity(patch, dofs, {lin}, Eigen::VectorXd::Zero(2), {}, {formulation});
     const Eigen::MatrixXd Kd(K), Kb(bbar.K);
     ASSERT_EQ(Kd.rows(), Kb.rows());
-    EXPECT_LE(max_abs(Kd - Kb), kRoundoff * 1e2 * max_abs(Kb)) << "width " << width;
+    EXPECT_LE(max_abs(Kd - Kb), kRoundoff * 1e2 * max_abs(Kb)) << formulation_name(formulation);
     EXPECT_GT(max_abs(Kd - Kp), 1e-3 * max_abs(Kp)) << "B-bar differs from the plain stiffness";
   }
 }
