@@ -208,7 +208,7 @@ TEST(TotalLagrangian, MixedTangentAtRestIsTheBbarStiffness) {
     Eigen::SparseMatrix<double> K;
     ASSERT_TRUE(tl.assemble(dofs.expand(Eigen::VectorXd::Zero(dofs.num_free())), f, &K));
     const LinearSystem bbar = assemble_linear_elasticity(patch, dofs, {lin}, Eigen::VectorXd::Zero(2), {},
-                                                         {Formulation::mixed}, block_elements(quad, {width}));
+                                                         {Formulation::mixed}, PressureSpace(quad, {{0, 0, 0}}, {width}));
     const Eigen::MatrixXd Kd(K), Kb(bbar.K);
     ASSERT_EQ(Kd.rows(), Kb.rows());
     EXPECT_LE(max_abs(Kd - Kb), kRoundoff * 1e2 * max_abs(Kb)) << "width " << width;
