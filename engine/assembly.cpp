@@ -128,16 +128,27 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     throw std::invalid_argument(fmt::format("{} formulations for {} patches", formulations.size(), body.num_patches()));
   const BodyQuadrature quad(body, gauss_points_for(body.degree()));
   return assemble_linear_elasticity(body, dofs, materials, body_force, elements, formulations,
-                                    mixed_pressure_blocks(quad, formulations));
+                                    mixed_pressure_space(quad, formulations));
 }
 
 namespace {
 
-// values[k] += scale g_r g_c for the rank-one block term (scatter_element_matrix's ElementMatrix).
+// values[k] += scale g_r g_c for a function's rank-one term (scatter_element_matrix's ElementMatrix).
 struct RankOne {
   const Eigen::VectorXd& g;
   double scale;
   double operator()(int r, int c) const { return scale * g[r] * g[c]; }
+};
+
+// What a mixed element gives the rank-one terms of its pressure functions:
+// per function i of the element (space.functions_begin(e)[i]), the row
+// int_e N_i div N dX on the element's dofs (cp * dim + component) and
+// int_e N_i dX.  Kept per element, so the threads of the element pass never
+// share one.
+struct ElementDivergence {
+  std::vector<int> dof;
+  Eigen::MatrixXd g;  // n_dofs x n_functions
+  Eigen::VectorXd m;  // n_functions
 };
 
 }  // namespace
@@ -145,7 +156,7 @@ struct RankOne {
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const std::vector<LinearElastic>& materials,
                                         const Eigen::VectorXd& body_force, ElementRange elements,
-                                        const std::vector<Formulation>& formulations, const ElementBlocks& blocks) {
+                                        const std::vector<Formulation>& formulations, const PressureSpace& space) {
   const int dim = body.space_dim();
   const BodyQuadrature quad(body, gauss_points_for(body.degree()));
   const int e_end = elements.end < 0 ? quad.num_elements() : std::min(elements.end, quad.num_elements());
@@ -154,39 +165,69 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     throw std::invalid_argument(fmt::format("{} materials for {} patches", materials.size(), body.num_patches()));
   if (formulations.size() > 1 && int(formulations.size()) != body.num_patches())
     throw std::invalid_argument(fmt::format("{} formulations for {} patches", formulations.size(), body.num_patches()));
-  if (blocks.num_elements() != quad.num_elements())
+  if (space.num_elements() != quad.num_elements())
     throw std::invalid_argument(
-        fmt::format("{} elements in the pressure blocks for {} in the body", blocks.num_elements(), quad.num_elements()));
+        fmt::format("{} elements in the pressure space for {} in the body", space.num_elements(), quad.num_elements()));
   const int k_pressure = pressure_degree(body.degree());
   const int n_free = dofs.num_free();
   const bool has_body_force = body_force.size() == dim && body_force.norm() > 0;
-  // Blocks of one element each: the element loop of the displacement
-  // formulation, unchanged (a mixed element is then its own block).  Else a
-  // thread owns whole blocks: their elements, then the block term.
-  const bool by_blocks = !blocks.per_element();
+  const auto material_of = [&](int patch) -> const LinearElastic& {
+    return materials[materials.size() == 1 ? 0 : size_t(patch)];
+  };
+  const auto mixed_patch = [&](int patch) {
+    return !formulations.empty() && is_mixed(formulations[formulations.size() == 1 ? 0 : size_t(patch)]);
+  };
+  // Constants per element: each element adds its function's rank-one term
+  // right after its matrix (the element loop of before, term for term).
+  // Else an element pass keeps every mixed element's ElementDivergence, then
+  // a function pass gathers g_A = int N_A div N dX from its support and adds
+  // K / m_A g_A g_A^T.  The range owns the functions whose first support
+  // element it holds (engine/sparsity.hpp) and evaluates their support
+  // elements outside it again, for g_A only.
+  const bool per_element = space.per_element();
+  const auto owned = [&](int a) {
+    if (space.support_begin(a) == space.support_end(a)) return false;
+    const int first = *space.support_begin(a);
+    return first >= e_begin && first < e_end && mixed_patch(space.patch_of_function(a));
+  };
+  std::vector<int> outside;  // elements outside the range in the support of an owned function
+  if (!per_element) {
+    for (int a = 0; a < space.num_functions(); ++a)
+      if (owned(a))
+        for (const int* e = space.support_begin(a); e != space.support_end(a); ++e)
+          if (*e >= e_end) outside.push_back(*e);  // the first element is in the range, the others after it
+    std::sort(outside.begin(), outside.end());
+    outside.erase(std::unique(outside.begin(), outside.end()), outside.end());
+  }
 
   LinearSystem s;
-  s.K = coupling_pattern(quad, dofs, blocks, e_begin, e_end);  // the element pattern for blocks of one
+  s.K = coupling_pattern(quad, dofs, space, e_begin, e_end);  // the element pattern for constants per element
 
-  // Colour by colour: no two units (elements, or blocks) of a colour share
-  // an equation, so threads add straight into K's values and f
+  // Colour by colour: no two elements (or functions) of a colour share an
+  // equation, so threads add straight into K's values and f
   // (engine/sparsity.hpp), and the sums are the same whatever the number of
-  // threads.  One thread adds the units in their own order instead, the
-  // order the sums had before colouring (the shipped cases' recorded results
-  // are reproduced bit for bit; colour order moves hertz2d's peak pressure
-  // by 3e-12 relative).
-  std::vector<std::vector<int>> colours;
+  // threads.  One thread adds the elements, then the functions, in their own
+  // order instead, the order the sums had before colouring (the shipped
+  // cases' recorded results are reproduced bit for bit; colour order moves
+  // hertz2d's peak pressure by 3e-12 relative).
+  std::vector<std::vector<int>> colours, function_colours;
   if (omp_get_max_threads() > 1) {
-    colours = by_blocks ? colour_blocks(quad, dofs, blocks, e_begin, e_end) : colour_elements(quad, dofs, e_begin, e_end);
+    colours = colour_elements(quad, dofs, e_begin, e_end);
+    if (!per_element) {
+      function_colours = colour_functions(quad, dofs, space, e_begin, e_end);
+      for (std::vector<int>& colour : function_colours)
+        colour.erase(std::remove_if(colour.begin(), colour.end(), [&](int a) { return !owned(a); }), colour.end());
+    }
   } else {
     colours.emplace_back();
-    if (by_blocks) {
-      for (int b = 0; b < blocks.num_blocks(); ++b)
-        if (const int e = blocks.elements[blocks.start[b]]; e >= e_begin && e < e_end) colours.back().push_back(b);
-    } else {
-      for (int e = e_begin; e < e_end; ++e) colours.back().push_back(e);
+    for (int e = e_begin; e < e_end; ++e) colours.back().push_back(e);
+    if (!per_element) {
+      function_colours.emplace_back();
+      for (int a = 0; a < space.num_functions(); ++a)
+        if (owned(a)) function_colours.back().push_back(a);
     }
   }
+  std::vector<ElementDivergence> divergence(per_element ? 0 : size_t(quad.num_elements()));
   double* val = s.K.valuePtr();  // zero: the pattern's values
   s.f = Eigen::VectorXd::Zero(n_free);
   double* f = s.f.data();
@@ -202,23 +243,55 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     std::vector<int> eq;
     ElementProjection projection;
     Eigen::MatrixXd B, Bbar;
-    // The block term's row: g_b = int_b div N (= V_b mB_b), by dof of the
-    // block's control points (a dof met by several elements summed).
-    std::vector<std::pair<int, double>> block_row;
-    std::vector<int> block_dof, block_eq;
+    PressureSpace::Scratch scratch;
+    std::vector<double> values;
+    Eigen::VectorXd weights;
+    ElementDivergence own;  // constants per element: the element's, used at once
+    // A function's rank-one term: its row (dof, value) pairs, a dof met by
+    // several elements summed, then K / m_A g_A g_A^T.
+    std::vector<std::pair<int, double>> row;
+    std::vector<int> row_dof, row_eq;
     Eigen::VectorXd g;
-    // Adds element e's matrix and loads; a mixed element adds its int div N
-    // to block_row and returns its bulk modulus (else 0).
-    auto assemble_element = [&](int e, auto& ed) -> double {
+    // Element e's int N_i div N dX and int N_i dX per function i (B, the
+    // points' div N, filled).
+    auto divergence_rows = [&](int e, const auto& ed, ElementDivergence& d) {
+      const int nd = ed.n_loc * dim, nq = ed.n_q, nf = space.num_element_functions(e);
+      d.dof.resize(size_t(nd));
+      for (int c = 0; c < nd; ++c) d.dof[size_t(c)] = ed.cps[size_t(c / dim)] * dim + c % dim;
+      d.g.resize(nd, nf);
+      d.m.resize(nf);
+      Eigen::MatrixXd N(nq, nf);  // N(q, i): function i at point q
+      for (int q = 0; q < nq; ++q) {
+        space.values(e, ed.xi[size_t(q)].data(), values, scratch);
+        for (int i = 0; i < nf; ++i) N(q, i) = values[size_t(i)];
+      }
+      weights.resize(nq);
+      for (int i = 0; i < nf; ++i) {
+        double m = 0;
+        for (int q = 0; q < nq; ++q) {
+          weights[q] = ed.JxW[size_t(q)] * N(q, i);
+          m += weights[q];
+        }
+        d.g.col(i).noalias() = B.transpose() * weights;
+        d.m[i] = m;
+      }
+    };
+    auto fill_divergence = [&](const auto& ed) {  // B(q, a dim + i) = dN_a/dX_i
+      const int nd = ed.n_loc * dim;
+      B.resize(ed.n_q, nd);
+      for (int q = 0; q < ed.n_q; ++q)
+        for (int c = 0; c < nd; ++c) B(q, c) = ed.gradients(q)[c];
+    };
+    // Adds element e's matrix and loads; a mixed element fills its
+    // ElementDivergence too.  Returns whether it is mixed.
+    auto assemble_element = [&](int e, auto& ed) -> bool {
       quad.evaluate(e, ed, true);
       const int patch = materials.size() > 1 || formulations.size() > 1 ? quad.patch_of(e) : 0;
-      const LinearElastic& mat = materials[materials.size() == 1 ? 0 : patch];
+      const LinearElastic& mat = material_of(patch);
       // mixed: the deviatoric part with lambda - K = -2 mu / 3, the
       // stabilisation mu (B^T W B - V_e mB_e^T mB_e) per element, and the
-      // block's K V_b mB_b^T mB_b after its elements (volumetric_projection.hpp)
-      const bool mixed = !formulations.empty() &&
-                         is_mixed(formulations[formulations.size() == 1 ? 0 : patch]);
-      const double bulk = mat.lambda() + 2 * mat.mu() / 3;
+      // functions' K / m_A g_A g_A^T after (volumetric_projection.hpp)
+      const bool mixed = mixed_patch(patch);
       const double lambda = mixed ? -2 * mat.mu() / 3 : mat.lambda(), mu = mat.mu();
       min_det = std::min(min_det, ed.min_det_J);
       const int nl = ed.n_loc, nq = ed.n_q, nd = nl * dim;
@@ -246,14 +319,11 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
               Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
             }
         }
-      if (mixed) {  // + mu (B - Bbar)^T W (B - Bbar), B(q, a dim + i) = dN_a/dX_i, Bbar = Pi_e B
+      if (mixed) {  // + mu (B - Bbar)^T W (B - Bbar), Bbar = Pi_e B
         projection.build(ed.xi, ed.JxW, k_pressure);
-        B.resize(nq, nd);
-        for (int q = 0; q < nq; ++q)
-          for (int c = 0; c < nd; ++c) B(q, c) = ed.gradients(q)[c];
+        fill_divergence(ed);
         add_volumetric_tangent(projection.matrix(), ed.JxW, Eigen::VectorXd::Zero(nq), mu, B, Bbar, Ke);
-        const Eigen::VectorXd ge = B.transpose() * Eigen::Map<const Eigen::VectorXd>(ed.JxW.data(), nq);
-        for (int c = 0; c < nd; ++c) block_row.emplace_back(ed.cps[c / dim] * dim + c % dim, ge[c]);
+        divergence_rows(e, ed, per_element ? own : divergence[size_t(e)]);
       }
       dofs.element_equations(ed.cps, eq);
       for (int c = 0; c < nd; ++c) {  // prescribed: lift its value into the right-hand side
@@ -269,84 +339,88 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
           for (int a = 0; a < nl; ++a)
             for (int i = 0; i < dim; ++i)
               if (eq[a * dim + i] >= 0) f[eq[a * dim + i]] += ed.N(q, a) * body_force[i] * ed.JxW[q];
-      return mixed ? bulk : 0.0;
+      return mixed;
     };
-    // The unit's elements, then (mixed) its block term K / V_b g_b g_b^T.
-    auto assemble_unit = [&](const int* first, const int* past) {
-      block_row.clear();
-      double bulk = 0, volume = 0;
-      for (const int* e = first; e != past; ++e) {
-        if (dim == 2) {
-          bulk = assemble_element(*e, v2);
-          for (double w : v2.JxW) volume += w;
-        } else {
-          bulk = assemble_element(*e, v3);
-          for (double w : v3.JxW) volume += w;
-        }
-      }
-      if (bulk == 0.0) return;  // a block lies in one patch: one material, one formulation
-      std::sort(block_row.begin(), block_row.end(),
-                [](const auto& x, const auto& y) { return x.first < y.first; });
-      block_dof.clear();  // the block's dofs, each once, and g_b on them
-      g.resize(Eigen::Index(block_row.size()));
-      for (const auto& [dof, value] : block_row) {
-        if (!block_dof.empty() && block_dof.back() == dof) {
-          g[Eigen::Index(block_dof.size()) - 1] += value;
+    // K / m g g^T for the row gathered in `row` (sorted by dof here).
+    auto add_rank_one = [&](double bulk, double m) {
+      std::sort(row.begin(), row.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      row_dof.clear();  // the support's dofs, each once, and g_A on them
+      g.resize(Eigen::Index(row.size()));
+      for (const auto& [dof, value] : row) {
+        if (!row_dof.empty() && row_dof.back() == dof) {
+          g[Eigen::Index(row_dof.size()) - 1] += value;
           continue;
         }
-        g[Eigen::Index(block_dof.size())] = value;
-        block_dof.push_back(dof);
+        g[Eigen::Index(row_dof.size())] = value;
+        row_dof.push_back(dof);
       }
-      const int n = int(block_dof.size());
+      const int n = int(row_dof.size());
       g.conservativeResize(n);
-      block_eq.resize(size_t(n));
-      for (int c = 0; c < n; ++c) block_eq[size_t(c)] = dofs.equation(block_dof[size_t(c)]);
-      const RankOne Kb{g, bulk / volume};
+      row_eq.resize(size_t(n));
+      for (int c = 0; c < n; ++c) row_eq[size_t(c)] = dofs.equation(row_dof[size_t(c)]);
+      const RankOne Ka{g, bulk / m};
       for (int c = 0; c < n; ++c) {  // prescribed: lift its value into the right-hand side
-        if (block_eq[size_t(c)] >= 0) continue;
-        const double gv = dofs.prescribed_value(block_dof[size_t(c)]);
+        if (row_eq[size_t(c)] >= 0) continue;
+        const double gv = dofs.prescribed_value(row_dof[size_t(c)]);
         if (gv != 0.0)
           for (int r = 0; r < n; ++r)
-            if (block_eq[size_t(r)] >= 0) f[block_eq[size_t(r)]] -= Kb(r, c) * gv;
+            if (row_eq[size_t(r)] >= 0) f[row_eq[size_t(r)]] -= Ka(r, c) * gv;
       }
-      scatter_element_matrix(s.K, val, block_eq, Kb);
+      scatter_element_matrix(s.K, val, row_eq, Ka);
+    };
+    const auto bulk_of = [&](int patch) {
+      const LinearElastic& mat = material_of(patch);
+      return mat.lambda() + 2 * mat.mu() / 3;
+    };
+    // Function a's term from the ElementDivergence of its support.
+    auto add_function = [&](int a) {
+      row.clear();
+      double m = 0;
+      for (const int* e = space.support_begin(a); e != space.support_end(a); ++e) {
+        const ElementDivergence& d = divergence[size_t(*e)];
+        const int i = int(std::find(space.functions_begin(*e), space.functions_end(*e), a) - space.functions_begin(*e));
+        for (size_t c = 0; c < d.dof.size(); ++c) row.emplace_back(d.dof[c], d.g(Eigen::Index(c), i));
+        m += d.m[i];
+      }
+      add_rank_one(bulk_of(space.patch_of_function(a)), m);
+    };
+    auto element = [&](int e) {
+      const bool mixed = dim == 2 ? assemble_element(e, v2) : assemble_element(e, v3);
+      if (!mixed || !per_element) return;
+      row.clear();  // the element's one function, at once
+      for (size_t c = 0; c < own.dof.size(); ++c) row.emplace_back(own.dof[c], own.g(Eigen::Index(c), 0));
+      add_rank_one(bulk_of(quad.patch_of(e)), own.m[0]);
+    };
+    // Outside the range: an element's divergence rows only (its matrix is
+    // another range's).
+    auto divergence_only = [&](int e, auto& ed) {
+      quad.evaluate(e, ed, true);
+      fill_divergence(ed);
+      divergence_rows(e, ed, divergence[size_t(e)]);
     };
     for (const std::vector<int>& colour : colours) {
       const int n_colour = int(colour.size());
 #pragma omp for schedule(dynamic, 16)
-      for (int idx = 0; idx < n_colour; ++idx) {
-        if (by_blocks) {
-          const int b = colour[idx];
-          assemble_unit(blocks.elements.data() + blocks.start[b], blocks.elements.data() + blocks.start[b + 1]);
-        } else {
-          assemble_unit(&colour[idx], &colour[idx] + 1);
-        }
-      }
+      for (int idx = 0; idx < n_colour; ++idx) element(colour[idx]);
+    }
+    const int n_outside = int(outside.size());
+#pragma omp for schedule(dynamic, 16)
+    for (int idx = 0; idx < n_outside; ++idx) {  // on a mixed patch: an owned function's support
+      if (dim == 2)
+        divergence_only(outside[size_t(idx)], v2);
+      else
+        divergence_only(outside[size_t(idx)], v3);
+    }
+    for (const std::vector<int>& colour : function_colours) {
+      const int n_colour = int(colour.size());
+#pragma omp for schedule(dynamic, 16)
+      for (int idx = 0; idx < n_colour; ++idx) add_function(colour[size_t(idx)]);
     }
   }
   s.min_det_J = min_det;
   if (!(s.min_det_J > 0))
     throw std::runtime_error(fmt::format("the geometry map folds: det J = {:.3g} at a Gauss point", s.min_det_J));
   return s;
-}
-
-ElementRange whole_blocks(const ElementBlocks& blocks, ElementRange range) {
-  const int n = blocks.num_elements();
-  // reach[c]: one past the last element of any block with an element below c;
-  // c is a cut between blocks when reach[c] <= c
-  std::vector<int> last(size_t(blocks.num_blocks()), -1);
-  for (int e = 0; e < n; ++e) last[size_t(blocks.block_of[size_t(e)])] = e;
-  const auto next_cut = [&](int c) {
-    c = std::clamp(c, 0, n);
-    int reach = 0;
-    for (int e = 0; e < n; ++e) {
-      if (e >= c && reach <= e) return e;
-      reach = std::max(reach, last[size_t(blocks.block_of[size_t(e)])] + 1);
-    }
-    return n;
-  };
-  const int end = range.end < 0 ? n : next_cut(range.end);
-  return {std::min(next_cut(range.begin), end), range.end < 0 ? -1 : end};
 }
 
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,

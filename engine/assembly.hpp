@@ -21,7 +21,7 @@
 
 #include "engine/body.hpp"
 #include "engine/discretisation.hpp"
-#include "engine/pressure_blocks.hpp"
+#include "engine/pressure_space.hpp"
 #include "engine/volumetric_projection.hpp"
 #include "materials/linear_elastic.hpp"
 
@@ -71,29 +71,29 @@ struct LinearSystem {
 
 // A contiguous block [begin, end) of the body's elements (end < 0: to the
 // last one).  A distributed solve gives each process its own block; the
-// matrices and loads of all blocks sum to those of the whole body.
+// matrices and loads of all blocks sum to those of the whole body, wherever
+// the cuts lie.
 struct ElementRange {
   int begin = 0, end = -1;
 };
-// `range` with each end moved up to the first element number at which no
-// block of `blocks` is cut (a block's elements are not contiguous: a 2 x 2
-// block spans two rows of its patch), so that ranges made this way from
-// cuts 0 = c_0 <= c_1 <= ... <= c_n = n_elements still tile the body and
-// each holds whole blocks: the mixed formulation's block term needs all of
-// its block's elements in one process.
-ElementRange whole_blocks(const ElementBlocks& blocks, ElementRange range);
 
 // Throws std::runtime_error when the geometry map folds (det J <= 0 at a
 // Gauss point).  With `elements`, only those elements are assembled (K keeps
-// its full size, the other entries are structurally absent); with mixed
-// patches the range must hold whole pressure blocks (whole_blocks; else
-// std::logic_error).  `mixed`: the B-bar stiffness of
-// engine/volumetric_projection.hpp, the volumetric strain projected onto
-// constants per pressure block (mixed_pressure_blocks, pressure_blocks.hpp):
-// per element the deviatoric part (lambda - K = -2 mu / 3 for lambda) and
-// the stabilisation mu (B^T W B - V_e mB_e^T mB_e), per block
-// K V_b mB_b^T mB_b (B = div N, mB the element's or the block's mean); the
-// pattern widened to the blocks (coupling_pattern with blocks).
+// its full size, the other entries are structurally absent), with the
+// pressure functions the range owns (engine/sparsity.hpp: those whose first
+// support element it holds; their support elements outside it are evaluated
+// again, for the functions' terms only).  `mixed`: the B-bar stiffness of
+// engine/volumetric_projection.hpp over the pressure space
+// (mixed_pressure_space, pressure_space.hpp), the energy
+//   int mu |dev eps|^2 dX + mu/2 int (div u - Pi_e div u)^2 dX
+//     + K/2 sum_A (int N_A div u dX)^2 / m_A,   m_A = int N_A dX
+// (a mixed method with the row-sum pressure mass, so no pressure unknowns):
+// per element the deviatoric part (lambda - K = -2 mu / 3 for lambda) and the
+// stabilisation mu (B^T W B - V_e mB_e^T mB_e), per function
+// K / m_A g_A g_A^T, g_A = int N_A div N dX (B = div N, mB_e its element
+// mean); the pattern widened to the supports (coupling_pattern with the
+// space).  Constants per element (mixed_element) give Pi_e: each element's
+// own K V_e mB_e^T mB_e.
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const LinearElastic& material,
                                         const Eigen::VectorXd& body_force, ElementRange elements = {},
@@ -105,14 +105,14 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const std::vector<LinearElastic>& patch_materials,
                                         const Eigen::VectorXd& body_force, ElementRange elements = {},
                                         const std::vector<Formulation>& patch_formulations = {});
-// The same with the pressure blocks given (mixed_pressure_blocks above;
-// block_elements(quad, {1}) gives the element-constant projection of before
-// the blocks).
+// The same with the pressure space given (mixed_pressure_space above;
+// PressureSpace(quad, {{0, 0, 0}}, {1}) gives constants per element on every
+// patch).  Its functions on the mixed patches count; the others are unused.
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
                                         const std::vector<LinearElastic>& patch_materials,
                                         const Eigen::VectorXd& body_force, ElementRange elements,
                                         const std::vector<Formulation>& patch_formulations,
-                                        const ElementBlocks& blocks);
+                                        const PressureSpace& space);
 // Adds the work of a pressure P on the faces to f (free numbering): the dead
 // pressure of follower_pressure.hpp (one face loop for both).
 void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,

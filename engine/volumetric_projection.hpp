@@ -26,13 +26,17 @@
 // (coupling_pattern with blocks, engine/sparsity.hpp).  Blocks of one
 // element (width 1, the displacement patches' blocks) give the element
 // projection Pi_e of before the blocks, term for term.
-// Small strain (the linear law): U = K theta^2 / 2, W_iso = mu |dev eps|^2
-// (3D deviator, plane strain included), so the element matrix is the
+// Small strain (the linear law) is over the pressure space already
+// (engine/pressure_space.hpp, since issue 24): U = K theta^2 / 2, W_iso =
+// mu |dev eps|^2 (3D deviator, plane strain included), one dilatation per
+// pressure function A with the row-sum (lumped) pressure mass m_A = int N_A
+// dX, theta_A = int N_A div u dX / m_A, so the element matrix is the
 // displacement one with lambda - K = -2 mu / 3 in place of lambda plus the
-// stabilisation mu (B^T W B - V_e mB_e^T mB_e), and each block adds
-// K V_b mB_b^T mB_b, B_q = div N: the B-bar method of Hughes (1980) with the
-// projection of Elguedj et al. (2008) made local to the block
-// (assemble_linear_elasticity, engine/assembly.hpp).
+// stabilisation mu (B^T W B - V_e mB_e^T mB_e), and each function adds
+// K / m_A g_A g_A^T, g_A = int N_A div N dX: the B-bar method of Hughes
+// (1980) with the projection of Elguedj et al. (2008) onto the sub-grid
+// space, kept local by the lumped mass (assemble_linear_elasticity,
+// engine/assembly.hpp).  Constants per element: m_A = V_e, Pi_e.
 //
 // Stabilised (since issue 24): the dilatation modes of zero element mean
 // are invisible to the projection, so with the volumetric energy alone only

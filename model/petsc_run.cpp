@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "model/petsc_run.hpp"
 
-#include <algorithm>
 #include <fmt/format.h>
 
 #ifdef IGAC_WITH_PETSC
@@ -65,14 +64,11 @@ std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> spline_hierarchy(const
 
 ElementRange process_elements(const Model& m) {
   if (!uses_petsc(m)) return {};
+  // Any cut will do: a pressure function belongs to the process holding the
+  // first element of its support (engine/sparsity.hpp), which evaluates its
+  // other elements again for it.
   const auto [b, e] = process_share(m.body.num_elements());
-  // The mixed formulation's pressure blocks stay whole: the cuts move up to
-  // the next cut between blocks (every process moves them alike, so the
-  // ranges still tile the body).
-  const std::vector<Formulation> formulations = m.patch_formulations();
-  if (std::find(formulations.begin(), formulations.end(), Formulation::mixed) == formulations.end()) return {b, e};  // blocks of one
-  const BodyQuadrature quad(m.body, gauss_points_for(m.body.degree()));
-  return whole_blocks(mixed_pressure_blocks(quad, formulations), {b, e});
+  return {b, e};
 }
 
 void sum_over_processes(Eigen::VectorXd& f) {

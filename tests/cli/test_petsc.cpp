@@ -200,11 +200,12 @@ TEST_F(PetscPath, KrylovFieldSplitMatchesDirect) {
   expect_same_result(tmp.path() / "direct", tmp.path() / "krylov", kSameKrylov);
 }
 
-// The mixed formulation on two processes: each holds whole pressure blocks
-// (Cook's membrane on 6 x 6 elements: the even share of 18 elements would
-// cut a 2 x 2 block; whole_blocks moves the cut to 24), and the result is
-// the direct solve's.
-TEST_F(PetscPath, MixedFormulationOnTwoProcessesKeepsItsBlocksWhole) {
+// The mixed formulation on two processes: Cook's membrane on 6 x 6
+// elements, the even share of 18 elements cutting through the supports of
+// the continuous pressure functions (each process adds the functions whose
+// first support element it holds, evaluating their other elements again),
+// and the result is the direct solve's.
+TEST_F(PetscPath, MixedFormulationOnTwoProcessesMatchesDirect) {
   TempDir tmp("petscmixed");
   std::string s = igac_test::read_file(kCases + "cook_membrane.toml");
   const auto file = s.find("\"cook_membrane.xml\"");

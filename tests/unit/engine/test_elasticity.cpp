@@ -261,30 +261,35 @@ TEST(ElasticConvergence, LameCylinderDegree3) { expect_lame_rates(3); }
 // quarter disc and a body of two patches, with a body force so that f
 // comes from the elements too; more threads than cores interleave the
 // most.  A race (two elements of one colour sharing an equation) would lose
-// additions.
+// additions.  The same with the mixed formulation, whose pressure functions
+// add their terms colour by colour after the elements, and with constants
+// per element, added with their element.
 TEST(ElasticAssembly, SameSumsWhateverTheThreadCount) {
   // Several threads add colour by colour: the same sums with 2 and 5
   // threads, bit for bit.  One thread adds in element order: the same matrix
   // to round-off (summation order only).
-  for (const std::string name : {"hertz3d_study", "hertz2d", "hertz2d_two_patches"}) {
-    const igac::CaseSpec spec = igac::read_case(std::string(IGAC_SOURCE_DIR) + "/cases/" + name + ".toml");
-    const igac::Model m = igac::build_model(spec);
-    const Eigen::VectorXd g = Eigen::VectorXd::Constant(m.body.space_dim(), -0.3);
-    const int threads = omp_get_max_threads();
-    omp_set_num_threads(1);
-    const igac::LinearSystem one = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g);
-    omp_set_num_threads(2);
-    const igac::LinearSystem two = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g);
-    omp_set_num_threads(5);
-    const igac::LinearSystem five = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g);
-    omp_set_num_threads(threads);
-    ASSERT_EQ(two.K.nonZeros(), five.K.nonZeros()) << name;
-    EXPECT_TRUE(std::equal(two.K.valuePtr(), two.K.valuePtr() + two.K.nonZeros(), five.K.valuePtr())) << name;
-    EXPECT_TRUE(two.f == five.f) << name;
-    EXPECT_GT(two.K.norm(), 0) << name;
-    ASSERT_EQ(one.K.nonZeros(), two.K.nonZeros()) << name;
-    EXPECT_LE((one.K - two.K).norm(), 1e-14 * two.K.norm()) << name;
-    EXPECT_LE((one.f - two.f).norm(), 1e-14 * two.f.norm()) << name;
+  for (const auto f : {igac::Formulation::displacement, igac::Formulation::mixed, igac::Formulation::mixed_element}) {
+    for (const std::string case_name : {"hertz3d_study", "hertz2d", "hertz2d_two_patches"}) {
+      const std::string name = case_name + " " + std::string(igac::formulation_name(f));
+      const igac::CaseSpec spec = igac::read_case(std::string(IGAC_SOURCE_DIR) + "/cases/" + case_name + ".toml");
+      const igac::Model m = igac::build_model(spec);
+      const Eigen::VectorXd g = Eigen::VectorXd::Constant(m.body.space_dim(), -0.3);
+      const int threads = omp_get_max_threads();
+      omp_set_num_threads(1);
+      const igac::LinearSystem one = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g, {}, f);
+      omp_set_num_threads(2);
+      const igac::LinearSystem two = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g, {}, f);
+      omp_set_num_threads(5);
+      const igac::LinearSystem five = igac::assemble_linear_elasticity(m.body, *m.dofs, m.material, g, {}, f);
+      omp_set_num_threads(threads);
+      ASSERT_EQ(two.K.nonZeros(), five.K.nonZeros()) << name;
+      EXPECT_TRUE(std::equal(two.K.valuePtr(), two.K.valuePtr() + two.K.nonZeros(), five.K.valuePtr())) << name;
+      EXPECT_TRUE(two.f == five.f) << name;
+      EXPECT_GT(two.K.norm(), 0) << name;
+      ASSERT_EQ(one.K.nonZeros(), two.K.nonZeros()) << name;
+      EXPECT_LE((one.K - two.K).norm(), 1e-14 * two.K.norm()) << name;
+      EXPECT_LE((one.f - two.f).norm(), 1e-14 * two.f.norm()) << name;
+    }
   }
 }
 
