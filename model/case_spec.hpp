@@ -140,8 +140,9 @@ struct BodySpec {
   std::string model = "linear_elastic";  // or a hyperelastic law: large deformation
   double E = 1, nu = 0.3;                  // the law's small-strain equivalent (Hertz, scales)
   MaterialParameters material_parameters;  // as the law declares them (E, nu or its own keys)
-  // displacement | mixed (engine/volumetric_projection.hpp: the volumetric
-  // part projected per element; nearly incompressible solids do not lock)
+  // displacement | mixed | mixed_element (engine/volumetric_projection.hpp:
+  // the volumetric part projected onto the pressure space,
+  // engine/pressure_space.hpp; nearly incompressible solids do not lock)
   Formulation formulation = Formulation::displacement;
   // [material] incompressible = true: the mixed formulation's fully
   // incompressible limit (K = infinity, engine/total_lagrangian.hpp's

@@ -91,9 +91,15 @@ double estimated_peak_bytes(const CaseSpec& c) {
   const double cps = estimated_mesh(c).control_points;
   const int dim = c.dim();
   const double dofs = cps * dim;
-  int degree = 0;  // (the highest of the bodies': an upper bound)
-  for (const BodySpec& b : c.body_list()) degree = std::max(degree, b.degree);
-  const double nnz = dofs * std::pow(2.0 * degree + 1, dim) * dim;
+  // A row couples the control points within 2p + 1 per direction (those
+  // sharing an element), or with the mixed formulation's sub-grid pressure
+  // (engine/pressure_space.hpp) those sharing a pressure function's support
+  // of 2p elements: 6p - 1 per direction (the highest of the bodies': an
+  // upper bound).
+  double window = 0;
+  for (const BodySpec& b : c.body_list())
+    window = std::max(window, b.formulation == Formulation::mixed ? 6.0 * b.degree - 1 : 2.0 * b.degree + 1);
+  const double nnz = dofs * std::pow(window, dim) * dim;
   // 2D: the fill of nested dissection grows slowly (measured: +10 % per doubling of the dofs beyond 33k).
   const double fill = dim == 2 ? 10.0 * (1 + 0.1 * std::max(0.0, std::log2(std::max(dofs, 1.0) / 33000.0)))
                                : 8.0 * std::cbrt(std::max(dofs, 1.0) / 18000.0);
