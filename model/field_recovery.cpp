@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "engine/assembly.hpp"
-#include "engine/pressure_blocks.hpp"
+#include "engine/pressure_space.hpp"
 #include "engine/quadrature.hpp"
 #include "engine/spline/refinement.hpp"
 #include "engine/volumetric_projection.hpp"
@@ -199,8 +199,8 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
     for (const Model::Part& part : model.parts)
       stress_laws.insert(stress_laws.end(), size_t(part.num_patches), cauchy_stress(part.law, small));
   }
-  const ElementBlocks blocks = mixed_pressure_blocks(quad, formulations);
-  const int n_blocks = blocks.num_blocks();
+  const PressureSpace space = mixed_pressure_space(quad, formulations);
+  const int n_functions = space.num_functions();
   const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
   const int nq = int(rule.points.size());
   Eigen::VectorXd R;
@@ -215,36 +215,52 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
     weight = rule.weights[size_t(q)] * std::abs(Jm.determinant());
     return grad;
   };
-  // Pass 1: theta_b = Pi_b tr eps (small strain) or Pi_b J on the mixed blocks.
-  std::vector<double> integral(size_t(n_blocks), 0.0), volume(size_t(n_blocks), 0.0);
+  // The pressure functions N_A of element e at point q: the Bezier
+  // element's reference point is the element's local coordinate of the
+  // pressure space (both map [0, 1]^d linearly onto the element's parameter
+  // box, first direction first; tests/unit/model/test_pressure_field.cpp).
+  PressureSpace::Scratch scratch;
+  std::vector<double> N;
+  const auto functions = [&](int e, int q) { space.values_local(e, rule.points[size_t(q)].data(), N, scratch); };
+  // Pass 1: theta_A = (1/m_A) int N_A J dX (small strain: tr eps), m_A =
+  // int N_A dX, over every element of every mixed patch.
+  std::vector<double> integral(size_t(n_functions), 0.0), mass(size_t(n_functions), 0.0);
   for (int e = 0; e < mesh.num_elements(); ++e) {
     if (!is_mixed(per_patch(formulations, quad.patch_of(e)))) continue;
-    const size_t b = size_t(blocks.block_of[size_t(e)]);
     for (int q = 0; q < nq; ++q) {
       double w = 0;
       const Eigen::Matrix3d grad = gradient(mesh.element(e), q, w);
-      integral[b] += w * (small ? grad.trace() : (Eigen::Matrix3d::Identity() + grad).determinant());
-      volume[b] += w;
+      const double value = small ? grad.trace() : (Eigen::Matrix3d::Identity() + grad).determinant();
+      functions(e, q);
+      const int* a = space.functions_begin(e);
+      for (size_t i = 0; i < N.size(); ++i) {
+        integral[size_t(a[i])] += w * N[i] * value;
+        mass[size_t(a[i])] += w * N[i];
+      }
     }
   }
-  // The block pressures: the run's own (the incompressible limit's
-  // multipliers: one per block; per element from a run that numbered them
-  // so), or U'(theta_b) (small strain K theta_b).
-  const bool given_per_block = element_pressures.size() == n_blocks;
-  const bool given_per_element = !given_per_block && element_pressures.size() == mesh.num_elements();
-  std::vector<double> block_pressure(size_t(n_blocks), 0.0);
-  for (int b = 0; b < n_blocks; ++b) {
-    if (volume[size_t(b)] == 0) continue;  // not mixed
-    const int k = quad.patch_of(blocks.elements[size_t(blocks.start[b])]);
-    const double theta = integral[size_t(b)] / volume[size_t(b)];
-    if (given_per_block) {
-      block_pressure[size_t(b)] = -element_pressures[b];
+  // The pressures p_A: the run's own (the incompressible limit's
+  // multipliers: one per pressure function; one per element from a run
+  // that numbered them so), or U'(theta_A) (small strain K theta_A); shown
+  // as the hydrostatic pressure -tr sigma / 3, so with the sign turned.
+  const bool given_per_function = element_pressures.size() == n_functions;
+  const bool given_per_element = !given_per_function && element_pressures.size() == mesh.num_elements();
+  if (element_pressures.size() > 0 && !given_per_function && !given_per_element)
+    throw std::invalid_argument(fmt::format("volume recovery: {} run pressures for {} pressure functions and {} elements",
+                                            element_pressures.size(), n_functions, mesh.num_elements()));
+  std::vector<double> function_pressure(size_t(n_functions), 0.0);
+  for (int a = 0; a < n_functions; ++a) {
+    if (mass[size_t(a)] == 0) continue;  // not mixed
+    const int k = space.patch_of_function(a);
+    const double theta = integral[size_t(a)] / mass[size_t(a)];
+    if (given_per_function) {
+      function_pressure[size_t(a)] = -element_pressures[a];
     } else if (small) {
       const LinearElastic& mat = per_patch(materials, k);
-      block_pressure[size_t(b)] = -(mat.lambda() + 2 * mat.mu() / 3) * theta;
+      function_pressure[size_t(a)] = -(mat.lambda() + 2 * mat.mu() / 3) * theta;
     } else {
       VolumetricValues v;
-      block_pressure[size_t(b)] =
+      function_pressure[size_t(a)] =
           per_patch(laws, k)->volumetric(theta, v) ? -v.dU : std::numeric_limits<double>::quiet_NaN();
     }
   }
@@ -262,9 +278,18 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
     for (int q = 0; q < nq; ++q) {
       double w = 0;
       const Eigen::Matrix3d grad = gradient(el, q, w);
-      const double pressure = !mixed                ? -law(grad).trace() / 3
-                              : given_per_element ? -element_pressures[e]
-                                                  : block_pressure[size_t(blocks.block_of[size_t(e)])];
+      double pressure = 0;
+      if (!mixed) {
+        pressure = -law(grad).trace() / 3;
+      } else if (given_per_element) {
+        pressure = -element_pressures[e];
+      } else {
+        // p(x) = sum_A N_A(x) p_A; the stabilisation's mu_s (J - Pi_e J)
+        // is not part of the field (see the header).
+        functions(e, q);
+        const int* a = space.functions_begin(e);
+        for (size_t i = 0; i < N.size(); ++i) pressure += N[i] * function_pressure[size_t(a[i])];
+      }
       M.selfadjointView<Eigen::Lower>().rankUpdate(R, w);
       B.col(0) += w * (Eigen::Matrix3d::Identity() + grad).determinant() * R;
       B.col(1) += w * pressure * R;

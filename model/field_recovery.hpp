@@ -83,19 +83,23 @@ RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh,
 // J = det F and the hydrostatic pressure -tr(sigma)/3, projected onto each
 // element's Bezier basis like the stress (rows as recover_stress), for
 // `mesh` = body_bezier_mesh(model.body, u) (every patch: std::invalid_argument
-// for another number of elements).  On a patch in the mixed formulation the
-// pressure is the formulation's own, one constant per pressure block
-// (mixed_pressure_blocks, engine/pressure_blocks.hpp): -U'(Pi_b J), small
-// strain -K Pi_b tr eps (engine/volumetric_projection.hpp), not the pointwise
-// law's, whose J oscillates at the scale the projection removes, and without
-// the stabilisation's mu_s (J - Pi_e J).  Pi_b is integrated with this
-// recovery's own Gauss rule.
+// for another number of elements).  On a patch in a mixed formulation the
+// pressure is the formulation's own over its pressure space
+// (mixed_pressure_space, engine/pressure_space.hpp), not the pointwise law's,
+// whose J oscillates at the scale the projection removes:
+//   theta_A = (1/m_A) int N_A J dX  (small strain: tr eps),  m_A = int N_A dX,
+//   p(x) = -sum_A N_A(x) U'(theta_A)  (small strain: U' = K theta_A),
+// so continuous across elements for "mixed" (degree p - 1, C^{p-2}) and one
+// constant per element for "mixed_element".  The per-element stabilisation
+// mu_s (J - Pi_e J) of the stress is not part of this field.  theta_A is
+// integrated with this recovery's own Gauss rule.
 struct RecoveredVolume {
   Eigen::VectorXd jacobian, pressure;  // num_points each
 };
-// `element_pressures` (RunResult's, the incompressible limit): the pressure
-// of each block, which the law's U' at theta = 1 is not (one per element is
-// read per element, as a run numbered them before the blocks).
+// `element_pressures` (RunResult's, the incompressible limit): U' of each
+// pressure function, which the law's U' at theta = 1 is not (one per
+// element is read per element, as a run numbered them before the pressure
+// space); any other non-zero length: std::invalid_argument.
 RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures = {});
 
 struct ContactPartFields {

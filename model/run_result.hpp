@@ -124,10 +124,11 @@ struct RunResult {
 
   std::string status = "converged";
   Eigen::MatrixXd u;  // n_cp x dim
-  // The incompressible limit ([material] incompressible): each pressure
-  // block's pressure U' = lambda_b + kappa (theta_b - 1), one per block of
-  // mixed_pressure_blocks (engine/pressure_blocks.hpp; the name is older than
-  // the blocks) (TotalLagrangianAssembler::element_pressures); empty otherwise.
+  // The incompressible limit ([material] incompressible): the pressure U' =
+  // lambda_A + kappa (theta_A - 1) of each pressure function, one value per
+  // function of mixed_pressure_space (engine/pressure_space.hpp; the name is
+  // older than the space) (TotalLagrangianAssembler::element_pressures);
+  // empty otherwise.
   Eigen::VectorXd element_pressures;
   std::optional<ContactSolve> contact;      // the contact solve (every contact's multipliers)
   std::vector<ContactResult> contacts;      // one per contact, in case order (pressure files, reports, VTK)
