@@ -9,11 +9,12 @@ namespace igac {
 
 namespace {
 
-// The units of a pattern or a colouring: elements, or blocks of elements
-// (pressure_blocks.hpp), each with its control points (CSR, each point once).
+// The units of a pattern or a colouring: elements, or the supports of
+// pressure functions (pressure_space.hpp), each with its control points
+// (CSR, each point once).
 struct Units {
   std::vector<int> start{0}, cps;
-  std::vector<int> id;  // the element or block number of each unit
+  std::vector<int> id;  // the element or function number of each unit
   int size() const { return int(start.size()) - 1; }
 };
 
@@ -26,34 +27,6 @@ Units element_units(const BodyQuadrature& quad, int e_begin, int e_end) {
     u.cps.insert(u.cps.end(), cps.begin(), cps.end());
     u.start.push_back(int(u.cps.size()));
     u.id.push_back(e);
-  }
-  return u;
-}
-
-// The blocks whose elements lie in [e_begin, e_end); a block split by the
-// range is a logic error (a distributed solve must cut between blocks).
-Units block_units(const BodyQuadrature& quad, const ElementBlocks& blocks, int e_begin, int e_end) {
-  if (blocks.num_elements() != quad.num_elements())
-    throw std::logic_error("coupling pattern: pressure blocks of another body");
-  Units u;
-  std::vector<int> cps;
-  for (int b = 0; b < blocks.num_blocks(); ++b) {
-    const int* first = blocks.elements.data() + blocks.start[b];
-    const int* past = blocks.elements.data() + blocks.start[b + 1];
-    const auto inside = [&](int e) { return e >= e_begin && e < e_end; };
-    const bool any = std::any_of(first, past, inside);
-    if (!any) continue;
-    if (!std::all_of(first, past, inside))
-      throw std::logic_error(fmt::format("element range [{}, {}) splits pressure block {}", e_begin, e_end, b));
-    const size_t from = u.cps.size();
-    for (const int* e = first; e != past; ++e) {
-      quad.control_points(*e, cps);
-      u.cps.insert(u.cps.end(), cps.begin(), cps.end());
-    }
-    std::sort(u.cps.begin() + std::ptrdiff_t(from), u.cps.end());
-    u.cps.erase(std::unique(u.cps.begin() + std::ptrdiff_t(from), u.cps.end()), u.cps.end());
-    u.start.push_back(int(u.cps.size()));
-    u.id.push_back(b);
   }
   return u;
 }
@@ -204,22 +177,9 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
   return pattern_of_units(element_units(quad, e_begin, e_end), dofs);
 }
 
-Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
-                                             const ElementBlocks& blocks, int e_begin, int e_end) {
-  if (e_end < 0) e_end = quad.num_elements();
-  if (blocks.per_element()) return coupling_pattern(quad, dofs, e_begin, e_end);
-  return pattern_of_units(block_units(quad, blocks, e_begin, e_end), dofs);
-}
-
 std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin, int e_end) {
   if (e_end < 0) e_end = quad.num_elements();
   return colour_units(element_units(quad, e_begin, e_end), dofs);
-}
-
-std::vector<std::vector<int>> colour_blocks(const BodyQuadrature& quad, const DofMap& dofs, const ElementBlocks& blocks,
-                                            int e_begin, int e_end) {
-  if (e_end < 0) e_end = quad.num_elements();
-  return colour_units(block_units(quad, blocks, e_begin, e_end), dofs);
 }
 
 Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,

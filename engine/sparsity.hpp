@@ -21,7 +21,6 @@
 #include <vector>
 
 #include "engine/assembly.hpp"
-#include "engine/pressure_blocks.hpp"
 #include "engine/pressure_space.hpp"
 
 namespace igac {
@@ -30,15 +29,6 @@ namespace igac {
 // to the last one) in the free numbering of `dofs` (n_free x n_free).
 Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
                                              int e_end = -1);
-
-// The pattern with the control points of each block of elements coupled
-// together (pressure_blocks.hpp: the mixed formulation's rank-one block
-// term reaches every control point of the block's elements): equations couple
-// when their control points share a block.  Blocks of one element give the
-// element pattern above.  The blocks in [e_begin, e_end); throws
-// std::logic_error when the range splits a block.
-Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const DofMap& dofs,
-                                             const ElementBlocks& blocks, int e_begin = 0, int e_end = -1);
 
 // The pattern of elements [e_begin, e_end) with, in addition, the control
 // points of each pressure function's support coupled together (the mixed
@@ -62,12 +52,6 @@ Eigen::SparseMatrix<double> coupling_pattern(const BodyQuadrature& quad, const D
 std::vector<std::vector<int>> colour_elements(const BodyQuadrature& quad, const DofMap& dofs, int e_begin = 0,
                                               int e_end = -1);
 
-// The blocks of elements in [e_begin, e_end) in colours such that no two
-// blocks of one colour write to the same free equation: block numbers by
-// colour, for a loop whose thread owns a whole block (its elements and its
-// block term).  Throws std::logic_error when the range splits a block.
-std::vector<std::vector<int>> colour_blocks(const BodyQuadrature& quad, const DofMap& dofs, const ElementBlocks& blocks,
-                                            int e_begin = 0, int e_end = -1);
 
 // The pressure functions the range [e_begin, e_end) owns (as above) in
 // colours such that no two functions of one colour write to the same free

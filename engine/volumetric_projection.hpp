@@ -1,31 +1,31 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The mixed formulation of nearly incompressible solids: the volumetric
-// quantity projected onto one constant per pressure block, a 2 x 2 (x 2)
-// group of neighbouring elements of a patch (engine/pressure_blocks.hpp,
-// mixed_pressure_blocks), so the displacement stays the one global field
-// the contact solvers see (docs/design.md, "Nearly incompressible solids").
+// quantity projected onto the pressure space (engine/pressure_space.hpp,
+// mixed_pressure_space: on a `mixed` patch the B-splines of degree p - 1,
+// C^{p-2}, on breakpoints twice coarser; on a `mixed_element` patch one
+// constant per element), so the displacement stays the one global field the
+// contact solvers see (docs/design.md, "Nearly incompressible solids").
 //
 // Three-field (Simo-Taylor-Pister) Hu-Washizu functional with the dilatation
-// theta and the pressure p constant on each block b (constants per element
-// are not inf-sup stable with C^{p-1} NURBS displacements, beta_h ~ h; per
-// 2 x 2 block they are, docs/benchmarks.md "Inf-sup"), for a law split as
-// Psi = W_iso(F) + U(J):
-//   Pi(u, theta, p) = int W_iso(F) + U(theta) + p (J - theta) dX - work.
-// Its theta and p equations are local to the block, with Pi_b the L2
-// projection onto constants on the block, Pi_b f = sum_{e in b} int_e f dX
-// / V_b (weights JxW of the reference configuration, V_b the block's
-// reference volume):
-//   theta_b = Pi_b J,   p_b = U'(theta_b),
+// theta and the pressure p in the pressure space (the sub-grid space is
+// inf-sup stable, constants per element are not: beta_h ~ h,
+// docs/benchmarks.md "Inf-sup"), for a law split as Psi = W_iso(F) + U(J):
+//   Pi(u, theta, p) = int W_iso(F) + U(theta) + p (J - theta) dX - work,
+// with the pressure mass lumped (row sums m_A = int N_A dX), so that the
+// theta and p equations are local to each function N_A:
+//   theta_A = Pi_A J = (1/m_A) int N_A J dX,   p_A = U'(theta_A),
 // and what is left is the gradient of
-//   E(u) = int W_iso(F) dX + sum_b V_b U(Pi_b J) + mu_s/2 int (J - Pi_e J)^2 dX,
-// whose tangent is, per element, the isochoric and initial-stress parts and
-// the stabilisation mu_s (B^T W B - V_e mB_e^T mB_e), and per block the
-// rank-one V_b U''(theta_b) mB_b^T mB_b, with B_q = dJ/du at point q
-// (J F^{-T} : Grad N), mB_e its element mean and mB_b = sum_e V_e mB_e / V_b
-// its block mean: symmetric, with the pattern widened to the blocks
-// (coupling_pattern with blocks, engine/sparsity.hpp).  Blocks of one
-// element (width 1, the displacement patches' blocks) give the element
-// projection Pi_e of before the blocks, term for term.
+//   E(u) = int W_iso(F) dX + sum_A m_A U(Pi_A J) + mu_s/2 int (J - Pi_e J)^2 dX,
+// whose point pressure is sum_A N_A p_A + mu_s (J - Pi_e J) and whose
+// tangent is, per element, the isochoric and initial-stress parts and the
+// stabilisation mu_s (B^T W B - V_e mB_e^T mB_e), and per function the
+// rank-one m_A U''(theta_A) mB_A^T mB_A, with B_q = dJ/du at point q
+// (J F^{-T} : Grad N), mB_e its element mean and mB_A = (1/m_A) int N_A B dX:
+// symmetric, with the pattern widened to the functions' supports
+// (coupling_pattern with the space, engine/sparsity.hpp).  In the
+// incompressible limit the constraint int N_A (J - 1) dX = 0 is the
+// consistent (unlumped) mixed method's: the lumping only changes the
+// penalty at finite K.
 // Small strain (the linear law) is over the pressure space already
 // (engine/pressure_space.hpp, since issue 24): U = K theta^2 / 2, W_iso =
 // mu |dev eps|^2 (3D deviator, plane strain included), one dilatation per
@@ -45,12 +45,12 @@
 // wiggled 6 % of its mean there.  The functional carries a shear-sized
 // penalty on them, element by element,
 //   + mu_s / 2 int (J - Pi_e J)^2 dX,   mu_s = the law's shear modulus at rest,
-// so the point pressure is p_q = p_b + mu_s (J_q - (Pi_e J)_q) and the
+// so the point pressure is p_q = sum_A N_A p_A + mu_s (J_q - (Pi_e J)_q) and the
 // tangent gains mu_s (B - Pi_e B)^T W (B - Pi_e B) = mu_s (B^T W B - V_e
 // mB_e^T mB_e).  mu_s does not grow with K: the modes are held as stiffly as
 // shear holds them, no more, so nothing locks (the Lame cylinder's error at
-// nu = 0.49999 stays within 2x of nu = 0.3), and with K = mu_s and blocks of
-// one element the formulation would be the displacement one.
+// nu = 0.49999 stays within 2x of nu = 0.3), and with K = mu_s and constants
+// per element the formulation would be the displacement one.
 //
 // Large deformation iterates on theta too (the u-p Newton, since issue 24):
 // TotalLagrangianAssembler::assemble takes the dilatations, p = U'(theta),
@@ -67,10 +67,9 @@
 
 namespace igac {
 
-// mixed: one pressure per 2 x 2 (x 2) block of elements (inf-sup stable);
-// mixed_element: one per element (the pair of before the blocks: not
-// uniformly inf-sup stable, a pressure twice finer; docs/design.md, "One
-// pressure per element on request").
+// mixed: the sub-grid continuous pressure (inf-sup stable); mixed_element:
+// one constant per element (not uniformly inf-sup stable; docs/design.md,
+// "One pressure per element on request").
 enum class Formulation { displacement, mixed, mixed_element };
 constexpr bool is_mixed(Formulation f) { return f != Formulation::displacement; }
 
