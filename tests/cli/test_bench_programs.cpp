@@ -18,6 +18,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The output of the shell command CMD; its wait status in *status.
+std::string command_output(const std::string& cmd, int* status) {
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  for (size_t n; pipe && (n = fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
+  *status = pipe ? pclose(pipe) : -1;
+  return out;
+}
+
 // Runs build/bench/PROGRAM ARGS --csv out.csv: stdout is the file's text.
 void expect_stdout_is_the_csv(const std::string& program, const std::string& args, const std::string& first_column) {
   igac_test::TempDir tmp("bench");
@@ -25,12 +35,9 @@ void expect_stdout_is_the_csv(const std::string& program, const std::string& arg
   ASSERT_TRUE(fs::exists(exe)) << exe;
   const std::string cmd = "cd " + igac_test::quote(tmp.path().string()) + " && " + igac_test::quote(exe.string()) + " " +
                           args + " --csv out.csv 2>/dev/null";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string out;
-  char buf[4096];
-  for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
-  ASSERT_EQ(pclose(pipe), 0) << program << ": " << out;
+  int status = 0;
+  const std::string out = command_output(cmd, &status);
+  ASSERT_EQ(status, 0) << program << ": " << out;
   EXPECT_EQ(out.rfind(first_column + ",", 0), 0u) << program << " printed first: " << out;
   EXPECT_EQ(out, igac_test::read_file(tmp.path() / "out.csv")) << program;
   EXPECT_GE(std::count(out.begin(), out.end(), '\n'), 2) << program << ": a header and a row";
@@ -50,11 +57,9 @@ TEST(BenchPrograms, PrintTheirCsvHeaderFirst) {
 // its header's name.
 std::vector<double> inf_sup_betas(const std::string& args) {
   const fs::path exe = fs::path(IGAC_BINARY).parent_path() / "bench" / "inf_sup";
-  FILE* pipe = popen((igac_test::quote(exe.string()) + " " + args + " 2>/dev/null").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  for (size_t n; pipe && (n = fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
-  if (pipe) pclose(pipe);
+  int status = 0;
+  const std::string out = command_output(igac_test::quote(exe.string()) + " " + args + " 2>/dev/null", &status);
+  EXPECT_EQ(status, 0) << args;
   std::vector<double> betas;
   std::istringstream in(out);
   std::string line, cell;
@@ -97,12 +102,8 @@ TEST(BenchPrograms, InfSupStaysBoundedForTheSubGridPressureAndFallsOnTheSameGrid
 TEST(BenchPrograms, InfSupRefusesBadOptionsInOneLine) {
   const fs::path exe = fs::path(IGAC_BINARY).parent_path() / "bench" / "inf_sup";
   for (const std::string args : {"--clamp x 4", "--formulation nope 4", "--same-grid --macro 2 4", "--macro 3 4", "4x"}) {
-    FILE* pipe = popen((igac_test::quote(exe.string()) + " " + args + " 2>&1").c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string out;
-    char buf[4096];
-    for (size_t n; (n = fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, n);
-    const int status = pclose(pipe);
+    int status = 0;
+    const std::string out = command_output(igac_test::quote(exe.string()) + " " + args + " 2>&1", &status);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << args << ": " << out;
     EXPECT_EQ(out.rfind("inf_sup: ", 0), 0u) << args << ": " << out;
     EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << args << ": " << out;
