@@ -69,6 +69,9 @@ TEST(InfSup, SubGridContinuousPressureStaysBoundedOnePerElementFalls) {
   EXPECT_NEAR(sub8, 0.288, 1e-3);
   EXPECT_NEAR(sub16, 0.301, 1e-3);
   EXPECT_GE(sub16, sub8) << "bounded below: not falling with h";
+  // bench/inf_sup --formulation mixed_element's (indicators: the lumped mass is the consistent one)
+  EXPECT_NEAR(element4, 0.513, 1e-3);
+  EXPECT_NEAR(element16, 0.165, 1e-3);
   EXPECT_LT(element16, 0.6 * element4) << "per element, beta_h falls like h";
 }
 
