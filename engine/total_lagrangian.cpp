@@ -563,7 +563,9 @@ void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
   // the pattern (the element pattern for constants per element), the colourings
   if (tangent_) pattern_ = coupling_pattern(quad_, dofs_, space_);
   colours_ = colour_elements(quad_, dofs_);
-  function_colours_ = colour_functions(quad_, dofs_, space_);
+  // a body without a mixed patch pays for no function colours nor volumes
+  const bool mixed_body = has_mixed();
+  function_colours_ = mixed_body ? colour_functions(quad_, dofs_, space_) : std::vector<std::vector<int>>{};
   // the assembly's per-element storage, and m_A = int N_A dX
   const int n_el = quad_.num_elements(), dim = dofs_.dim();
   layout_ = PressureLayout{};
@@ -582,6 +584,7 @@ void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
     layout_.function_entry.push_back(layout_.function_entry.back() + nf);
     layout_.g_entry.push_back(layout_.g_entry.back() + nf * nd);
     layout_.eq_entry.push_back(layout_.eq_entry.back() + nd);
+    if (!mixed) continue;  // m_A only where a pressure acts
     const auto add_volume = [&](const auto& geo) {
       const int* a = space_.functions_begin(e);
       for (int q = 0; q < geo.n_q; ++q) {
