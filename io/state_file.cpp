@@ -17,7 +17,9 @@ static_assert(std::endian::native == std::endian::little, "state files are littl
 constexpr char kMagic[8] = {'I', 'G', 'A', 'C', 'S', 'T', 'E', 'P'};
 // 2: the run options after the case hash; 3: the path-dependent history
 // (friction, incompressible), the step's augmentations and tangential forces;
-// 4: the mixed formulation's dilatations and multipliers per pressure block.
+// 4: the mixed formulation's dilatations and multipliers per pressure block
+// (since the pressure space, per pressure function: the same layout, a file
+// of another count refused).
 constexpr int64_t kVersion = 4;
 
 struct Writer {

@@ -14,7 +14,7 @@
 //   step                             from 1
 //   t, dt, dt_old                    the time reached, the next increment, the last one
 //   x                                length, then the doubles: [u_free; lambda; lambda_t;
-//                                    z_b per pressure block (mixed)]
+//                                    z_A per pressure function (mixed)]
 //   x_old                            length, then the doubles (the state one step before)
 //   record: load factor (t), Newton iterations, cut-backs, augmentations,
 //           residual norms (length, doubles), active-set sizes (length, int64s)
@@ -26,7 +26,7 @@
 //           empty vectors without friction): position, slip, direction,
 //           alpha (each length, doubles), state (length, int64s), Schur
 //           batches (count, then each: length, int64s), from (double)
-//   block pressure multipliers       length, then the doubles, one per pressure block
+//   pressure multipliers             length, then the doubles, one per pressure function
 //                                    (incompressible; else 0)
 //
 // Written atomically (a temporary file renamed over the name), so a file

@@ -96,7 +96,7 @@ struct StepState {
   LoadSteppingState driver;
   // Friction's slip history (FrictionHistory: small deformation from
   // SmallStrainFriction, large from FiniteStrainFriction), and the
-  // incompressible limit's multipliers (lambda_b per pressure block, at the
+  // incompressible limit's multipliers (lambda_A per pressure function, at the
   // step's end); empty without.
   FrictionHistory friction;
   Eigen::VectorXd pressure_multipliers;
