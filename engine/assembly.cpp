@@ -244,7 +244,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
     ElementProjection projection;
     Eigen::MatrixXd B, Bbar;
     PressureSpace::Scratch scratch;
-    std::vector<double> values;
+    Eigen::MatrixXd N;
     Eigen::VectorXd weights;
     ElementDivergence own;  // constants per element: the element's, used at once
     // A function's rank-one term: its row (dof, value) pairs, a dof met by
@@ -260,11 +260,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
       for (int c = 0; c < nd; ++c) d.dof[size_t(c)] = ed.cps[size_t(c / dim)] * dim + c % dim;
       d.g.resize(nd, nf);
       d.m.resize(nf);
-      Eigen::MatrixXd N(nq, nf);  // N(q, i): function i at point q
-      for (int q = 0; q < nq; ++q) {
-        space.values(e, ed.xi[size_t(q)].data(), values, scratch);
-        for (int i = 0; i < nf; ++i) N(q, i) = values[size_t(i)];
-      }
+      space.values_at(e, ed.xi, N, scratch);  // N(q, i): function i at point q
       weights.resize(nq);
       for (int i = 0; i < nf; ++i) {
         double m = 0;

@@ -75,8 +75,21 @@ class PressureSpace {
   // `scratch` keeps the univariate tables between calls (one per thread).
   struct Scratch {
     std::array<std::array<double, 16>, 3> table{};  // univariate values per direction
+    std::vector<double> point;                      // values_at's, one point's values
   };
   void values(int e, const double* xi, std::vector<double>& out, Scratch& scratch) const;
+  // The same at each point of an element's list (ElementValues::xi, the
+  // patch parameters of its Gauss points): N(q, i) for point q and function
+  // functions_begin(e)[i]; resizes N.
+  template <class Param>
+  void values_at(int e, const std::vector<Param>& xi, Eigen::MatrixXd& N, Scratch& scratch) const {
+    const int nf = num_element_functions(e);
+    N.resize(Eigen::Index(xi.size()), nf);
+    for (size_t q = 0; q < xi.size(); ++q) {
+      values(e, xi[q].data(), scratch.point, scratch);
+      for (int i = 0; i < nf; ++i) N(Eigen::Index(q), i) = scratch.point[size_t(i)];
+    }
+  }
   // The same at the element's local coordinates s in [0, 1]^param_dim (its
   // parameter box mapped linearly: a Bezier element's reference point).
   void values_local(int e, const double* s, std::vector<double>& out, Scratch& scratch) const;

@@ -41,21 +41,9 @@ struct Workspace {
   Eigen::MatrixXd B, Bbar;                            // n_q x nd: dJ/du per point, projected
   // the element's pressure functions (pressure_space.hpp): N(q, i) = N_{A_i}(x_q)
   PressureSpace::Scratch space_scratch;
-  std::vector<double> values;
   Eigen::MatrixXd N;
   Eigen::VectorXd base;                               // sum_i N(q, i) U'(theta_{A_i}) per point
 };
-
-// ws.N: the values of element e's pressure functions at the points of ws.geo.
-template <int dim>
-void element_pressure_functions(const PressureSpace& space, int e, Workspace<dim>& ws) {
-  const int nq = ws.geo.n_q, nf = space.num_element_functions(e);
-  ws.N.resize(nq, nf);
-  for (int q = 0; q < nq; ++q) {
-    space.values(e, ws.geo.xi[size_t(q)].data(), ws.values, ws.space_scratch);
-    for (int i = 0; i < nf; ++i) ws.N(q, i) = ws.values[size_t(i)];
-  }
-}
 
 // c[i] = int_e N_{A_i} (J - 1) dX from ws.F and ws.N: the element's part of
 // m_A (theta_A - 1), the one sum the projection pass and the assembly share
@@ -303,7 +291,7 @@ bool function_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u,
         failed.store(true, std::memory_order_relaxed);
         continue;
       }
-      element_pressure_functions<dim>(in.space, e, ws);
+      in.space.values_at(e, ws.geo.xi, ws.N, ws.space_scratch);
       element_function_dilatations<dim>(ws, c.data() + in.layout.function_entry[size_t(e)]);
     }
   }
@@ -392,7 +380,7 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
         const bool mixed = is_mixed(formulation);
         in.quad.evaluate(e, ws.geo, true);
         if (mixed) {
-          element_pressure_functions<dim>(space, e, ws);
+          space.values_at(e, ws.geo.xi, ws.N, ws.space_scratch);
           const int* a = space.functions_begin(e);
           ws.base.setZero(ws.geo.n_q);
           for (int i = 0; i < int(ws.N.cols()); ++i) ws.base += dU[a[i]] * ws.N.col(i);
@@ -576,7 +564,7 @@ void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
   ElementValues<2, 2> g2;
   ElementValues<3, 3> g3;
   PressureSpace::Scratch scratch;
-  std::vector<double> values;
+  Eigen::MatrixXd N;
   for (int e = 0; e < n_el; ++e) {
     const int k = quad_.patch_of(e), nf = space_.num_element_functions(e);
     const bool mixed = is_mixed(formulations_[formulations_.size() == 1 ? 0 : size_t(k)]);
@@ -585,12 +573,11 @@ void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
     layout_.g_entry.push_back(layout_.g_entry.back() + nf * nd);
     layout_.eq_entry.push_back(layout_.eq_entry.back() + nd);
     if (!mixed) continue;  // m_A only where a pressure acts
-    const auto add_volume = [&](const auto& geo) {
+    const auto add_volume = [&](const auto& geo) {  // m_A += int_e N_A dX
+      space_.values_at(e, geo.xi, N, scratch);
       const int* a = space_.functions_begin(e);
-      for (int q = 0; q < geo.n_q; ++q) {
-        space_.values(e, geo.xi[size_t(q)].data(), values, scratch);
-        for (int i = 0; i < nf; ++i) layout_.volume[a[i]] += values[size_t(i)] * geo.JxW[size_t(q)];
-      }
+      for (int i = 0; i < nf; ++i)
+        for (int q = 0; q < geo.n_q; ++q) layout_.volume[a[i]] += N(q, i) * geo.JxW[size_t(q)];
     };
     if (dim == 2) {
       quad_.evaluate(e, g2, false);
