@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "app/study.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -43,12 +44,19 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
     lv["dofs"] = models[l].dofs->num_free();
     lv["multipliers"] = models[l].num_multipliers();
     lv["time_s"] = results[l].timing.total;
+    if (results[l].linear_solver.condition_estimate > 0)
+      lv["condition_estimate"] = finite_or_null(results[l].linear_solver.condition_estimate);
     Json ej;
     for (const auto& [k, v] : errors[l]) ej[k] = finite_or_null(v);
     lv["errors"] = ej;
     levels.push_back(lv);
   }
   j["levels"] = levels;
+  // The errors are differences with the finest level too: the largest of
+  // every level's conditioning says how many of their digits are round-off.
+  double condition = 0;
+  for (const RunResult& r : results) condition = std::max(condition, r.linear_solver.condition_estimate);
+  if (condition > 0) j["condition_estimate"] = finite_or_null(condition);
   Json rates;
   for (const auto& [name, values] : study.rates) {
     Json arr = Json::array();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/cholesky.hpp"
 
+#include "engine/condition_estimate.hpp"
+
 #include <algorithm>
 #include <cholmod.h>
 #include <cstdlib>
@@ -207,7 +209,14 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A_in) {
         "the stiffness matrix is not positive definite: the body can move rigidly "
         "(add Dirichlet conditions or contact) or the data are singular");
   if (I.c.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorisation failed (status {})", I.c.status));
+  norm1_ = norm1(A);
   factorize_s_ = clock.seconds();
+}
+
+double SparseCholesky::condition_estimate() const {
+  if (!impl_->L) throw std::logic_error("SparseCholesky::condition_estimate before factorize");
+  const VectorSolve solve = [this](const Eigen::VectorXd& b) -> Eigen::VectorXd { return this->solve(b); };
+  return norm1_ * inverse_norm1_estimate(size(), solve, solve);  // A = A^T
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {

@@ -64,6 +64,10 @@ class SparseCholesky {
   Eigen::VectorXd forward_full(const Eigen::VectorXd& b) const;
   Eigen::VectorXd backward_full(const Eigen::VectorXd& y) const;
 
+  // kappa_1 of the last factorised matrix, estimated from about ten solves
+  // (engine/condition_estimate.hpp); the factor must exist.
+  double condition_estimate() const;
+
   bool analyzed() const;
   double analyze_seconds() const { return analyze_s_; }
   double factorize_seconds() const { return factorize_s_; }
@@ -73,6 +77,7 @@ class SparseCholesky {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   double analyze_s_ = 0, factorize_s_ = 0;
+  double norm1_ = 0;  // ||A||_1 of the last factorised matrix
 };
 
 }  // namespace igac

@@ -425,6 +425,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     }
   }
   summary.linear = solver.stats();
+  if (summary.linear.setups > 0) summary.condition_estimate = solver.condition_estimate();
   summary.newton_seconds = clock.seconds();
   return summary;
 }

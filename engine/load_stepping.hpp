@@ -160,6 +160,9 @@ struct LoadSteppingSummary {
   double newton_seconds = 0;
   double residual_seconds = 0, jacobian_seconds = 0;  // inside newton_seconds
   SaddleSolverStats linear;                           // the linear solves, ditto
+  // kappa_1 of the last Newton matrix factorised (SaddleSolver::condition_estimate):
+  // how many digits of the result round-off leaves; 0 when nothing was solved.
+  double condition_estimate = 0;
 };
 
 // Runs from x (the state at t = 0) to t = 1 (with corners, to the last);

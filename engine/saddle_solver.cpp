@@ -8,6 +8,7 @@
 
 #include "engine/bordered_spd.hpp"
 #include "engine/cholesky.hpp"
+#include "engine/condition_estimate.hpp"
 #include "engine/stopwatch.hpp"
 
 namespace igac {
@@ -342,6 +343,20 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   }
   stats_.schur_s += schur_clock.seconds();
   return true;
+}
+
+double SaddleSolver::condition_estimate() const {
+  const auto& I = *impl_;
+  if (I.fallback) {
+    // Eigen's UMFPACK wrapper solves with J only: J^-1 stands in for J^-T in
+    // the climb's gradient steps.  Every value the climb takes is still some
+    // ||J^-1 x||_1 with ||x||_1 = 1, a lower bound; J is symmetric but for
+    // the follower load and friction's slip rows.
+    const VectorSolve solve = [&I](const Eigen::VectorXd& b) -> Eigen::VectorXd { return I.lu.solve(b); };
+    return norm1(I.full) * inverse_norm1_estimate(int(I.full.rows()), solve, solve);
+  }
+  if (!I.chol_owner || !I.chol().analyzed()) return 0;
+  return I.chol().condition_estimate();
 }
 
 bool SaddleSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x, double tolerance) {

@@ -109,6 +109,10 @@ class SaddleSolver {
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance = 0);
   const std::string& why() const { return why_; }
   const SaddleSolverStats& stats() const { return stats_; }
+  // kappa_1 of the matrix of the last setup that was factorised: K_s with
+  // the rigid motions pinned (engine/condition_estimate.hpp), or on the LU
+  // fallback UMFPACK's reciprocal pivot ratio; 0 before any setup.
+  double condition_estimate() const;
 
  private:
   struct Impl;

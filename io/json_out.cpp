@@ -287,6 +287,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     const LinearSolverRecord& ls = r.linear_solver;
     Json solver = {{"type", ls.type}, {"ranks", ls.ranks}};
     if (!ls.method.empty()) solver["method"] = ls.method;
+    if (ls.condition_estimate > 0) solver["condition_estimate"] = finite_or_null(ls.condition_estimate);
     if (ls.type != "direct") {
       solver["krylov_iterations"] = ls.iterations;
       solver["peak_resident_all_ranks_gib"] = finite_or_null(ls.peak_resident_all_ranks_gib);

@@ -268,6 +268,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   r.load_steps = std::move(steps);
   r.applied_force = pressure_resultant(m, t_end);
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
+  if (chol.analyzed()) r.linear_solver.condition_estimate = chol.condition_estimate();
   r.timing.total = t_start.seconds();
   return r;
 }

@@ -111,6 +111,11 @@ struct LinearSolverRecord {
   std::vector<int> iterations;        // Krylov iterations per active-set iteration
   int ranks = 1;
   double peak_resident_all_ranks_gib = 0;
+  // The direct solver: kappa_1 of the last matrix it factorised (the
+  // stiffness with the rigid motions pinned; in large deformation the last
+  // Newton matrix), estimated (engine/condition_estimate.hpp).  A result
+  // holds about -log10(eps kappa) correct digits.  0: not estimated (PETSc).
+  double condition_estimate = 0;
 };
 
 struct RunResult {

@@ -251,6 +251,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     summary.steps.insert(summary.steps.begin(), earlier.begin(), earlier.end());
   }
   r.load_steps = summary;
+  r.linear_solver.condition_estimate = summary.condition_estimate;
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;
   const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;

@@ -360,6 +360,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   }
   start();  // (a PETSc solve that ended before its first iteration's report)
   t0.restart();
+  if (!petsc && chol.analyzed()) r.linear_solver.condition_estimate = chol.condition_estimate();
   // What the supports carry; a displacement-driven case's applied force.
   r.dirichlet_reactions = ReactionEvaluator(m)(r.u, 1.0);
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);

@@ -1,121 +1,75 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Golden values of every shipped case (issue 20): each cases/*.toml is run
 // through the igac executable and every number of its summary.json (and of
-// pressure.csv (pressure_<face>.csv for each contact of a case with several)
-// and load_curve.csv, and of study.json for the recorded
-// studies) is compared with the values recorded in
-// tests/data/golden/<case>.json before the model/ refactor, by
-// tests/data/golden/record.py at commit a01e0b0.  A refactor
-// that moves code without changing the numerics keeps them; one that changes
-// a result has to say so by re-recording:
+// pressure.csv (pressure_<face>.csv for each contact of a case with
+// several) and load_curve.csv, and of study.json for the recorded studies)
+// is compared with the values recorded in tests/data/golden/<case>.json by
+// tests/data/golden/record.py.  A change that moves code without changing
+// the numerics keeps them; one that changes a result has to say so by
+// re-recording:
 //   python3 tests/data/golden/record.py build/igac /tmp/runs hertz2d study:lame_cylinder ...
 // (study:NAME records `igac study cases/NAME.toml --levels 4`).
 //
-// What is compared, and how closely:
-//  - strings (status, obstacle, names), booleans and JSON integers (dofs,
-//    active multipliers, Newton and active-set iterations, active-set sizes,
-//    cut-backs, levels): exactly.
-//  - every other number: |a - b| <= rel max(|a|, |b|) + floor, rel = 1e-12
-//    (the issue's bar) but for the Newton history and the CSV files below;
-//    the floor is the round-off scale of the quantity, so that a value that is
-//    round-off itself (a converged residual, an error norm that is a small
-//    difference of large numbers) is held to 1e-12 of what it is a
-//    difference of rather than to 1e-12 of itself:
-//      * residual_norms, the Newton history, a diagnostic rather than a
-//        result: relative 1e-8, floor 1e-12 max(1, r_0) with r_0 the step's
-//        first residual.  A residual is evaluated at an iterate that carries
-//        the linear solves' round-off times a condition number: 1 -> 2
-//        threads moves them by up to 6e-10 relative (oring_two_plates,
-//        where the line search crawls; hertz2d_neohookean_displacement's
-//        step 0, whose unscaled r_0 is 1.07e4, by 9.4e-11): 0.062 of this
-//        tolerance at most, a margin of 16.  Converged residuals are round-off
-//        (1e-14 ... 3e-13 in the scaled units where Newton stops at 1e-9,
-//        3e-10 after r_0 = 1.07e4 unscaled), hence the floor.  Their count,
-//        the Newton iterations, is compared exactly.
-//      * an error norm X with a relative X_rel beside it: floor 1e-12 times
-//        the norm it is relative to (X / X_rel); X_rel: floor 1e-12.
-//      * a convergence rate ln(e_a / e_b) / ln(h_a / h_b): floor the rate's
-//        sensitivity to its two errors' tolerances (their floors and 1e-12
-//        relative) divided by ln(h_a / h_b).
-//      * anything else (forces, pressures, half widths, h, load factors):
-//        floor 0 (a zero stays exactly zero).
-//  - pressure.csv and load_curve.csv are printed with 10 significant
-//    digits: relative 1.5e-9 (one unit in the last printed digit is at most
-//    1e-9 relative, and a change of 1e-15 can flip it), floor 1e-12 times
-//    the column's largest absolute value (the contact-edge pressures are
-//    small differences).
-// The runs use one OpenMP thread: the linear assembly sums per-thread copies
-// of K, so the last digits follow the thread count, and igac lets the count
-// follow the machine's load (omp_set_dynamic).  What a change of summation
-// order alone does, measured with IGAC_GOLDEN_THREADS=2 against the 1-thread
-// record (as |diff| / tolerance): the small-deformation 2D cases' peak
-// pressure moves by 0.25 (hertz2d, 2.5e-13 relative) and by 2.05
-// (hertz2d_two_patches, 2.05e-12 relative: beyond the issue's 1e-12, so a
-// refactor that reorders the assembly sums, such as element colouring, may
-// fail there without changing any numerics); every other result by at most
-// 0.022 (3D) and 0.0067 (large deformation); residuals by 0.062 of their
-// tolerance; the CSV files not at all.
-//
+// How closely: the rule of tests/support/solve_tolerance.hpp, the same on
+// every processor, BLAS kernel and thread count: two runs agree to
+// kRoundOffSafety eps kappa (kappa the larger condition estimate of the
+// record and the run) times the scale of each quantity's kind, normwise:
+//  - strings, booleans and JSON integers (dofs, iterations, active-set
+//    sizes, cut-backs, levels): exactly.
+//  - a number under the key K: scale the largest |value| of K's kind
+//    anywhere in the record (every max_pressure of every step; every force,
+//    kind_of below), so that a reaction component that is round-off itself
+//    is held to eps kappa times the forces, not to eps kappa times itself.
+//  - residual_norms, the Newton history (relative residuals, in units of
+//    the step's force scale): scale max(1, the step's first residual).
+//  - an error norm X with a relative X_rel beside it: scale X / X_rel, the
+//    norm it is relative to (an error is a small difference of large
+//    numbers); X_rel: scale 1.
+//  - a convergence rate ln(e_a / e_b) / ln(h_a / h_b): the rate's
+//    sensitivity to its two errors' tolerances.
+//  - pressure.csv and load_curve.csv, printed with 10 significant digits:
+//    relative 1.5e-9 (a unit in the last printed digit is at most 1e-9
+//    relative, and a change of 1e-15 can flip it) plus the rule with the
+//    largest |value| of the column's kind as scale.
 // Keys that measure the machine, not the numerics, are not recorded:
-// timing_s, newton_seconds, time_s, memory_gib (record.py, EXCLUDED).  The
-// last includes memory_gib.estimated, the memory model's prediction, which
-// is deterministic but left out with the measured peak it sits beside.
+// timing_s, newton_seconds, time_s, memory_gib, condition_estimate
+// (record.py, EXCLUDED): the estimate is read from the run, not compared.
 // Keys that a run writes beyond the recorded ones are not checked (new
 // outputs are not changed results); a recorded key that is missing fails.
+// The runs use the thread count of the environment (OMP_NUM_THREADS):
+// scripts/portability.sh runs the suite on one and on two.
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "tests/support/igac_process.hpp"
+#include "tests/support/solve_tolerance.hpp"
 #include "tests/support/vtu_file.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using igac_test::SolveAccuracy;
 
 const fs::path kSource = IGAC_SOURCE_DIR;
 const fs::path kGolden = kSource / "tests" / "data" / "golden";
 
-constexpr double kRelative = 1e-12;           // the issue's bar
-constexpr double kResidualRelative = 1e-8;    // Newton history: 1 -> 2 threads moves it by <= 6e-10
-constexpr double kResidualFloor = 1e-12;      // times max(1, the step's first residual)
-constexpr double kCsvRelative = 1.5e-9;       // 10 printed digits
-constexpr double kCsvFloor = 1e-12;           // times the column's largest |value|
+constexpr double kCsvPrinted = 1.5e-9;  // 10 printed digits
 
-// OMP_NUM_THREADS=1 for the runs of one test, restored after.
-// IGAC_GOLDEN_THREADS=N runs on N threads instead: not reproducible to the
-// last digit, it shows how far a change of summation order alone moves the
-// results (the margin the tolerances leave to a refactor).
-class OneThread {
- public:
-  OneThread() {
-    if (const char* v = std::getenv("OMP_NUM_THREADS")) old_ = v;
-    const char* n = std::getenv("IGAC_GOLDEN_THREADS");
-    setenv("OMP_NUM_THREADS", n ? n : "1", 1);
-  }
-  ~OneThread() {
-    if (old_) setenv("OMP_NUM_THREADS", old_->c_str(), 1);
-    else unsetenv("OMP_NUM_THREADS");
-  }
-
- private:
-  std::optional<std::string> old_;
-};
-
-// Numbers compared, and the largest |a - b| / tolerance per kind: results
-// (1e-12), the Newton history (residual_norms) and the CSV files.
+// Numbers compared, and the largest |a - b| / tolerance per kind: results,
+// the Newton history (residual_norms) and the CSV files: how much of the
+// rule's margin a run used (the portability script's measure).
 struct Tally {
   int numbers = 0, exact = 0;
   struct Worst {
@@ -124,9 +78,37 @@ struct Tally {
   } result, residual, csv;
 };
 
-bool close(double golden, double actual, double floor, const std::string& where, Tally& t, double relative = kRelative) {
+// What one comparison holds: the rule, the scale of every key's kind.
+struct Rule {
+  SolveAccuracy accuracy;
+  std::map<std::string, double> kind_scale;  // key -> largest |value| under it in the record
+};
+
+// The kind of a key or CSV column: every force (reactions per face and
+// component, contact, normal, tangential, applied and total forces) is one
+// kind, each in the same units and balancing the others; any other key is
+// its own kind.
+std::string kind_of(const std::string& key) {
+  return key.find("force") != std::string::npos || key.starts_with("reaction") ? "force" : key;
+}
+
+void collect_scales(const json& j, const std::string& key, std::map<std::string, double>& out) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) collect_scales(v, k, out);
+  } else if (j.is_array()) {
+    for (const auto& v : j) collect_scales(v, key, out);
+  } else if (j.is_number()) {
+    double& s = out[kind_of(key)];
+    s = std::max(s, std::abs(j.get<double>()));
+  }
+}
+
+// |golden - actual| <= printed relative + the rule's relative times scale.
+bool close(double golden, double actual, double scale, const std::string& where, const Rule& rule, Tally& t,
+           double printed = 0) {
   const double diff = std::abs(golden - actual);
-  const double tol = relative * std::max(std::abs(golden), std::abs(actual)) + floor;
+  const double tol = printed * std::max(std::abs(golden), std::abs(actual)) +
+                     rule.accuracy.relative() * std::max({scale, std::abs(golden), std::abs(actual)});
   ++t.numbers;
   Tally::Worst& w = where.find(".csv") != std::string::npos              ? t.csv
                     : where.find("residual_norms") != std::string::npos ? t.residual
@@ -134,24 +116,26 @@ bool close(double golden, double actual, double floor, const std::string& where,
   if (diff > 0 && tol > 0 && diff / tol > w.ratio) w = {diff / tol, where};
   if (diff <= tol) return true;
   ADD_FAILURE() << where << ": recorded " << std::setprecision(17) << golden << ", now " << actual << " (|diff| "
-                << diff << " > tolerance " << tol << ")";
+                << diff << " > tolerance " << tol << " = " << rule.accuracy.relative() << " x scale " << scale
+                << ", condition estimate " << rule.accuracy.condition << ")";
   return false;
 }
 
-// Floor of the error norm `key` in an "errors" object: 1e-12 of the norm it
-// is relative to (key / key_rel), or 1e-12 for a relative error itself.
-double error_floor(const json& errors, const std::string& key) {
-  if (key.size() > 4 && key.ends_with("_rel")) return kRelative;
+// The scale of the error norm `key` in an "errors" object: the norm it is
+// relative to (key / key_rel), or 1 for a relative error itself.
+double error_scale(const json& errors, const std::string& key) {
+  if (key.size() > 4 && key.ends_with("_rel")) return 1.0;
   const auto rel = errors.find(key + "_rel");
   if (rel == errors.end() || !rel->is_number() || rel->get<double>() == 0) return 0;
-  return kRelative * std::abs(errors.at(key).get<double>() / rel->get<double>());
+  return std::abs(errors.at(key).get<double>() / rel->get<double>());
 }
 
-void compare(const json& g, const json& a, const std::string& where, double floor, Tally& t);
+void compare(const json& g, const json& a, const std::string& where, double scale, const Rule& rule, Tally& t);
 
 // study.json's "rates": rates[key][k] is the rate between the k-th and the
 // k+1-th of the levels that report errors[key].
-void compare_rates(const json& g_rates, const json& a_rates, const json& g_levels, const std::string& where, Tally& t) {
+void compare_rates(const json& g_rates, const json& a_rates, const json& g_levels, const std::string& where,
+                   const Rule& rule, Tally& t) {
   ASSERT_TRUE(a_rates.is_object()) << where;
   for (const auto& [key, g_list] : g_rates.items()) {
     ASSERT_TRUE(a_rates.contains(key)) << where << "/" << key << " is missing";
@@ -164,15 +148,18 @@ void compare_rates(const json& g_rates, const json& a_rates, const json& g_level
     for (size_t k = 0; k < g_list.size(); ++k) {
       const json &ea = (*levels[k])["errors"], &eb = (*levels[k + 1])["errors"];
       const double a = ea[key], b = eb[key];
-      const double tol_a = kRelative * std::abs(a) + error_floor(ea, key), tol_b = kRelative * std::abs(b) + error_floor(eb, key);
+      const double rel = rule.accuracy.relative();
+      const double tol_a = rel * std::max(std::abs(a), error_scale(ea, key)),
+                   tol_b = rel * std::max(std::abs(b), error_scale(eb, key));
       const double log_h = std::abs(std::log((*levels[k])["h"].get<double>() / (*levels[k + 1])["h"].get<double>()));
-      const double floor = (tol_a / std::abs(a) + tol_b / std::abs(b)) / log_h;
-      close(g_list[k], a_list[k], floor, where + "/" + key + "[" + std::to_string(k) + "]", t);
+      // the rate's tolerance in absolute terms, as a scale for the rule
+      const double rate_tol = (tol_a / std::abs(a) + tol_b / std::abs(b)) / log_h;
+      close(g_list[k], a_list[k], rate_tol / rel, where + "/" + key + "[" + std::to_string(k) + "]", rule, t);
     }
   }
 }
 
-void compare(const json& g, const json& a, const std::string& where, double floor, Tally& t) {
+void compare(const json& g, const json& a, const std::string& where, double scale, const Rule& rule, Tally& t) {
   switch (g.type()) {
     case json::value_t::object:
       ASSERT_TRUE(a.is_object()) << where << ": not an object";
@@ -183,25 +170,25 @@ void compare(const json& g, const json& a, const std::string& where, double floo
           continue;
         }
         if (key == "rates" && g.contains("levels")) {
-          compare_rates(gv, a.at(key), g.at("levels"), at, t);
+          compare_rates(gv, a.at(key), g.at("levels"), at, rule, t);
         } else if (key == "residual_norms") {
           ASSERT_TRUE(gv.is_array() && a.at(key).is_array()) << at;
           ASSERT_EQ(a.at(key).size(), gv.size()) << at << ": Newton iterations + 1";
           const double r0 = gv.empty() ? 0.0 : std::abs(gv[0].get<double>());
           for (size_t i = 0; i < gv.size(); ++i)
-            close(gv[i], a.at(key)[i], kResidualFloor * std::max(1.0, r0), at + "[" + std::to_string(i) + "]", t,
-                  kResidualRelative);
+            close(gv[i], a.at(key)[i], std::max(1.0, r0), at + "[" + std::to_string(i) + "]", rule, t);
         } else if (where.ends_with("/errors") && gv.is_number_float()) {
-          compare(gv, a.at(key), at, error_floor(g, key), t);
+          compare(gv, a.at(key), at, error_scale(g, key), rule, t);
         } else {
-          compare(gv, a.at(key), at, 0, t);
+          const auto s = rule.kind_scale.find(kind_of(key));
+          compare(gv, a.at(key), at, s == rule.kind_scale.end() ? 0.0 : s->second, rule, t);
         }
       }
       return;
     case json::value_t::array:
       ASSERT_TRUE(a.is_array()) << where << ": not an array";
       ASSERT_EQ(a.size(), g.size()) << where << ": length";
-      for (size_t i = 0; i < g.size(); ++i) compare(g[i], a[i], where + "[" + std::to_string(i) + "]", floor, t);
+      for (size_t i = 0; i < g.size(); ++i) compare(g[i], a[i], where + "[" + std::to_string(i) + "]", scale, rule, t);
       return;
     case json::value_t::number_integer:
     case json::value_t::number_unsigned:
@@ -212,18 +199,17 @@ void compare(const json& g, const json& a, const std::string& where, double floo
       return;
     case json::value_t::number_float:
       ASSERT_TRUE(a.is_number()) << where << ": recorded " << g << ", now " << a;
-      close(g.get<double>(), a.get<double>(), floor, where, t);
+      close(g.get<double>(), a.get<double>(), scale, where, rule, t);
       return;
     default:  // strings, booleans, null
       EXPECT_EQ(g, a) << where;
   }
 }
 
-
 // A CSV file igac wrote (pressure.csv, load_curve.csv) against its record:
 // the header and the kind column exactly, empty cells empty, numbers to the
 // 10 printed digits.
-void compare_csv(const json& g, const fs::path& file, Tally& t) {
+void compare_csv(const json& g, const fs::path& file, const Rule& rule, Tally& t) {
   const std::string name = file.filename().string();
   ASSERT_TRUE(fs::exists(file)) << file;
   const auto rows = igac_test::csv_rows(file);
@@ -232,10 +218,15 @@ void compare_csv(const json& g, const fs::path& file, Tally& t) {
   const json& g_rows = g["rows"];
   ASSERT_EQ(rows.size(), g_rows.size() + 1) << file << ": rows";
   const size_t columns = g["header"].size();
-  std::vector<double> scale(columns, 0.0);
+  std::map<std::string, double> kind_scale;  // the file's own: a CSV's columns are not the summary's keys
   for (const json& r : g_rows)
     for (size_t c = 0; c < columns; ++c)
-      if (r[c].is_number()) scale[c] = std::max(scale[c], std::abs(r[c].get<double>()));
+      if (r[c].is_number()) {
+        double& k = kind_scale[kind_of(g["header"][c].get<std::string>())];
+        k = std::max(k, std::abs(r[c].get<double>()));
+      }
+  std::vector<double> scale(columns, 0.0);
+  for (size_t c = 0; c < columns; ++c) scale[c] = kind_scale[kind_of(g["header"][c].get<std::string>())];
   for (size_t i = 0; i < g_rows.size(); ++i) {
     const auto& row = rows[i + 1];
     const json& gr = g_rows[i];
@@ -248,7 +239,7 @@ void compare_csv(const json& g, const fs::path& file, Tally& t) {
         EXPECT_EQ(row[c], gr[c].get<std::string>()) << where;
       } else {
         ASSERT_FALSE(row[c].empty()) << where;
-        close(gr[c].get<double>(), std::stod(row[c]), kCsvFloor * scale[c], where, t, kCsvRelative);
+        close(gr[c].get<double>(), std::stod(row[c]), scale[c], where, rule, t, kCsvPrinted);
       }
     }
   }
@@ -287,17 +278,20 @@ TEST_P(GoldenCase, ResultsAsRecordedBeforeTheRefactor) {
   for (size_t i = 3; i < w.size(); ++i) args += " " + w[i];
 
   igac_test::TempDir tmp("golden");
-  const OneThread one_thread;
   const auto o = igac_test::run_igac(args + " --quiet --out out", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   const fs::path out = tmp.path() / "out";
   const json actual = json::parse(igac_test::read_file(out / (study ? "study.json" : "summary.json")));
+  // Every direct run says how well conditioned it was: the tolerance follows.
+  ASSERT_GT(igac_test::largest_condition_estimate(actual), 1.0) << "no solver.condition_estimate in the run's output";
+  Rule rule{igac_test::solve_accuracy(golden.at("summary"), actual), {}};
+  collect_scales(golden.at("summary"), "", rule.kind_scale);
   Tally t;
-  compare(golden.at("summary"), actual, study ? "study.json" : "summary.json", 0, t);
+  compare(golden.at("summary"), actual, study ? "study.json" : "summary.json", 0, rule, t);
   // pressure_csv -> pressure.csv, pressure_lower_csv -> pressure_lower.csv
   // (a case with several contacts), load_curve_csv -> load_curve.csv
   for (const auto& [key, value] : golden.items())
-    if (key.ends_with("_csv")) compare_csv(value, out / (key.substr(0, key.size() - 4) + ".csv"), t);
+    if (key.ends_with("_csv")) compare_csv(value, out / (key.substr(0, key.size() - 4) + ".csv"), rule, t);
   EXPECT_GT(t.numbers, 10) << "a record with numbers in it";
   // Issue 25: scalars that cannot be negative are not, in every ParaView
   // step of every shipped case (von Mises reached -0.052 and |sigma| -0.89
@@ -311,9 +305,10 @@ TEST_P(GoldenCase, ResultsAsRecordedBeforeTheRefactor) {
     EXPECT_GT(files, 0);
     std::printf("%s: von Mises and |sigma| >= 0 in %d ParaView steps\n", GetParam().c_str(), files);
   }
-  std::printf("%s: %d numbers compared (%d integers exactly); largest |diff| / tolerance: results %.3g (%s), "
-              "residuals %.3g (%s), CSV files %.3g (%s)\n",
-              GetParam().c_str(), t.numbers, t.exact, t.result.ratio, t.result.at.c_str(), t.residual.ratio,
+  std::printf("%s: condition estimate %.3g, relative tolerance %.3g; %d numbers compared (%d integers exactly); "
+              "largest |diff| / tolerance: results %.3g (%s), residuals %.3g (%s), CSV files %.3g (%s)\n",
+              GetParam().c_str(), rule.accuracy.condition, rule.accuracy.relative(), t.numbers, t.exact, t.result.ratio,
+              t.result.at.c_str(), t.residual.ratio,
               t.residual.at.c_str(), t.csv.ratio, t.csv.at.c_str());
 }
 
