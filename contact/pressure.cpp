@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -47,6 +48,95 @@ double ContactPressure::pressure_at(int side, const Eigen::VectorXd& xi) const {
   return p;
 }
 
+namespace {
+
+// A multiplier is pressed above round-off of the largest pressure (an S0
+// mean of 1e-12 p0 is a multiplier that is active with nothing to carry).
+constexpr double kPressedFraction = 1e-6;
+
+}  // namespace
+
+ContactPressure::Edge ContactPressure::edge_along(int side, const std::function<Eigen::VectorXd(double)>& line,
+                                                  const std::vector<double>& b, double max_pressure) const {
+  const ContactSide& cs = cf_.sides[side];
+  const NurbsPatch& fp = cs.face_patch;
+  const int ne = int(b.size()) - 1;
+  if (ne < 1 || !(max_pressure > 0)) return {};
+  std::vector<double> rb(b.size());
+  for (size_t j = 0; j < b.size(); ++j) rb[j] = r_of(fp.point(line(b[j])));
+  const double pressed = kPressedFraction * max_pressure;
+  if (cs.space.degree() > 0) {
+    // Continuous multipliers: their nodal values at the breakpoints.  The
+    // pressure of a smooth contact is elliptic, p = c sqrt(a^2 - r^2): p^2
+    // is linear in r^2 through the last two pressed nodes, and vanishes at
+    // the edge, which lies before the next (unpressed) node.
+    std::vector<double> p(b.size());
+    for (size_t j = 0; j < b.size(); ++j) p[j] = pressure_at(side, line(b[j]));
+    int last = -1;
+    for (int j = 0; j <= ne; ++j)
+      if (p[j] > pressed) last = j;
+    if (last < 0) return {};
+    if (last == ne) return {rb[ne], true};
+    double a = rb[last] + (rb[last + 1] - rb[last]) * p[last] / (p[last] - std::min(p[last + 1], 0.0));
+    if (last >= 1 && p[last - 1] > p[last]) {
+      const double r1 = rb[last - 1], r2 = rb[last], q1 = p[last - 1] * p[last - 1], q2 = p[last] * p[last];
+      a = std::sqrt(r2 * r2 + q2 * (r2 * r2 - r1 * r1) / (q1 - q2));
+    }
+    return {std::clamp(a, rb[last], rb[last + 1]), false};
+  }
+  // S0: one constant per element, the element's mean of p.  The edge lies
+  // in the element after the last pressed one or in that one: the means of
+  // the elliptic sqrt(a^2 - r^2) over the last two pressed elements
+  // (integrated over the whole face element: in 3D r varies across the row
+  // too) must stand in the ratio of their multipliers; solved for a by
+  // bisection.
+  std::vector<double> mean(static_cast<size_t>(ne));
+  for (int e = 0; e < ne; ++e) mean[size_t(e)] = pressure_at(side, line(0.5 * (b[e] + b[e + 1])));
+  int last = -1;
+  for (int e = 0; e < ne; ++e)
+    if (mean[size_t(e)] > pressed) last = e;
+  if (last < 0) return {};
+  // the middle of the element after the last pressed one (the side's end)
+  const bool to_the_end = last + 1 == ne;
+  const double next_middle = to_the_end ? rb[ne] : 0.5 * (rb[last + 1] + rb[last + 2]);
+  if (last == 0) return {next_middle, to_the_end};  // one pressed element: nothing to fit
+  std::vector<int> idx;
+  std::vector<double> val;
+  auto element_of = [&](int e) {
+    cs.space.basis(line(0.5 * (b[e] + b[e + 1])), idx, val);
+    return idx.front();  // S0: multiplier k of the side lives on its face element k
+  };
+  const PatchQuadrature fine = cs.quadrature(10);
+  ElementData ed;
+  std::array<std::vector<std::pair<double, double>>, 2> rw;  // (r, weight) at the points
+  const std::array<int, 2> elems{element_of(last - 1), element_of(last)};
+  for (int k = 0; k < 2; ++k) {
+    fine.evaluate(elems[k], ed, false);
+    for (int q = 0; q < ed.JxW.size(); ++q) rw[k].push_back({r_of(ed.X.row(q).transpose()), ed.JxW[q]});
+  }
+  auto sqrt_mean = [&](int k, double a) {
+    double m = 0, w = 0;
+    for (const auto& [r, wq] : rw[k]) {
+      m += std::sqrt(std::max(a * a - r * r, 0.0)) * wq;
+      w += wq;
+    }
+    return m / w;
+  };
+  const double ratio = -lambda_[cs.first_multiplier + elems[1]] / -lambda_[cs.first_multiplier + elems[0]];
+  auto f = [&](double a) { return sqrt_mean(1, a) / sqrt_mean(0, a) - ratio; };
+  const double r1 = rb[last], r2 = rb[last + 1];
+  double lo = r1, hi = r2;
+  for (const auto& [r, w] : rw[1]) lo = std::min(lo, r);
+  lo += 1e-12 * (r2 - r1);
+  if (f(lo) >= 0) return {r1, false};                  // the last element barely carries: the edge is at its start
+  if (f(hi) <= 0) return {next_middle, to_the_end};  // pressed throughout: the edge lies in the next element
+  for (int it = 0; it < 100; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < 0 ? lo : hi) = mid;
+  }
+  return {0.5 * (lo + hi), false};
+}
+
 PressureReport ContactPressure::report() const {
   PressureReport rep;
   for (const ContactSide& s : cf_.sides)
@@ -58,42 +148,70 @@ PressureReport ContactPressure::report() const {
       rep.total_force -= lambda_[K] * weights_[K];
       rep.active += active_[K] ? 1 : 0;
     }
-  // Pressure profile along the face edge that starts at the initial contact
-  // point (the whole side in 2D; in 3D the edge on a symmetry plane), on the
-  // side that holds it: element values for S0, nodal values at the
-  // breakpoints, and the P1 re-interpolation.
+  // Where X0 lies: the corner of a side nearest to it, or (X0 inside a
+  // side, no symmetry plane through it) the face's quadrature point it is.
   int side = 0;
   std::array<bool, 2> at_end{false, false};  // which corner of the side holds X0
-  double best = std::numeric_limits<double>::infinity();
-  {
-    for (int si = 0; si < int(cf_.sides.size()); ++si) {
-      const NurbsPatch& fp = cf_.sides[si].face_patch;
-      const int fd = fp.param_dim();
-      for (int c = 0; c < (1 << fd); ++c) {
-        Eigen::VectorXd xi(fd);
-        for (int d = 0; d < fd; ++d) xi[d] = (c >> d) & 1 ? fp.knots(d).last() : fp.knots(d).first();
-        const double dist = (fp.point(xi) - X0_).norm();
-        if (dist < best) {
-          best = dist;
-          side = si;
-          for (int d = 0; d < fd; ++d) at_end[d] = (c >> d) & 1;
-        }
+  double best = std::numeric_limits<double>::infinity(), size = 0;
+  for (int si = 0; si < int(cf_.sides.size()); ++si) {
+    const NurbsPatch& fp = cf_.sides[si].face_patch;
+    size = std::max(size, (fp.points().colwise().maxCoeff() - fp.points().colwise().minCoeff()).norm());
+    const int fd = fp.param_dim();
+    for (int c = 0; c < (1 << fd); ++c) {
+      Eigen::VectorXd xi(fd);
+      for (int d = 0; d < fd; ++d) xi[d] = (c >> d) & 1 ? fp.knots(d).last() : fp.knots(d).first();
+      const double dist = (fp.point(xi) - X0_).norm();
+      if (dist < best) {
+        best = dist;
+        side = si;
+        for (int d = 0; d < fd; ++d) at_end[d] = (c >> d) & 1;
       }
     }
   }
-  // X0 inside a side (not at a corner: no symmetry plane through it): no
-  // profile; the half width is the largest r of a pressed multiplier.
-  double extent = 0, size = 0;
-  for (const ContactSide& s : cf_.sides) {
-    size = std::max(size, (s.face_patch.points().colwise().maxCoeff() - s.face_patch.points().colwise().minCoeff()).norm());
-    for (int k = 0; k < s.space.size(); ++k)
-      if (-lambda_[s.first_multiplier + k] > 1e-6 * rep.max_pressure && rep.max_pressure > 0)
-        extent = std::max(extent, r_of(s.face_patch.point(s.space.anchor(k))));
-  }
   if (best > 1e-8 * size) {
-    rep.half_width = extent;
+    // X0 inside a side: the edge along each parametric direction through
+    // it, both ways; the half width is their mean (Hertz's a where the
+    // zone is symmetric), over the lines whose edge lies on this side (a
+    // line pressed to the side's end, X0 next to another side, says only
+    // that its edge is further).  No profile.
+    Eigen::VectorXd xi0;
+    double nearest = std::numeric_limits<double>::infinity();
+    cf_.face_quadrature(gauss_points_for(cf_.degree)).for_each_element([&](int s, const auto& v) {
+      for (int q = 0; q < v.n_q; ++q) {
+        const double dist = (Eigen::VectorXd(v.X[q]) - X0_).norm();
+        if (dist < nearest) {
+          nearest = dist;
+          side = s;
+          xi0 = Eigen::VectorXd(v.xi[q]);
+        }
+      }
+    });
+    const NurbsPatch& fp = cf_.sides[side].face_patch;
+    double sum = 0, furthest = 0;
+    int lines = 0;
+    for (int d = 0; d < fp.param_dim(); ++d)
+      for (const int sign : {1, -1}) {
+        std::vector<double> b{xi0[d]};
+        std::vector<double> breaks = fp.knots(d).breakpoints();
+        if (sign < 0) std::reverse(breaks.begin(), breaks.end());
+        for (double t : breaks)
+          if (sign * (t - xi0[d]) > 0) b.push_back(t);
+        const auto line = [&](double t) {
+          Eigen::VectorXd xi = xi0;
+          xi[d] = t;
+          return xi;
+        };
+        const Edge edge = edge_along(side, line, b, rep.max_pressure);
+        furthest = std::max(furthest, edge.r);
+        if (edge.r > 0 && !edge.at_end_of_side) sum += edge.r, ++lines;
+      }
+    rep.half_width = lines ? sum / lines : furthest;
     return rep;
   }
+  // X0 at a corner (a symmetry plane through it): the pressure profile along
+  // the face edge that starts there (the whole side in 2D; in 3D the edge
+  // on a symmetry plane): element values for S0, nodal values at the
+  // breakpoints, and the P1 re-interpolation; the edge along it.
   const ContactSide& cs = cf_.sides[side];
   const NurbsPatch& fp = cs.face_patch;
   const int fd = fp.param_dim();
@@ -126,70 +244,7 @@ PressureReport ContactPressure::report() const {
       }
     rep.p1.push_back({rb[j], w > 0 ? sum / w : 0.0});
   }
-  // Half width: the contact edge lies in the first element whose pressure
-  // vanishes after the last pressed one.  For S0, fit p = c sqrt(a - r)
-  // (the shape of a smooth contact edge) to the means of the last two
-  // pressed elements; otherwise where the P1 pressure reaches zero.
-  // pressed: above round-off of the largest pressure (an S0 mean of 1e-12
-  // p0 is a multiplier that is active with nothing to carry)
-  constexpr double kPressedFraction = 1e-6;
-  int last = -1;
-  for (int e = 0; e < ne; ++e)
-    if (mean[e] > kPressedFraction * rep.max_pressure) last = e;
-  if (last < 0) return rep;
-  if (constants && last >= 1 && last + 1 < int(rb.size())) {
-    // The two elements' means of sqrt(a - r) (the shape of a smooth contact
-    // edge), integrated over the whole face element (in 3D r varies across
-    // the row too), must stand in the ratio of the multipliers; solve for a
-    // by bisection.
-    std::vector<int> idx;
-    std::vector<double> val;
-    auto element_of = [&](int e) {
-      cs.space.basis(line(0.5 * (b[e] + b[e + 1])), idx, val);
-      return idx.front();  // S0: multiplier k of the side lives on its face element k
-    };
-    const PatchQuadrature fine = cs.quadrature(10);
-    ElementData ed;
-    std::array<std::vector<std::pair<double, double>>, 2> rw;  // (r, weight) at the points
-    const std::array<int, 2> elems{element_of(last - 1), element_of(last)};
-    for (int k = 0; k < 2; ++k) {
-      fine.evaluate(elems[k], ed, false);
-      for (int q = 0; q < ed.JxW.size(); ++q) rw[k].push_back({r_of(ed.X.row(q).transpose()), ed.JxW[q]});
-    }
-    auto sqrt_mean = [&](int k, double a) {
-      double m = 0, w = 0;
-      for (const auto& [r, wq] : rw[k]) {
-        m += std::sqrt(std::max(a - r, 0.0)) * wq;
-        w += wq;
-      }
-      return m / w;
-    };
-    const double ratio = -lambda_[cs.first_multiplier + elems[1]] / -lambda_[cs.first_multiplier + elems[0]];
-    auto f = [&](double a) { return sqrt_mean(1, a) / sqrt_mean(0, a) - ratio; };
-    const double r1 = rb[last], r2 = rb[last + 1];
-    double lo = r1, hi = r2;
-    for (const auto& [r, w] : rw[1]) lo = std::min(lo, r);
-    lo += 1e-12 * (r2 - r1);
-    if (f(lo) >= 0) {
-      rep.half_width = r1;  // the last element barely carries: the edge is at its start
-    } else if (f(hi) <= 0) {
-      // the last pressed element is pressed throughout: the edge lies in the
-      // next (discretely free) element
-      const double r3 = last + 2 < int(rb.size()) ? rb[last + 2] : r2;
-      rep.half_width = 0.5 * (r2 + r3);
-    } else {
-      for (int it = 0; it < 100; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (f(mid) < 0 ? lo : hi) = mid;
-      }
-      rep.half_width = 0.5 * (lo + hi);
-    }
-  } else {
-    size_t j = 0;
-    for (size_t i = 0; i < rep.p1.size(); ++i)
-      if (rep.p1[i].pressure > 0) j = i;
-    rep.half_width = j + 1 < rep.p1.size() ? rep.p1[j + 1].r : rep.p1[j].r;
-  }
+  rep.half_width = edge_along(side, line, b, rep.max_pressure).r;
   return rep;
 }
 

@@ -34,11 +34,11 @@ struct PressureReport {
   std::vector<PressureSample> p1;            // P1 re-interpolation along the profile edge
   double max_pressure = 0;                   // max_K -lambda_K
   double total_force = 0;                    // sum_K -lambda_K K_K
-  double half_width = 0;                     // extent of the contact zone in r (along the
-                                             // face edge through X0 in 3D: a symmetry plane),
-                                             // on the side that holds X0 at a corner; where
-                                             // X0 lies inside a side, the largest r of a
-                                             // pressed multiplier's anchor
+  // The contact edge in r, interpolated from the pressure (ContactPressure::edge_along):
+  // along the face edge that starts at X0 when X0 is a corner of a side (a
+  // symmetry plane through it); where X0 lies inside a side, the mean of the
+  // edges along each parametric direction through it, both ways.
+  double half_width = 0;
   int active = 0;
 };
 
@@ -52,6 +52,23 @@ class ContactPressure {
   // p_h at parameter xi of side `side` of the face.
   double pressure_at(int side, const Eigen::VectorXd& xi) const;
   PressureReport report() const;
+  // The contact edge r = a along the parameter line t -> line(t) of side
+  // `side`, walked outward through b (b[0] its start, then breakpoints):
+  // where the elliptic pressure of a smooth contact, p = c sqrt(a^2 - r^2)
+  // (Hertz's shape; near any smooth edge c' sqrt(a - r)), fitted to the
+  // pressure near the edge, vanishes.  Continuous multipliers (S1 and up):
+  // p^2 linear in r^2 through the last two pressed nodal values, within the
+  // element that follows them.  S0: the element means of sqrt(a^2 - r^2)
+  // over the last two pressed elements in the ratio of their multipliers
+  // (bisection).  The end of the
+  // line where it is pressed throughout (at_end_of_side); r = 0 where
+  // nothing along it is.
+  struct Edge {
+    double r = 0;
+    bool at_end_of_side = false;
+  };
+  Edge edge_along(int side, const std::function<Eigen::VectorXd(double)>& line, const std::vector<double>& b,
+                  double max_pressure) const;
   // || p_h - p ||_{L2(Gamma_C)} and || p ||, p given as a function of the side,
   // its parameter and the physical point, integrated with `points` Gauss points per
   // face element direction of `mesh` (a face of the same geometry, perhaps
