@@ -154,6 +154,9 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
   const BezierMesh mesh = body_bezier_mesh(body, r.u, 0, -1, &patch_of);  // every patch's elements, one after the other
   auto grid = bezier_grid(mesh);
   const vtkIdType np = mesh.num_points();
+  // J = det F and the hydrostatic pressure (model/field_recovery.hpp); a
+  // mixed patch's stress takes its volumetric part from that pressure.
+  const RecoveredVolume v = recover_volume(mesh, model, r.element_pressures);
   RecoveredStress s;  // the undeformed body (step 0): no stress, nothing to recover
   if (r.u.isZero(0.0)) {
     s.stress.setZero(np, 6);
@@ -162,7 +165,7 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
     s.von_mises.setZero(np);
     s.magnitude.setZero(np);
   } else {
-    s = recover_model_stress(model, mesh, r.u);  // each body with its own law
+    s = recover_model_stress(model, mesh, r.u, &v);  // each body with its own law
   }
   const char* names[6] = {"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
   auto stress = make_array("stress", 6, np);
@@ -193,8 +196,6 @@ vtkSmartPointer<vtkUnstructuredGrid> body_grid(const Model& model, const RunResu
     for (int p = 0; p < model.parts[k].num_patches; ++p) body_of_patch[size_t(model.parts[k].first_patch + p)] = int(k);
   auto body_cell = make_array("body", 1, mesh.num_elements());
   for (int e = 0; e < mesh.num_elements(); ++e) body_cell->SetValue(e, body_of_patch[size_t(patch_of[e])]);
-  // J = det F and the hydrostatic pressure (model/field_recovery.hpp)
-  const RecoveredVolume v = recover_volume(mesh, model, r.element_pressures);
   auto jac = make_array("J", 1, np);
   auto hyd = make_array("hydrostatic_pressure", 1, np);
   for (vtkIdType i = 0; i < np; ++i) {

@@ -92,15 +92,22 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law, boo
     out.stress.middleRows(e * nl, nl) = C.leftCols(6);
     out.strain.middleRows(e * nl, nl) = C.rightCols(6);
   }
-  // The scalars of the tensor, coefficient by coefficient (see the header).
-  for (int i = 0; i < mesh.num_points(); ++i) {
-    const Eigen::Matrix3d sigma = symmetric_tensor(out.stress.row(i));
-    out.von_mises[i] = von_mises(sigma);
-    out.magnitude[i] = sigma.norm();
-    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sigma, Eigen::EigenvaluesOnly).eigenvalues();
-    out.principal.row(i) << ev[2], ev[1], ev[0];  // largest first
-  }
+  fill_stress_scalars(out);
   return out;
+}
+
+void fill_stress_scalars(RecoveredStress& s) {
+  const Eigen::Index n = s.stress.rows();
+  s.von_mises.resize(n);
+  s.magnitude.resize(n);
+  s.principal.resize(n, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {  // coefficient by coefficient (see the header)
+    const Eigen::Matrix3d sigma = symmetric_tensor(s.stress.row(i));
+    s.von_mises[i] = von_mises(sigma);
+    s.magnitude[i] = sigma.norm();
+    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(sigma, Eigen::EigenvaluesOnly).eigenvalues();
+    s.principal.row(i) << ev[2], ev[1], ev[0];  // largest first
+  }
 }
 
 BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch, int num_patches,
@@ -134,7 +141,44 @@ BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int firs
   return mesh;
 }
 
-RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u) {
+namespace {
+
+// The volumetric part of a mixed patch's stress: the formulation's pressure
+// (`volume`, recover_volume's hydrostatic pressure -tr sigma / 3 on the same
+// Bezier basis) in place of the pointwise law's.  Coefficient by
+// coefficient, sigma - (tr sigma / 3) I - p_hyd I: exact for the projected
+// fields, both being L2 projections with the same rule and the trace linear.
+void take_formulation_pressure(const Model& model, const BezierMesh& mesh, const RecoveredVolume& volume,
+                               RecoveredStress& s) {
+  const std::vector<Formulation> formulations = model.patch_formulations();
+  if (std::none_of(formulations.begin(), formulations.end(), is_mixed)) return;
+  const Body& body = model.body;
+  const int nl = mesh.num_local();
+  if (volume.pressure.size() != s.stress.rows() || s.stress.rows() != Eigen::Index(mesh.num_points()))
+    throw std::invalid_argument("stress recovery: the pressure field is not on the stress's points");
+  int e = 0;
+  for (int k = 0; k < body.num_patches(); ++k) {
+    const int n = body.patch(k).num_elements();
+    if (is_mixed(formulations[formulations.size() == 1 ? 0 : size_t(k)]))
+      for (Eigen::Index i = Eigen::Index(e) * nl; i < Eigen::Index(e + n) * nl; ++i) {
+        const double shift = -volume.pressure[i] - (s.stress(i, 0) + s.stress(i, 1) + s.stress(i, 2)) / 3;
+        for (int c = 0; c < 3; ++c) s.stress(i, c) += shift;
+      }
+    e += n;
+  }
+  fill_stress_scalars(s);
+}
+
+}  // namespace
+
+RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u,
+                                     const RecoveredVolume* volume) {
+  RecoveredStress s = recover_law_stress(model, mesh, u);
+  if (volume) take_formulation_pressure(model, mesh, *volume, s);
+  return s;
+}
+
+RecoveredStress recover_law_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u) {
   const Body& body = model.body;
   const bool green_lagrange = model.spec.finite_strain();
   if (model.parts.size() <= 1) return recover_stress(mesh, model_stress_law(model), green_lagrange);

@@ -60,6 +60,9 @@ struct RecoveredStress {
 // `green_lagrange` (large deformation) E = (F^T F - I) / 2 (plane strain:
 // the zz component 0).
 RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law, bool green_lagrange = false);
+// von Mises, |sigma| and the principal stresses of s.stress, coefficient by
+// coefficient (as recover_stress computes them).
+void fill_stress_scalars(RecoveredStress& s);
 
 double von_mises(const Eigen::Matrix3d& sigma);
 
@@ -74,11 +77,20 @@ StressLaw model_stress_law(const Model& model);
 // `patch_of`, when given, receives each element's patch.
 BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch = 0, int num_patches = -1,
                             std::vector<int>* patch_of = nullptr);
+struct RecoveredVolume;
 // recover_stress on `mesh`, the model's body_bezier_mesh for the
 // displacement u (one row per body control point): one body with the
 // case's law on that mesh; several bodies each with its own law (on a mesh
-// of its own patches, stacked in the patches' order).
-RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u);
+// of its own patches, stacked in the patches' order).  On a patch in a mixed
+// formulation the stress's volumetric part is the formulation's pressure
+// (`volume`, recover_volume on the same mesh), not the pointwise law's
+// U'(J): every stress field of a mixed run, and its principal stresses and
+// magnitude, agree with the hydrostatic_pressure field (von Mises, which
+// has no volumetric part, is the law's).  recover_law_stress: the law's
+// stress alone.
+RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u,
+                                     const RecoveredVolume* volume);
+RecoveredStress recover_law_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u);
 
 // J = det F and the hydrostatic pressure -tr(sigma)/3, projected onto each
 // element's Bezier basis like the stress (rows as recover_stress), for
