@@ -244,17 +244,7 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
   auto gap_cell = make_array("normal_gap", 1, ne);
   auto a_cell = make_array("active", 1, ne);
 
-  const Model::Contact& contact = model.contacts[i];
-  // Where the obstacle stands at this step: large deformation, its
-  // reference position moved by curve(t) motion; small deformation, where
-  // its whole motion puts it (c.obstacle), moved back by (curve(t) - 1) motion.
-  Eigen::VectorXd shift;
-  if (contact.motion.size() > 0 && model.spec.finite_strain()) shift = contact.curve(load_factor) * contact.motion;
-  else if (contact.motion.size() > 0)  // (without curves: step 0 before the motion, step 1 after it)
-    shift = (contact.curve(load_factor) - 1.0) * contact.motion;
-  const ContactPartFields fields =
-      recover_contact_fields(mesh, side_of, sol, r.contact->op.weights.segment(r.contacts[i].first_multiplier, cf.num_multipliers()),
-                             contact.obstacle.get(), shift);
+  const ContactPartFields fields = recover_contact_fields(mesh, side_of, sol, contact_partner(model, i, r.u, load_factor));
   for (vtkIdType i = 0; i < mesh.num_points(); ++i) {
     p_point->SetValue(i, fields.point_pressure[i]);
     double t[3] = {0, 0, 0};
@@ -269,11 +259,9 @@ vtkSmartPointer<vtkUnstructuredGrid> contact_grid(const Model& model, const RunR
   }
   grid->GetPointData()->AddArray(p_point);
   grid->GetPointData()->AddArray(t_point);
-  if (fields.point_gap.size() > 0) {
-    auto gap_point = make_array("normal_gap", 1, mesh.num_points());
-    for (vtkIdType i = 0; i < mesh.num_points(); ++i) gap_point->SetValue(i, fields.point_gap[i]);
-    grid->GetPointData()->AddArray(gap_point);
-  }
+  auto gap_point = make_array("normal_gap", 1, mesh.num_points());
+  for (vtkIdType i = 0; i < mesh.num_points(); ++i) gap_point->SetValue(i, fields.point_gap[i]);
+  grid->GetPointData()->AddArray(gap_point);
   grid->GetPointData()->SetActiveScalars("pressure");
   grid->GetCellData()->AddArray(p_cell);
   grid->GetCellData()->AddArray(g_cell);
@@ -302,8 +290,11 @@ void add_friction_fields(const RunResult& r, int first, int m, vtkUnstructuredGr
   for (auto* a : {state.Get(), traction.Get(), slip.Get()}) grid.GetPointData()->AddArray(a);
 }
 
-// One vertex per multiplier at its anchor on the reference face.
-vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r, size_t i) {
+// One vertex per multiplier at its anchor on the reference face: its
+// multiplier, weighted gap (Pi g)_K (the B_K-weighted mean of g_n, a length)
+// and the normal gap g_n(X + u) to the partner at the anchor itself.
+vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const RunResult& r, size_t i,
+                                                     double load_factor) {
   const ContactFace& cf = *model.contacts[i].face;
   const ContactSolution sol = contact_block(r, i);
   const Eigen::VectorXd weights = r.contact->op.weights.segment(r.contacts[i].first_multiplier, cf.num_multipliers());
@@ -319,6 +310,7 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
   auto weight = make_array("weight", 1, m);
   auto normal_gap = make_array("normal_gap", 1, m);
   auto disp = make_array("displacement", 3, m);
+  const ContactPartner partner = contact_partner(model, i, r.u, load_factor);
   grid->Allocate(m);
   for (const ContactSide& side : cf.sides) {
     Eigen::MatrixXd u_face(side.face_cps.size(), r.u.cols());
@@ -336,7 +328,7 @@ vtkSmartPointer<vtkUnstructuredGrid> multiplier_grid(const Model& model, const R
       gap->SetValue(K, sol.weighted_gap[K]);
       active->SetValue(K, sol.active[K] ? 1.0 : 0.0);
       weight->SetValue(K, weights[K]);
-      normal_gap->SetValue(K, weights[K] > 0 ? sol.weighted_gap[K] / weights[K] : 0.0);
+      normal_gap->SetValue(K, partner(X + u).gap);
       const vtkIdType id = K;
       grid->InsertNextCell(VTK_VERTEX, 1, &id);
     }
@@ -368,7 +360,7 @@ VtkStep write_vtk(const std::string& dir, const Model& model, const RunResult& r
       grids.push_back(contact_grid(model, result, i, load_factor));
       step.files.push_back(fmt::format("contact{}_{:04d}.vtu", tag, step_index));
       step.parts.push_back("contact_face" + tag);
-      grids.push_back(multiplier_grid(model, result, i));
+      grids.push_back(multiplier_grid(model, result, i, load_factor));
       step.files.push_back(fmt::format("multipliers{}_{:04d}.vtu", tag, step_index));
       step.parts.push_back("multipliers" + tag);
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "engine/assembly.hpp"
@@ -345,15 +346,35 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
   return out;
 }
 
+ContactPartner contact_partner(const Model& model, size_t k, const Eigen::MatrixXd& u, double t) {
+  const Model::Contact& c = model.contacts.at(k);
+  if (c.master) {
+    auto moved = std::make_shared<MasterSurface>(*c.master);
+    moved->update(u);
+    return [moved](const Eigen::VectorXd& x) {
+      const std::optional<MasterPoint> mp = moved->project(x);
+      if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+      return ObstacleProbe{mp->gap, mp->normal, {}};
+    };
+  }
+  Eigen::VectorXd shift;
+  if (c.motion.size() > 0 && model.spec.finite_strain()) shift = c.curve(t) * c.motion;
+  else if (c.motion.size() > 0)  // (without curves: step 0 before the motion, step 1 after it)
+    shift = (c.curve(t) - 1.0) * c.motion;
+  const Obstacle* obstacle = c.obstacle.get();
+  return [obstacle, shift](const Eigen::VectorXd& x) {
+    return obstacle->probe(shift.size() == x.size() ? Eigen::VectorXd(x - shift) : x);
+  };
+}
+
 ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,
-                                         const ContactSolution& sol, const Eigen::VectorXd& weights,
-                                         const Obstacle* obstacle, const Eigen::VectorXd& obstacle_shift) {
+                                         const ContactSolution& sol, const ContactPartner& partner) {
   const int nl = mesh.num_local(), ne = mesh.num_elements(), sd = mesh.space_dim();
-  const int nf = 1 + sd + (obstacle ? 1 : 0);  // projected: pressure, traction, gap
+  const int nf = 2 + sd;  // projected: pressure, traction, gap
   ContactPartFields out;
   out.point_pressure.resize(mesh.num_points());
   out.point_traction.resize(mesh.num_points(), sd);
-  if (obstacle) out.point_gap.resize(mesh.num_points());
+  out.point_gap.resize(mesh.num_points());
   out.cell_pressure.resize(ne);
   out.cell_weighted_gap.resize(ne);
   out.cell_gap.resize(ne);
@@ -377,39 +398,28 @@ ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vect
       const Eigen::VectorXd xi = el.parameter(rule.points[q]);
       side.space.basis(xi, idx, val);
       for (int& K : idx) K += side.first_multiplier;
-      double p = 0, g = 0, gap = 0;
+      double p = 0, g = 0;
       for (size_t k = 0; k < idx.size(); ++k) {
         p -= sol.lambda[idx[k]] * val[k];
         g += sol.weighted_gap[idx[k]] * val[k];
-        if (weights[idx[k]] > 0) gap += sol.weighted_gap[idx[k]] / weights[idx[k]] * val[k];
         if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
       }
-      // The contact pushes along the obstacle's normal at the deformed
-      // point; against a second body, along minus the face's outward normal.
-      Eigen::VectorXd n;
-      if (obstacle) {
-        Eigen::VectorXd x = el.points.transpose() * R + el.fields[0].transpose() * R;
-        if (obstacle_shift.size() == x.size()) x -= obstacle_shift;
-        const ObstacleProbe probe = obstacle->probe(x);
-        n = probe.normal;
-        gap = probe.gap;
-        f[nf - 1] = probe.gap;
-      } else {
-        n = -face_area_vector(side.face(), side.face_patch.jacobian(xi)).normalized();
-      }
+      // The contact pushes along the partner's normal at the deformed point.
+      const ObstacleProbe probe = partner(el.points.transpose() * R + el.fields[0].transpose() * R);
       f[0] = p;
-      f.segment(1, sd) = p * n.transpose();
+      f.segment(1, sd) = p * probe.normal.transpose();
+      f[nf - 1] = probe.gap;
       M.noalias() += wt * R * R.transpose();
       b.noalias() += (wt * R) * f;
       area += wt;
       p_int += wt * p;
       g_int += wt * g;
-      gap_int += wt * gap;
+      gap_int += wt * probe.gap;
     }
     const Eigen::MatrixXd c = M.llt().solve(b);
     out.point_pressure.segment(e * nl, nl) = c.col(0);
     out.point_traction.middleRows(e * nl, nl) = c.middleCols(1, sd);
-    if (obstacle) out.point_gap.segment(e * nl, nl) = c.col(nf - 1);
+    out.point_gap.segment(e * nl, nl) = c.col(nf - 1);
     out.cell_pressure[e] = p_int / area;
     out.cell_weighted_gap[e] = g_int / area;
     out.cell_gap[e] = gap_int / area;

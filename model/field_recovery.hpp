@@ -114,27 +114,32 @@ struct RecoveredVolume {
 // space); any other non-zero length: std::invalid_argument.
 RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures = {});
 
+// Where contact k's partner stands when the body has the displacement u
+// (n_cp x dim, every body's control points) at load factor (or time) t: the
+// signed normal gap of a point of space to it, positive outside, and its
+// outward unit normal there.  A rigid obstacle where the step puts it (large
+// deformation: its reference position moved by curve(t) motion; small
+// deformation: where its whole motion puts it, moved back by (curve(t) - 1)
+// motion); a second body's face moved by u.  Owns what it needs (a moved
+// copy of the master surface).
+using ContactPartner = std::function<ObstacleProbe(const Eigen::VectorXd& x)>;
+ContactPartner contact_partner(const Model& model, size_t k, const Eigen::MatrixXd& u, double t);
+
 struct ContactPartFields {
   Eigen::VectorXd point_pressure;          // per Bezier point: the projection of -lambda_h
   Eigen::MatrixXd point_traction;          // per Bezier point (x dim): the projection of p_h n
-  Eigen::VectorXd point_gap;               // per Bezier point, with an obstacle: the projection of g_n(X + u)
+  Eigen::VectorXd point_gap;               // per Bezier point: the projection of g_n(X + u)
   std::vector<double> cell_pressure;       // per element: mean of -lambda_h over the reference face
   std::vector<double> cell_weighted_gap;   // per element: mean of sum_K (Pi g)_K B_K
-  std::vector<double> cell_gap;            // per element: mean of g_n(X + u), or of sum_K (Pi g)_K / K_K B_K
+  std::vector<double> cell_gap;            // per element: mean of g_n(X + u)
   std::vector<bool> cell_active;           // a multiplier whose support meets the element is active
 };
 // `side_of[e]`: the contact side element e of `mesh` lies on; field 0 of
-// `mesh` the displacement; `weights` the K_K = int B_K of the multipliers.
-// The traction p_h n on the body: n the obstacle's unit normal at the
-// deformed point X + u, or against a second body (`obstacle` null) minus the
-// face's outward unit normal.  The normal gap, a length: with an obstacle
-// its signed distance g_n(X + u) (docs/design.md, "Gap and sign
-// convention"); against a second body the multipliers' gaps (Pi g)_K / K_K
-// interpolated with the B_K (cell mean only).  `obstacle_shift`: how far
-// the obstacle has moved from where `obstacle` stands (large deformation:
-// t times its motion).
+// `mesh` the displacement.  The traction p_h n on the body: n the partner's
+// outward unit normal at the deformed point X + u.  The normal gap, a
+// length: the signed distance g_n(X + u) to the partner (docs/design.md,
+// "Gap and sign convention"), an obstacle or a second body's face alike.
 ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vector<const ContactSide*>& side_of,
-                                         const ContactSolution& sol, const Eigen::VectorXd& weights,
-                                         const Obstacle* obstacle, const Eigen::VectorXd& obstacle_shift = {});
+                                         const ContactSolution& sol, const ContactPartner& partner);
 
 }  // namespace igac

@@ -15,12 +15,19 @@
 #include <vtkDataArray.h>
 #include <vtkPointData.h>
 
+#include <nlohmann/json.hpp>
+
 #include "tests/support/igac_process.hpp"
 #include "tests/support/vtu_file.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+
+// Where two bodies touch, the weighted gaps vanish and the pointwise gap is
+// the discretisation's penetration: measured 2.2e-4 a on roller_on_block
+// (TwoBodyNormalGapFollowsTheMaster prints it); 0.01 a.
+constexpr double kPenetrationFraction = 0.01;
 
 // A case of several [[body]] tables: each cell says its body (issue 25),
 // the roller's first (index 0), the block's after it (1).
@@ -178,6 +185,66 @@ TEST(VtkOutput, MixedStressCarriesTheFormulationsPressure) {
     if (name != "solution_0000.vtu") EXPECT_GT(p_max, 0.0) << name;
   }
   EXPECT_GT(files, 1);
+}
+
+// The normal gap is the distance to the partner, a length: in the
+// multipliers' file at each multiplier's anchor (it was (Pi g)_K / K_K,
+// 1.517 on hertz2d where the gap is 4.44e-3), g_n = Y + u_y + R against
+// hertz2d's plane y = -R.
+TEST(VtkOutput, MultiplierNormalGapIsTheDistanceToThePlane) {
+  constexpr double kRoundOff = 1e-12;  // of the radius: the same sum, another order
+  igac_test::TempDir tmp("mgap");
+  const std::string toml = std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d.toml";
+  const auto o = igac_test::run_igac("run " + igac_test::quote(toml) + " --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto g = igac_test::read_vtu((tmp.path() / "out" / "multipliers_0001.vtu").string());
+  vtkDataArray* gap = g->GetPointData()->GetArray("normal_gap");
+  vtkDataArray* u = g->GetPointData()->GetArray("displacement");
+  vtkDataArray* active = g->GetPointData()->GetArray("active");
+  ASSERT_TRUE(gap && u && active);
+  ASSERT_GT(g->GetNumberOfPoints(), 10);
+  double far = 0;
+  for (vtkIdType K = 0; K < g->GetNumberOfPoints(); ++K) {
+    double X[3];
+    g->GetPoint(K, X);
+    const double expected = X[1] + u->GetComponent(K, 1) + 1.0;
+    EXPECT_NEAR(gap->GetComponent(K, 0), expected, kRoundOff) << "multiplier " << K;
+    far = std::max(far, gap->GetComponent(K, 0));
+  }
+  EXPECT_GT(far, 0.1);  // the quarter disc's far end stands off the plane
+}
+
+// Between two bodies the normal gap measures to the master where it stands
+// now (it took the master at its reference position: -6.3e-4 in a closed
+// shrink fit, +0.0044 in the loaded zone of a roller between plates): over
+// the active zone of the roller on its block it is the discretisation's
+// penetration, far below the zone's size; outside it positive.
+TEST(VtkOutput, TwoBodyNormalGapFollowsTheMaster) {
+  igac_test::TempDir tmp("bgap");
+  const std::string toml = std::string(IGAC_SOURCE_DIR) + "/cases/roller_on_block.toml";
+  const auto o = igac_test::run_igac("run " + igac_test::quote(toml) + " --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto summary = nlohmann::json::parse(igac_test::read_file(tmp.path() / "out" / "summary.json"));
+  const double a = summary["contact"]["half_width"];
+  const auto c = igac_test::read_vtu((tmp.path() / "out" / "contact_0001.vtu").string());
+  vtkDataArray* gap = c->GetCellData()->GetArray("normal_gap");
+  vtkDataArray* active = c->GetCellData()->GetArray("active");
+  ASSERT_TRUE(gap && active);
+  double closed = 0, open_min = std::numeric_limits<double>::infinity();
+  int n_active = 0;
+  for (vtkIdType e = 0; e < gap->GetNumberOfTuples(); ++e) {
+    if (active->GetComponent(e, 0) > 0) {
+      closed = std::max(closed, std::abs(gap->GetComponent(e, 0)));
+      ++n_active;
+    } else {
+      open_min = std::min(open_min, gap->GetComponent(e, 0));
+    }
+  }
+  ASSERT_GT(n_active, 3);
+  std::printf("roller on block: |normal gap| <= %.3g over the active cells (a = %.4g), >= %.3g elsewhere\n", closed, a,
+              open_min);
+  EXPECT_LT(closed, kPenetrationFraction * a);
+  EXPECT_GT(open_min, -kPenetrationFraction * a);
 }
 
 }  // namespace
