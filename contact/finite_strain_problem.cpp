@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/finite_strain_problem.hpp"
 
+#include "engine/assembly.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
@@ -23,6 +25,8 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, s_.patch_laws, s_.patch_formulations);
   if (s_.incompressibility_tolerance > 0) tl_->make_incompressible(s_.incompressibility_tolerance);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
+  if (s_.body_force.size() > 0 && s_.body_force.norm() > 0)
+    body_force_load_ = body_force_load(*s_.body, *s_.dofs, s_.body_force);
   weights_ = Eigen::VectorXd::Zero(m_);
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
@@ -72,9 +76,10 @@ Eigen::VectorXd FiniteStrainProblem::local_residual(const TotalLagrangianAssembl
   return local_scale_.cwiseProduct(local.projected - z);
 }
 
-void FiniteStrainProblem::add_tractions(double t, Eigen::VectorXd& f_ext) const {
+void FiniteStrainProblem::add_dead_loads(double t, Eigen::VectorXd& f_ext) const {
   for (const TractionLoad& l : s_.tractions)
     add_dead_traction(*s_.body, *s_.dofs, l.faces, l.curve(t) * l.value, f_ext);
+  if (body_force_load_.size() == f_ext.size()) f_ext += s_.body_force_curve(t) * body_force_load_;
 }
 
 Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorXd& x) const {
@@ -164,7 +169,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
     if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
     else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   }
-  add_tractions(t, f_ext);
+  add_dead_loads(t, f_ext);
   r.resize(size());
   r.head(n_) = f_int - f_ext;
   if (nz_ > 0) r.tail(nz_) = local_residual(local, z);
@@ -313,7 +318,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   double scale = 0;
   if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
   for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
-  add_tractions(t, f_ext);
+  add_dead_loads(t, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
   // At rest with no load the forces are zero, or round-off (the mixed
   // formulation's isochoric stress at F = I is 1e-17, not 0): no scale then.

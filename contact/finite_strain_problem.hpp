@@ -2,7 +2,7 @@
 // Large-deformation frictionless contact as a NonlinearProblem for the
 // load-stepping driver (engine/load_stepping.hpp): total-Lagrangian
 // elasticity with a hyperelastic law, follower (or dead) pressure, dead
-// tractions, ramped prescribed displacements, and the weighted-gap contact of the paper
+// tractions and body force, ramped prescribed displacements, and the weighted-gap contact of the paper
 // (Appendix 1) at the CURRENT position, solved by a semismooth Newton method.
 //
 // Unknowns x = [u_free (n); lambda (m)], and with friction on some contact
@@ -81,6 +81,10 @@ struct FiniteStrainSetup {
   std::vector<PressureLoad> pressures;
   bool follower_pressure = true;
   std::vector<TractionLoad> tractions;
+  // A dead body force per unit reference volume (empty: none), at t
+  // body_force_curve(t) * body_force (engine/assembly.hpp body_force_load).
+  Eigen::VectorXd body_force;
+  LoadCurve body_force_curve;
   // One face pressed on one rigid obstacle; several are stacked, each with its
   // own multipliers (S^{p-2} on its face), in order.  Empty: no multipliers.
   // Or a face pressed on a face of a second deformable body (`master` not
@@ -187,8 +191,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
                         Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true,
                         std::vector<Eigen::Triplet<double>>* K_coupling = nullptr,
                         const DofMap* numbering = nullptr) const;
-  // Adds the dead tractions at t to f_ext (no load stiffness: constant in u).
-  void add_tractions(double t, Eigen::VectorXd& f_ext) const;
+  // Adds the dead loads at t to f_ext, the tractions and the body force (no
+  // load stiffness: constant in u).
+  void add_dead_loads(double t, Eigen::VectorXd& f_ext) const;
+  Eigen::VectorXd body_force_load_;  // int N_A b dX at body_force_curve = 1 (empty: none)
   std::vector<char> decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const;
 
   FiniteStrainSetup s_;

@@ -424,4 +424,20 @@ void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<P
   add_dead_pressure(body, dofs, faces, pressure, f);  // the one face loop of the pressure loads
 }
 
+Eigen::VectorXd body_force_load(const Body& body, const DofMap& dofs, const Eigen::VectorXd& b) {
+  const int dim = body.space_dim();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs.num_free());
+  if (b.size() != dim || b.norm() == 0) return f;
+  const BodyQuadrature quad(body, gauss_points_for(body.degree()));
+  ElementData ed;
+  for (int e = 0; e < quad.num_elements(); ++e) {
+    quad.evaluate(e, ed, false);
+    for (int q = 0; q < ed.N.rows(); ++q)
+      for (size_t a = 0; a < ed.cps.size(); ++a)
+        for (int i = 0; i < dim; ++i)
+          if (const int eq = dofs.equation(ed.cps[a] * dim + i); eq >= 0) f[eq] += ed.N(q, a) * b[i] * ed.JxW[q];
+  }
+  return f;
+}
+
 }  // namespace igac

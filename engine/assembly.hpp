@@ -120,4 +120,11 @@ void add_pressure_load(const Body& body, const DofMap& dofs, const std::vector<P
 // The number of Gauss points per direction used everywhere for degree p.
 inline int gauss_points_for(int degree) { return degree + 1; }
 
+// int N_A b dX of a body force b per unit reference volume (free numbering
+// of `dofs`): the load alone, without the stiffness the linear assembly
+// computes with it.  Dead in large deformation too (total Lagrangian: the
+// force per unit reference volume does not follow the body), so constant in
+// u: no load stiffness.
+Eigen::VectorXd body_force_load(const Body& body, const DofMap& dofs, const Eigen::VectorXd& b);
+
 }  // namespace igac

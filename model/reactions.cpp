@@ -72,7 +72,7 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
       add_dead_pressure(m.body, all_free_, pressure_faces_[i], p, f_ext);
   }
   add_traction_loads(m, all_free_, t, f_ext);
-  if (!m.spec.finite_strain() && !m.spec.body_force.empty())  // (large deformation has none)
+  if (!m.spec.body_force.empty())  // dead, per unit reference volume, in both kinematics
     f_ext += m.spec.body_force_curve(t) *
              body_force_load(m.body, all_free_, Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim));
   residual -= f_ext;
@@ -83,22 +83,6 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
     out.push_back(std::move(r));
   }
   return out;
-}
-
-Eigen::VectorXd body_force_load(const Body& body, const DofMap& dofs, const Eigen::VectorXd& b) {
-  const int dim = body.space_dim();
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs.num_free());
-  if (b.size() != dim || b.norm() == 0) return f;
-  const BodyQuadrature quad(body, gauss_points_for(body.degree()));
-  ElementData ed;
-  for (int e = 0; e < quad.num_elements(); ++e) {
-    quad.evaluate(e, ed, false);
-    for (int q = 0; q < ed.N.rows(); ++q)
-      for (size_t a = 0; a < ed.cps.size(); ++a)
-        for (int i = 0; i < dim; ++i)
-          if (const int eq = dofs.equation(ed.cps[a] * dim + i); eq >= 0) f[eq] += ed.N(q, a) * b[i] * ed.JxW[q];
-  }
-  return f;
 }
 
 double driven_reaction(const Model& m, const std::vector<FaceReaction>& reactions) {

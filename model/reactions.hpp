@@ -5,7 +5,8 @@
 // The residual of every dof, prescribed ones included, R = f_int(u) - f_ext
 // (f_int the law's internal force, total-Lagrangian, which is K u for the
 // linear law; f_ext the pressure loads -- follower or dead as the case
-// says, times the load factor -- and the body force), vanishes at the free
+// says, times the load factor -- and the body force, dead in both
+// kinematics), vanishes at the free
 // dofs of a converged solution (but where the contact pushes); at a
 // prescribed dof it is the force the support exerts there.  The reaction of
 // a face set is the sum of R over the dofs its conditions prescribe, as a
@@ -56,11 +57,6 @@ class ReactionEvaluator {
   std::vector<std::vector<std::pair<int, int>>> equations_;  // per face set: (equation of all_free_, component)
   std::vector<std::vector<PatchSide>> pressure_faces_;
 };
-
-// int N_A b dX of a body force b per unit volume (free numbering of
-// `dofs`): the load alone, without the stiffness the linear assembly
-// computes with it.
-Eigen::VectorXd body_force_load(const Body& body, const DofMap& dofs, const Eigen::VectorXd& b);
 
 // The force a displacement-driven case applies: |sum of the reaction
 // components that nonzero prescribed values drive|; 0 when none is (a

@@ -131,6 +131,10 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   for (const auto& l : m.spec.traction)
     setup.tractions.push_back({resolve_faces(m, l.faces, "traction"),
                                Eigen::Map<const Eigen::VectorXd>(l.value.data(), Eigen::Index(l.value.size())), l.curve});
+  if (!m.spec.body_force.empty()) {
+    setup.body_force = Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), Eigen::Index(m.spec.body_force.size()));
+    setup.body_force_curve = m.spec.body_force_curve;
+  }
   setup.prescribed_curves = prescribed_curves(m);
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
