@@ -360,6 +360,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     // "Nested iteration").
     if (m.spec.refine > 0 && (petsc || coarser.result))
       start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
+    if (petsc && c->op.frictional())  // (check_petsc_case refuses such a case as input)
+      throw std::logic_error("the PETSc path runs frictionless contact only");
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
                   : c->op.frictional() ? solve_with_friction(m, sys, c->op, modes, chol, opt)
                                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
