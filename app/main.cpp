@@ -60,9 +60,9 @@ void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::
     if (spec.solver.type != "petsc") throw InputError("--petsc-options: needs --solver petsc (or [solver] type = \"petsc\")");
     spec.solver.options += " " + petsc_options;
   }
-  if (spec.solver.type == "petsc" && spec.finite_strain())
-    throw InputError(fmt::format("{}: --solver petsc: the PETSc solver runs the small-deformation (linear_elastic) "
-                                 "contact solve only", spec.path));
+  if (spec.solver.type == "petsc")  // (a case file's [solver] type = "petsc" has passed the same check)
+    if (const std::string why = check_petsc_case(spec); !why.empty())
+      throw InputError(fmt::format("{}: --solver petsc: {}", spec.path, why));
   if (process_count() > 1 && spec.solver.type != "petsc")
     throw InputError(fmt::format("{}: {} processes (mpirun): the direct solver runs on one; use --solver petsc",
                                  spec.path, process_count()));

@@ -347,8 +347,9 @@ Eigen::VectorXd FiniteStrainProblem::contact_forces_on_every_dof(double t, const
   ContactEval ce;
   evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, true, nullptr, &every);
   for (const auto& g : ce.G) f[g.col()] += lambda[g.row()] * g.value();
+  if (friction_) f += friction_->forces_on_every_dof(tangential(x));  // (numbered as `every`, the friction's every_)
+  // The dofs of a collapsed point share one equation: each holds its force.
   for (int i = 0; i < every.num_dofs(); ++i) out[i] = f[every.equation(i)];
-  if (friction_) out += friction_->forces_on_every_dof(tangential(x));
   return out;
 }
 

@@ -180,7 +180,7 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
     op.t0 = Eigen::VectorXd::Zero(m * nt);
     op.friction = Eigen::VectorXd::Constant(m, friction);
   }
-  std::vector<Eigen::Triplet<double>> trip, ttrip;
+  GapCouplings trip, ttrip;
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
   Eigen::MatrixXd master_derivs;
@@ -212,14 +212,8 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
       }
     }
   });
-  op.G.resize(m, dofs.num_free());
-  op.G.setFromTriplets(trip.begin(), trip.end());
-  op.G.prune(0.0);
-  if (friction > 0) {
-    op.T.resize(m * nt, dofs.num_free());
-    op.T.setFromTriplets(ttrip.begin(), ttrip.end());
-    op.T.prune(0.0);
-  }
+  trip.build(dofs, m, op.G, op.G_held);
+  if (friction > 0) ttrip.build(dofs, m * nt, op.T, op.T_held);
   return op;
 }
 

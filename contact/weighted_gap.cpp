@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/weighted_gap.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -38,14 +39,28 @@ ContactQuadrature::ContactQuadrature(const ContactFace& cf)
     : cf_(&cf), faces_(cf.face_quadrature(cf.quadrature_points())) {}
 
 void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::Ref<const Eigen::VectorXd>& n,
-                      std::vector<Eigen::Triplet<double>>& trip, Eigen::VectorXd& g0) {
+                      GapCouplings& out, Eigen::VectorXd& g0) {
   const int dim = dofs.dim();
   for (int i = 0; i < dim; ++i) {
     const int dof = a * dim + i;
     const double v = w * n[i];
-    if (dofs.equation(dof) >= 0) trip.emplace_back(K, dofs.equation(dof), v);
-    else g0[K] += v * dofs.prescribed_value(dof);
+    if (dofs.equation(dof) >= 0) {
+      out.free.emplace_back(K, dofs.equation(dof), v);
+    } else {
+      g0[K] += v * dofs.prescribed_value(dof);
+      out.held.emplace_back(K, dof, v);
+    }
   }
+}
+
+void GapCouplings::build(const DofMap& dofs, int rows, Eigen::SparseMatrix<double, Eigen::RowMajor>& G,
+                         Eigen::SparseMatrix<double, Eigen::RowMajor>& G_held) const {
+  G.resize(rows, dofs.num_free());
+  G.setFromTriplets(free.begin(), free.end());
+  G.prune(0.0);
+  G_held.resize(rows, dofs.num_dofs());
+  G_held.setFromTriplets(held.begin(), held.end());
+  G_held.prune(0.0);
 }
 
 Eigen::MatrixXd tangent_basis(const Eigen::VectorXd& n) {
@@ -70,7 +85,7 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
     op.t0 = Eigen::VectorXd::Zero(m * nt);
     op.friction = Eigen::VectorXd::Constant(m, friction);
   }
-  std::vector<Eigen::Triplet<double>> trip, ttrip;
+  GapCouplings trip, ttrip;
   ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
     const ObstacleProbe pr = u ? obstacle.probe(ev.displaced(q, *u)) : obstacle.probe(ev.X[q]);
@@ -88,14 +103,8 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
       }
     }
   });
-  op.G.resize(m, dofs.num_free());
-  op.G.setFromTriplets(trip.begin(), trip.end());
-  op.G.prune(0.0);
-  if (friction > 0) {
-    op.T.resize(m * nt, dofs.num_free());
-    op.T.setFromTriplets(ttrip.begin(), ttrip.end());
-    op.T.prune(0.0);
-  }
+  trip.build(dofs, m, op.G, op.G_held);
+  if (friction > 0) ttrip.build(dofs, m * nt, op.T, op.T_held);
   return op;
 }
 
@@ -113,25 +122,43 @@ Eigen::VectorXd exact_weighted_gaps(const Eigen::MatrixXd& u, const ContactFace&
   return num.cwiseQuotient(den);
 }
 
+namespace {
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+// The matrices `part` of the operators one below the other, op k's rows
+// from first[k]; `rows` in all.
+RowSparse stacked(const std::vector<WeightedGapOperator>& ops, RowSparse WeightedGapOperator::*part,
+                  const std::vector<Eigen::Index>& first, Eigen::Index rows) {
+  Eigen::Index cols = 0;
+  std::vector<Eigen::Triplet<double>> trip;
+  for (size_t k = 0; k < ops.size(); ++k) {
+    const RowSparse& A = ops[k].*part;
+    cols = std::max(cols, A.cols());
+    for (int r = 0; r < A.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(A, r); it; ++it) trip.emplace_back(int(first[k] + r), int(it.col()), it.value());
+  }
+  RowSparse out(rows, cols);
+  out.setFromTriplets(trip.begin(), trip.end());
+  return out;
+}
+}  // namespace
+
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops) {
   if (ops.size() == 1) return ops.front();
   WeightedGapOperator out;
-  Eigen::Index rows = 0, cols = ops.empty() ? 0 : ops.front().G.cols();
-  for (const auto& op : ops) rows += op.G.rows();
+  Eigen::Index rows = 0;
+  std::vector<Eigen::Index> first;
+  for (const auto& op : ops) {
+    first.push_back(rows);
+    rows += op.G.rows();
+  }
   out.weights.resize(rows);
   out.g0.resize(rows);
-  std::vector<Eigen::Triplet<double>> trip;
-  Eigen::Index r0 = 0;
-  for (const auto& op : ops) {
-    for (int r = 0; r < op.G.outerSize(); ++r)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(op.G, r); it; ++it)
-        trip.emplace_back(int(r0 + r), int(it.col()), it.value());
-    out.weights.segment(r0, op.G.rows()) = op.weights;
-    out.g0.segment(r0, op.G.rows()) = op.g0;
-    r0 += op.G.rows();
+  for (size_t k = 0; k < ops.size(); ++k) {
+    out.weights.segment(first[k], ops[k].G.rows()) = ops[k].weights;
+    out.g0.segment(first[k], ops[k].G.rows()) = ops[k].g0;
   }
-  out.G.resize(rows, cols);
-  out.G.setFromTriplets(trip.begin(), trip.end());
+  out.G = stacked(ops, &WeightedGapOperator::G, first, rows);
+  out.G_held = stacked(ops, &WeightedGapOperator::G_held, first, rows);
   // Friction: every contact gets its tangential rows (zero, f = 0, for a
   // frictionless one) once one contact has them.
   int nt = 0;
@@ -140,20 +167,15 @@ WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops) {
   if (nt == 0) return out;
   out.t0 = Eigen::VectorXd::Zero(rows * nt);
   out.friction = Eigen::VectorXd::Zero(rows);
-  std::vector<Eigen::Triplet<double>> ttrip;
-  r0 = 0;
-  for (const auto& op : ops) {
-    if (op.T.rows() > 0) {
-      for (int r = 0; r < op.T.outerSize(); ++r)
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(op.T, r); it; ++it)
-          ttrip.emplace_back(int(r0 * nt + r), int(it.col()), it.value());
-      out.t0.segment(r0 * nt, op.T.rows()) = op.t0;
-      out.friction.segment(r0, op.G.rows()) = op.friction;
-    }
-    r0 += op.G.rows();
+  std::vector<Eigen::Index> first_t;
+  for (size_t k = 0; k < ops.size(); ++k) {
+    first_t.push_back(first[k] * nt);
+    if (ops[k].T.rows() == 0) continue;
+    out.t0.segment(first[k] * nt, ops[k].T.rows()) = ops[k].t0;
+    out.friction.segment(first[k], ops[k].G.rows()) = ops[k].friction;
   }
-  out.T.resize(rows * nt, cols);
-  out.T.setFromTriplets(ttrip.begin(), ttrip.end());
+  out.T = stacked(ops, &WeightedGapOperator::T, first_t, rows * nt);
+  out.T_held = stacked(ops, &WeightedGapOperator::T_held, first_t, rows * nt);
   return out;
 }
 

@@ -91,6 +91,11 @@ struct WeightedGapOperator {
   Eigen::SparseMatrix<double, Eigen::RowMajor> T;
   Eigen::VectorXd t0;
   Eigen::VectorXd friction;
+  // The couplings to the prescribed dofs, whose values went into g0 and t0:
+  // the rows of G and T, columns numbered by dof (control point * dim +
+  // component).  G_held^T lambda + T_held^T lambda_t is what the contact
+  // pushes on the supports (model/reactions.hpp); the solve never reads them.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> G_held, T_held;
   bool frictional() const { return friction.size() > 0 && friction.maxCoeff() > 0; }
   // Weighted gaps (Pi g)_K for free displacements u.
   Eigen::VectorXd weighted_gaps(const Eigen::VectorXd& u_free) const {
@@ -98,11 +103,20 @@ struct WeightedGapOperator {
   }
 };
 
+// The triplets of G (or T) under assembly: `free` numbered by the free
+// equations, `held` the prescribed dofs' (column: the dof).
+struct GapCouplings {
+  std::vector<Eigen::Triplet<double>> free, held;
+  // Into G (T) and G_held (T_held), `rows` rows.
+  void build(const DofMap& dofs, int rows, Eigen::SparseMatrix<double, Eigen::RowMajor>& G,
+             Eigen::SparseMatrix<double, Eigen::RowMajor>& G_held) const;
+};
 // One coupling of multiplier K to body control point a with weight w along
 // the normal n: G_{K,(a,i)} += w n_i for a free dof, or its prescribed value
-// moved into g0.  The one scatter of the obstacle and the mortar gaps.
+// moved into g0 (and the coupling kept in `held`).  The one scatter of the
+// obstacle and the mortar gaps.
 void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::Ref<const Eigen::VectorXd>& n,
-                      std::vector<Eigen::Triplet<double>>& trip, Eigen::VectorXd& g0);
+                      GapCouplings& out, Eigen::VectorXd& g0);
 
 // Several operators (one per contact) as one: rows stacked in order.
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);

@@ -435,10 +435,8 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     if (const std::string why = check_case_petsc_options(c.solver.options); !why.empty()) s.fail("options", why);
     c.solver.preconditioner = s.string("preconditioner", "options");
     if (const std::string why = check_preconditioner(c.solver); !why.empty()) s.fail("preconditioner", why);
-    if (c.solver.type == "petsc" && c.finite_strain())
-      s.fail("type", "the PETSc solver runs the small-deformation (linear_elastic) contact solve only");
-    for (const ContactSpec& cs : c.contacts)
-      if (c.solver.type == "petsc" && cs.friction > 0) s.fail("type", "friction runs with the direct solver only");
+    if (c.solver.type == "petsc")
+      if (const std::string why = check_petsc_case(c); !why.empty()) s.fail("type", why);
   }
   if (root.contains("units")) {  // labels only
     const Section s(path, "units", top.sub("units"), kUnitsKeys);
@@ -491,6 +489,19 @@ std::vector<std::string> declared_case_keys() {
   add("solver", kSolverKeys);
   add("units", kUnitsKeys);
   return {out.begin(), out.end()};
+}
+
+std::string check_petsc_case(const CaseSpec& c) {
+  if (c.finite_strain())
+    return fmt::format("the PETSc solver runs small deformation (linear_elastic) only, not the {} law; use the direct "
+                       "solver", c.model);
+  for (const ContactSpec& cs : c.contacts)
+    if (cs.friction > 0)
+      return fmt::format("the PETSc solver runs frictionless contact only, not the friction = {:g} of contact face '{}'; "
+                         "use the direct solver", cs.friction, cs.face);
+  if (c.has_load_curves())
+    return "the PETSc solver runs without load curves only (the case has a curve); use the direct solver";
+  return {};
 }
 
 std::string check_preconditioner(const SolverSpec& s) {

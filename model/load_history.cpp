@@ -218,7 +218,8 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
       step.contacts = report_contacts(m, c);
     }
     clock.restart();
-    step.dirichlet_reactions = reactions(step.u, t);
+    step.dirichlet_reactions =
+        reactions(step.u, t, step.contact ? contact_forces_on_every_dof(m, *step.contact) : Eigen::VectorXd());
     if (again) {
       last = std::move(step);
       continue;

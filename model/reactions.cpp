@@ -76,7 +76,14 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
     f_ext += m.spec.body_force_curve(t) *
              body_force_load(m.body, all_free_, Eigen::Map<const Eigen::VectorXd>(m.spec.body_force.data(), dim));
   residual -= f_ext;
-  for (int dof = 0; dof < int(contact_forces.size()); ++dof) residual[all_free_.equation(dof)] += contact_forces[dof];
+  // The dofs of a collapsed point share one equation and each holds its
+  // force: added once per equation.
+  std::vector<char> added(size_t(all_free_.num_free()), 0);
+  for (int dof = 0; dof < int(contact_forces.size()); ++dof)
+    if (const int eq = all_free_.equation(dof); !added[size_t(eq)]) {
+      residual[eq] += contact_forces[dof];
+      added[size_t(eq)] = 1;
+    }
   for (size_t k = 0; k < faces_.size(); ++k) {
     FaceReaction r{faces_[k], Eigen::VectorXd::Zero(dim)};
     for (const auto& [eq, c] : equations_[k]) r.force[c] += residual[eq];

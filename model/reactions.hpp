@@ -16,7 +16,10 @@
 // force: with the loads and the contact forces it balances to round-off
 // (sum_A f_int_A = 0 since the basis sums to one).  A contact force on a
 // prescribed dof goes to the support (the contact solve has no unknown
-// there), so it is not in the reaction.
+// there), so it is in the reaction: both paths pass what the contacts add
+// to the residual on every dof (small deformation:
+// contact_forces_on_every_dof, model/solve.hpp; large deformation:
+// FiniteStrainProblem::contact_forces_on_every_dof).
 #pragma once
 
 #include <string>
@@ -36,9 +39,10 @@ class ReactionEvaluator {
   // The reactions for the displacement u (n_cp x dim) at load factor t
   // (small deformation: 1; with load curves the time, each load at its
   // curve's factor), one per face set, in the order of first mention.
-  // contact_forces: what the contacts add to the residual on every dof
-  // (FiniteStrainProblem::contact_forces_on_every_dof; empty: none), which a
-  // support carries where it holds a dof the contact pushes.
+  // contact_forces: what the contacts add to the residual on every dof, in
+  // dof order (each dof of a collapsed point holding its equation's force;
+  // empty: none), which a support carries where it holds a dof the contact
+  // pushes.
   std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t,
                                        const Eigen::VectorXd& contact_forces = {}) const;
   // The incompressible limit: f_int depends on the element pressures of the

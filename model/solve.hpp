@@ -46,6 +46,14 @@ void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen
 WeightedGapOperator assemble_contact_operator(const Model& model, double motion_factor = 1.0);
 // The same at time t of the load curves: each moving obstacle at curve(t) * motion.
 WeightedGapOperator assemble_contact_operator_at_time(const Model& model, double time);
+// What the contacts of a small-deformation solve add to the residual
+// K u - f on every dof, prescribed ones included: G^T lambda + T^T lambda_t
+// of the operator the solve used, with its couplings to the prescribed dofs
+// (G_held, T_held), in dof order (control point * dim + component; each dof
+// of a collapsed point holds its equation's).  On a prescribed dof the
+// support carries it: the reactions take it (ReactionEvaluator), as in large
+// deformation (FiniteStrainProblem::contact_forces_on_every_dof).
+Eigen::VectorXd contact_forces_on_every_dof(const Model& model, const ContactSolve& contact);
 // Per contact: the normal force -sum lambda_K K_K of its multipliers and how many are active.
 // With friction (lambda_t not empty) also the tangential force -sum lambda_t,K K_K along the obstacle's tangents.
 std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,

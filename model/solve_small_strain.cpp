@@ -85,6 +85,29 @@ WeightedGapOperator assemble_contact_operator_at_time(const Model& m, double tim
   return contact_operator(m, [time](const Model::Contact& c) { return c.curve(time); });
 }
 
+Eigen::VectorXd contact_forces_on_every_dof(const Model& m, const ContactSolve& c) {
+  const ContactSolution& s = c.solution;
+  const bool friction = s.lambda_t.size() > 0;
+  if (c.op.G_held.rows() != s.lambda.size() || c.op.G_held.cols() != m.dofs->num_dofs() ||
+      (friction && (c.op.T.rows() != s.lambda_t.size() || c.op.T_held.rows() != s.lambda_t.size())))
+    throw std::logic_error("contact_forces_on_every_dof: an operator without the couplings of its solution");
+  Eigen::VectorXd free = c.op.G.transpose() * s.lambda, held = c.op.G_held.transpose() * s.lambda;
+  if (friction) {
+    free += c.op.T.transpose() * s.lambda_t;
+    held += c.op.T_held.transpose() * s.lambda_t;
+  }
+  // Per equation of the dofs with none prescribed (a collapsed point's dofs
+  // are one; a held one got a coupling per dof), then each dof its equation's.
+  const DofMap every(m.body, {});
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(every.num_free());
+  for (int dof = 0; dof < every.num_dofs(); ++dof)
+    if (const int eq = m.dofs->equation(dof); eq >= 0) f[every.equation(dof)] = free[eq];
+    else f[every.equation(dof)] += held[dof];
+  Eigen::VectorXd out(every.num_dofs());
+  for (int dof = 0; dof < every.num_dofs(); ++dof) out[dof] = f[every.equation(dof)];
+  return out;
+}
+
 // A rigid translation strains nothing (K r = 0): the reactions are those of u.
 void add_master_motions(const Model& m, Eigen::MatrixXd& u, std::optional<double> time) {
   const std::vector<int> part = m.body.parts();
@@ -337,6 +360,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     // "Nested iteration").
     if (m.spec.refine > 0 && (petsc || coarser.result))
       start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
+    if (petsc && c->op.frictional())  // (check_petsc_case refuses such a case as input)
+      throw std::logic_error("the PETSc path runs frictionless contact only");
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
                   : c->op.frictional() ? solve_with_friction(m, sys, c->op, modes, chol, opt)
                                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
@@ -362,7 +387,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   t0.restart();
   if (!petsc && chol.analyzed()) r.linear_solver.condition_estimate = chol.condition_estimate();
   // What the supports carry; a displacement-driven case's applied force.
-  r.dirichlet_reactions = ReactionEvaluator(m)(r.u, 1.0);
+  r.dirichlet_reactions =
+      ReactionEvaluator(m)(r.u, 1.0, r.contact ? contact_forces_on_every_dof(m, *r.contact) : Eigen::VectorXd());
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   if (auto w = small_deformation_warning(m, r)) r.warnings.push_back(std::move(*w));
   compare_with_reference(m, r);
