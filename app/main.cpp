@@ -182,8 +182,10 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     }
     if (several)
       fmt::print("    total force   {:.10g}\n", rep.total_force);
-    else if (r.applied_force > 0 && c.resultant.size() > 0 && m.contacts[i].master) {
-      // against a deformed master the pressure turns with its normal: the resultant balances the load
+    else if (r.applied_force > 0 && c.resultant.size() == c.normal.size() &&
+             std::abs(std::abs(c.resultant.dot(c.normal)) - rep.total_force) > 1e-9 * std::abs(rep.total_force)) {
+      // against a curved or deformed partner the pressure turns with its
+      // normal: the resultant, not the integral of p, balances the load
       const double along = std::abs(c.resultant.dot(c.normal));
       fmt::print("  total force   {:.10g}, resultant along the normal {:.10g}  (applied {:.10g}, relative "
                  "difference {:.2e})\n", rep.total_force, along, r.applied_force,

@@ -180,6 +180,7 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
     op.t0 = Eigen::VectorXd::Zero(m * nt);
     op.friction = Eigen::VectorXd::Constant(m, friction);
   }
+  op.directions = Eigen::MatrixXd::Zero(m, dofs.dim());
   GapCouplings trip, ttrip;
   std::vector<int> master_local;
   Eigen::VectorXd master_values;
@@ -196,6 +197,7 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
       if (bw == 0.0) continue;
       op.weights[sp.K[k]] += bw;
       op.g0[sp.K[k]] += gap * bw;
+      op.directions.row(sp.K[k]) += bw * mp->normal.transpose();
       for (size_t a = 0; a < sp.cps.size(); ++a)
         add_gap_coupling(dofs, sp.K[k], sp.cps[a], bw * sp.N[Eigen::Index(a)], mp->normal, trip, op.g0);
       for (size_t a = 0; a < master_local.size(); ++a)

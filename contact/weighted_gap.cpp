@@ -85,6 +85,7 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
     op.t0 = Eigen::VectorXd::Zero(m * nt);
     op.friction = Eigen::VectorXd::Constant(m, friction);
   }
+  op.directions = Eigen::MatrixXd::Zero(m, dofs.dim());
   GapCouplings trip, ttrip;
   ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
@@ -95,6 +96,7 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
       if (bw == 0.0) continue;
       op.weights[K[k]] += bw;
       op.g0[K[k]] += pr.gap * bw;
+      op.directions.row(K[k]) += bw * pr.normal.transpose();
       for (int a = 0; a < ev.n_loc; ++a) add_gap_coupling(dofs, K[k], ev.cps[a], bw * ev.N(q, a), pr.normal, trip, op.g0);
       for (int j = 0; j < t.cols(); ++j) {
         const int row = K[k] * nt + j;
@@ -159,6 +161,11 @@ WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops) {
   }
   out.G = stacked(ops, &WeightedGapOperator::G, first, rows);
   out.G_held = stacked(ops, &WeightedGapOperator::G_held, first, rows);
+  const Eigen::Index dim = ops.empty() ? 0 : ops.front().directions.cols();
+  out.directions = Eigen::MatrixXd::Zero(rows, dim);
+  for (size_t k = 0; k < ops.size(); ++k)
+    if (ops[k].directions.rows() == ops[k].G.rows() && ops[k].directions.cols() == dim)
+      out.directions.middleRows(first[k], ops[k].G.rows()) = ops[k].directions;
   // Friction: every contact gets its tangential rows (zero, f = 0, for a
   // frictionless one) once one contact has them.
   int nt = 0;

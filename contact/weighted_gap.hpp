@@ -96,6 +96,10 @@ struct WeightedGapOperator {
   // component).  G_held^T lambda + T_held^T lambda_t is what the contact
   // pushes on the supports (model/reactions.hpp); the solve never reads them.
   Eigen::SparseMatrix<double, Eigen::RowMajor> G_held, T_held;
+  // int B_K n dGamma per multiplier (m x dim), n the partner's normal the
+  // gap is measured along: the normal force on the (slave) face is
+  // -sum_K lambda_K directions_K (ContactResult::resultant).
+  Eigen::MatrixXd directions;
   bool frictional() const { return friction.size() > 0 && friction.maxCoeff() > 0; }
   // Weighted gaps (Pi g)_K for free displacements u.
   Eigen::VectorXd weighted_gaps(const Eigen::VectorXd& u_free) const {

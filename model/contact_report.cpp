@@ -42,6 +42,11 @@ std::vector<ContactResult> report_contacts(const Model& m, const ContactSolve& s
     cr.has_half_width = !touches_over_an_extent(*c.face, *c.obstacle);
     for (int K = offset; K < offset + n; ++K)
       if (s.solution.active[K]) cr.contact_area += s.op.weights[K];
+    // The normal force on the face, -sum_K lambda_K int B_K n: against a
+    // curved partner the resultant, what balances the loads (the integral
+    // of p, sum_K -lambda_K K_K, exceeds it).
+    if (s.op.directions.rows() == s.solution.lambda.size())
+      cr.resultant = -(s.op.directions.middleRows(offset, n).transpose() * s.solution.lambda.segment(offset, n));
     offset += n;
   }
   return out;

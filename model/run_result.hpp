@@ -43,10 +43,10 @@ struct ContactResult {
   // Large deformation: the extent in the deformed configuration and the
   // Cauchy pressure at the most pressed multiplier.
   double half_width_deformed = 0, max_pressure_cauchy = 0;
-  // Large deformation: the force the contact exerts on the face,
-  // -int lambda n dGamma_0 with the current normal (on a plane it is
-  // total_force along the normal; against a deformed master or a curved
-  // obstacle, what balances the loads).  Empty in small deformation.
+  // The normal force the contact exerts on the face, -int lambda_h n
+  // dGamma_0, n the partner's normal (large deformation: the current one):
+  // on a plane total_force along the normal; against a curved obstacle or a
+  // second body the resultant, what balances the loads.
   Eigen::VectorXd resultant;
 };
 
