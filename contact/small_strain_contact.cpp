@@ -28,7 +28,7 @@ std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const
 }
 
 std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::VectorXd& gap,
-                                  const std::vector<char>& active, int k, double cn) {
+                                  const std::vector<char>& active, int k, double cn, int* forced) {
   const int m = int(lambda.size());
   // Round-off guard: where |lambda_K + c_n g_K| is below round-off of the
   // larger of the two terms, the multiplier keeps its state (at zero load
@@ -40,6 +40,7 @@ std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::Ve
     const double v = lambda[K_] + cn * gap[K_];
     next[K_] = std::abs(v) <= tol ? active[K_] : v < 0;
   }
+  if (forced) *forced = 0;
   if (k > 0 && std::count(next.begin(), next.end(), 1) < k) {
     // A body held only by contact needs k active multipliers: keep the
     // ones nearest to activation.
@@ -47,18 +48,41 @@ std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::Ve
     for (int i = 0; i < m; ++i) order[i] = i;
     std::sort(order.begin(), order.end(),
               [&](int a, int b) { return lambda[a] + cn * gap[a] < lambda[b] + cn * gap[b]; });
-    for (int i = 0; i < std::min(k, m); ++i) next[order[i]] = 1;
+    for (int i = 0; i < std::min(k, m); ++i) {
+      const int K = order[i];
+      if (forced && !next[K] && lambda[K] + cn * gap[K] > tol) ++*forced;
+      next[K] = 1;
+    }
   }
   return next;
 }
 
+bool load_pulls_off(const Eigen::VectorXd& Gr, double push, double f_scale) {
+  const double scale = Gr.size() ? Gr.cwiseAbs().maxCoeff() : 0.0;
+  if (!(std::abs(push) > 1e-12 * f_scale) || scale == 0) return false;
+  const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * Gr;  // the gaps' change along the load's motion
+  return opening.minCoeff() >= -1e-12 * scale && opening.maxCoeff() > 1e-12 * scale;
+}
+
+std::string pulled_off_status(int forced, const std::string& note) {
+  return fmt::format("the load pulls the body off the contact, and nothing else holds it ({}{}{})",
+                     forced > 0 ? fmt::format("{} multiplier(s) would have to pull to hold its free rigid motion(s)",
+                                              forced)
+                                : "its free rigid motion, along the load, opens every gap",
+                     note.empty() ? "" : "; ", note);
+}
+
 bool settle_active_set(const std::vector<char>& next, std::vector<char>& active, std::set<std::vector<char>>& seen,
-                       int iteration, ContactSolution& sol, const ContactSolverOptions& opt) {
+                       int iteration, ContactSolution& sol, const ContactSolverOptions& opt, int forced) {
   if (opt.on_iteration) {
     int changed = 0;
     for (size_t K = 0; K < next.size(); ++K) changed += next[K] != active[K];
     opt.on_iteration(iteration, sol.active_set_sizes.empty() ? 0 : sol.active_set_sizes.back(), changed,
                      sol.linear_iterations.size() == sol.active_set_sizes.size() ? sol.linear_iterations.back() : -1);
+  }
+  if (next == active && forced > 0) {
+    sol.status = pulled_off_status(forced);
+    return true;
   }
   if (next == active) {
     sol.converged = true;
@@ -115,6 +139,16 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
   // starts with the multipliers nearest to the obstacle.
   std::vector<char> active = initial_active_set(op, k, opt);
   const Eigen::VectorXd gap0 = op.g0.cwiseQuotient(op.weights);
+  // One free rigid motion that the load drives off the contact: no
+  // solution (the iteration would keep a multiplier pulling, or cycle).
+  if (k == 1 && load_pulls_off(GR.col(0), Rf[0], f.norm())) {
+    sol.status = pulled_off_status();
+    sol.u = Eigen::VectorXd::Zero(n);
+    sol.lambda = Eigen::VectorXd::Zero(m);
+    sol.active.assign(m, 0);
+    sol.weighted_gap = gap0;
+    return sol;
+  }
 
   std::set<std::vector<char>> seen;
   Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m), c = Eigen::VectorXd::Zero(k), Gu(m);
@@ -154,9 +188,10 @@ ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K,
     Gu = Gvf + GR * c - schur.G_solve_Gt(A, lambda);
     schur_in_loop += schur_clock.seconds();
     const Eigen::VectorXd gap = (op.g0 + Gu).cwiseQuotient(op.weights);
-    const std::vector<char> next = next_active_set(lambda, gap, active, k, opt.complementarity_scale);
+    int forced = 0;
+    const std::vector<char> next = next_active_set(lambda, gap, active, k, opt.complementarity_scale, &forced);
     sol.weighted_gap = gap;
-    if (settle_active_set(next, active, seen, it, sol, opt)) break;
+    if (settle_active_set(next, active, seen, it, sol, opt, forced)) break;
   }
   sol.schur_s += schur_in_loop;
   sol.iterations_s = iterations_clock.seconds() - schur_in_loop;

@@ -101,16 +101,35 @@ std::vector<char> initial_active_set(const WeightedGapOperator& op, int k, const
 // The paper's rule (Appendix 1): K active when lambda_K + c_n (Pi g)_K < 0;
 // where that is zero to round-off, K keeps its state; and at least k
 // multipliers stay active.  The same rule for every linear solver.
+// `forced`: how many of those k the rule itself would release (lambda_K +
+// c_n (Pi g)_K > 0 beyond round-off): kept only so that the next solve
+// holds the body's free rigid motions.  At a settled set such a multiplier
+// pulls (lambda_K > 0), and the set is no solution.
 std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::VectorXd& gap,
-                                  const std::vector<char>& active, int k, double cn);
+                                  const std::vector<char>& active, int k, double cn, int* forced = nullptr);
 
 // One step of the active-set iteration, the same for every linear solver:
-// `next` (from next_active_set) against the current set.  Returns true when
-// the iteration ends -- the set settled (converged) or came back (cycling),
-// with sol.status set; otherwise records the current set in `seen` and moves
-// `active` to `next`.  Reports the iteration to options.on_iteration first.
+// `next` (from next_active_set, with its `forced`) against the current set.
+// Returns true when the iteration ends -- the set settled (converged; or
+// failed when it holds a body by multipliers in tension, `forced` > 0) or
+// came back (cycling), with sol.status set; otherwise records the current
+// set in `seen` and moves `active` to `next`.  Reports the iteration to
+// options.on_iteration first.
 bool settle_active_set(const std::vector<char>& next, std::vector<char>& active, std::set<std::vector<char>>& seen,
-                       int iteration, ContactSolution& sol, const ContactSolverOptions& options);
+                       int iteration, ContactSolution& sol, const ContactSolverOptions& options, int forced = 0);
+
+// A body held only by contact along one free rigid motion r (k = 1): does
+// the load pull it off?  The load's work along r, push = r . f, moves the
+// body along sign(push) r, which changes the weighted gaps by sign(push) G r
+// (`Gr`, the normal rows): when that opens some gap and closes none, no
+// multiplier lambda <= 0 (the contact only pushes) balances the load.
+// `f_scale`: the load's size, below which push is round-off.
+bool load_pulls_off(const Eigen::VectorXd& Gr, double push, double f_scale);
+// The status of a solve that stopped because the load pulls a body held only
+// by contact off it: seen before the iteration (load_pulls_off, forced = 0)
+// or at a set that holds it by `forced` multipliers in tension; `note`
+// added to the reason in brackets.
+std::string pulled_off_status(int forced = 0, const std::string& note = {});
 
 ContactSolution solve_small_strain_contact(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                            const WeightedGapOperator& op, const RigidModes& modes,

@@ -179,6 +179,17 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   Eigen::VectorXd r0(rows_all);
   r0.head(m) = op.g0;
   r0.tail(m * nt) = op.t0 - s.tau_prev;
+  // One free rigid motion that the load drives off the contact: friction
+  // needs a normal force, and no multiplier can push against this load.
+  if (k == 1 && load_pulls_off(s.GR.col(0).head(m), s.Rf[0], s.fp.norm())) {
+    sol.status = pulled_off_status();
+    sol.u = Eigen::VectorXd::Zero(s.n);
+    sol.lambda = Eigen::VectorXd::Zero(m);
+    sol.lambda_t = Eigen::VectorXd::Zero(m * nt);
+    sol.active.assign(m, 0);
+    sol.weighted_gap = op.g0.cwiseQuotient(op.weights);
+    return sol;
+  }
 
   std::set<std::vector<char>> seen;
   // The tangential scale c_t of xi = lambda_t + c_t s (the normal one's
@@ -270,7 +281,8 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     const Eigen::VectorXd lam_n = lam.head(m), lam_t = lam.tail(m * nt);
     std::vector<char> active(m);
     for (int K = 0; K < m; ++K) active[K] = s.state[K] != kOpen;
-    const std::vector<char> next_active = next_active_set(lam_n, gap, active, k, s.cn);
+    int forced = 0;
+    const std::vector<char> next_active = next_active_set(lam_n, gap, active, k, s.cn, &forced);
     const double scale = std::max({lam.cwiseAbs().maxCoeff(), s.cn * gap.cwiseAbs().maxCoeff(),
                                    nt ? s.cn * slip.cwiseAbs().maxCoeff() : 0.0});
     const double tol = 1e-12 * scale;
@@ -297,8 +309,8 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     }
     sol.weighted_gap = gap;
     if (next == s.state && directions_settled) {
-      sol.converged = true;
-      sol.status = "converged";
+      sol.converged = forced == 0;
+      sol.status = forced == 0 ? "converged" : pulled_off_status(forced);
       break;
     }
     // A repeated state (with the signs of a 2D slip) is a cycle.

@@ -146,6 +146,35 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   return setup;
 }
 
+namespace {
+// A body held only by contact along one free rigid motion, whose load steps
+// failed after t_final: the end of the segment they failed in (the first
+// corner of the load curves after t_final; 1 without curves) when there the
+// load, dead on the reference faces, pulls the body off the contact of the
+// reference configuration (load_pulls_off); loads are linear in t between
+// corners, so it pulls from some time in between.  Nothing when it does not:
+// the steps failed for another reason.  (The follower load and the contact
+// normals turn with the body: a diagnosis of a failure, not a decision
+// about a solution.)
+std::optional<double> pulled_off_after(const Model& m, const RigidModes& modes, double t_final,
+                                       const std::vector<double>& corners) {
+  double t = 1.0;
+  for (const double c : corners)
+    if (c > t_final) {
+      t = c;
+      break;
+    }
+  if (t <= t_final) return std::nullopt;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(m.dofs->num_free());
+  for (const auto& p : m.spec.pressure)
+    add_pressure_load(m.body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.curve(t) * p.value, f);
+  add_traction_loads(m, *m.dofs, t, f);
+  const WeightedGapOperator op = assemble_contact_operator_at_time(m, t);
+  if (load_pulls_off(op.G * modes.modes.col(0), modes.modes.col(0).dot(f), f.norm())) return t;
+  return std::nullopt;
+}
+}  // namespace
+
 RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   RunResult r;
   Stopwatch t_start;
@@ -259,6 +288,14 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;
   const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
+  if (summary.status.starts_with("stopped at") && modes.modes.cols() == 1)
+    if (const std::optional<double> t = pulled_off_after(m, modes, t_final, opt.corners)) {
+      const char* at = curves ? "time" : "load factor";
+      const std::string why = summary.status.substr(std::min(summary.status.size(), summary.status.find(": ") + 2));
+      r.status = fmt::format("stopped at {} {:.6g}: {}", at, t_final,
+                             pulled_off_status(0, fmt::format("so at {} {:.6g}, where the failed steps were going; "
+                                                              "their last: {}", at, *t, why)));
+    }
   // No step converged: the state is the reference one, u = 0 and no contact
   // force (not the multipliers primed for the first Newton iteration), and
   // there is no contact zone to report.

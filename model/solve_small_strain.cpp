@@ -176,17 +176,11 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
         m.spec.path, k - held, loose_patches(m, modes.modes * svd.matrixV().rightCols(k - held))));
   // One free motion (the usual symmetric case): the load must move the body
   // toward the obstacle, closing some gap, or nothing balances it.
-  if (k == 1) {
-    const double push = modes.modes.col(0).dot(f);
-    const Eigen::VectorXd gaps = H.col(0).head(op.G.rows());  // the gaps' change (not the tangential rows)
-    const double scale = gaps.cwiseAbs().maxCoeff();
-    const Eigen::VectorXd opening = (push > 0 ? 1.0 : -1.0) * gaps;  // gap change along the load's motion
-    if (std::abs(push) > 1e-12 * f.norm() && opening.minCoeff() >= -1e-12 * scale && opening.maxCoeff() > 1e-12 * scale)
-      throw InputError(fmt::format(
-          "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
-          "motion, and the load opens every gap (is the load's sign reversed?)",
-          m.spec.path));
-  }
+  if (k == 1 && load_pulls_off(H.col(0).head(op.G.rows()), modes.modes.col(0).dot(f), f.norm()))
+    throw InputError(fmt::format(
+        "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
+        "motion, and the load opens every gap (is the load's sign reversed?)",
+        m.spec.path));
 }
 
 namespace {

@@ -592,7 +592,8 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
                                iterations);
       break;
     }
-    const std::vector<char> next = next_active_set(lambda, gap, active, k, o.contact.complementarity_scale);
+    int forced = 0;
+    const std::vector<char> next = next_active_set(lambda, gap, active, k, o.contact.complementarity_scale, &forced);
     if (loose && next == active) {  // the same set again, now solved tightly (not a new iteration)
       loose = false;
       check(KSPSetTolerances(ksp, kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
@@ -600,7 +601,7 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
       --it;
       continue;
     }
-    if (settle_active_set(next, active, seen, it, sol, o.contact)) break;
+    if (settle_active_set(next, active, seen, it, sol, o.contact, forced)) break;
   }
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", o.contact.max_iterations);
