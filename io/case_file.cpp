@@ -188,7 +188,8 @@ void check_load_curves(CaseSpec& c) {
   if (!c.has_load_curves()) return;
   if (c.reference != "none")
     throw InputError(fmt::format("{}: [reference] solution: a reference solution is compared with the loads at their "
-                                 "values, not along load curves; give solution = \"none\"", c.path));
+                                 "values, not along load curves; give solution = \"none\"",
+                                 c.where({.table = "reference", .key = "solution"})));
   auto hold = [](LoadCurve& curve) {
     if (!curve.has_points()) curve = LoadCurve::ramp_and_hold();
   };
@@ -197,6 +198,38 @@ void check_load_curves(CaseSpec& c) {
   for (TractionSpec& p : c.traction) hold(p.curve);
   hold(c.body_force_curve);
   for (ContactSpec& cs : c.contacts) hold(cs.obstacle.curve);
+}
+
+// Every key of `t` (a table called `name`, the index-th of that name, in
+// the body-th [[body]]) into `out`, its tables' keys after it; `count`
+// numbers the tables per name.
+void index_keys(const toml::table& t, const std::string& name, int index, int body,
+                std::map<std::string, int>& count, std::vector<CaseSource::Key>& out) {
+  out.push_back({name, index, body, "", int(t.source().begin.line), {}});
+  std::vector<std::pair<std::string, const toml::table*>> tables;
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str()), sub = name.empty() ? key : name + "." + key;
+    if (const auto* table = v.as_table()) {
+      tables.emplace_back(sub, table);
+      continue;
+    }
+    const auto* array = v.as_array();
+    if (array && !array->empty() && array->front().is_table()) {
+      for (const auto& e : *array)
+        if (const auto* table = e.as_table()) tables.emplace_back(sub, table);
+      continue;
+    }
+    CaseSource::Key entry{name, index, body, key, int(v.source().begin.line), {}};
+    if (const auto word = v.value<std::string>()) entry.words.push_back(*word);
+    if (array)
+      for (const auto& e : *array)
+        if (const auto word = e.value<std::string>()) entry.words.push_back(*word);
+    out.push_back(std::move(entry));
+  }
+  for (const auto& [sub, table] : tables) {
+    const int i = count[sub]++;
+    index_keys(*table, sub, i, sub == "body" ? i : body, count, out);
+  }
 }
 
 // The curve of `root` (any table, key curve or master_curve) whose last
@@ -282,6 +315,10 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
   }
   CaseSpec c;
   c.path = path;
+  {
+    std::map<std::string, int> count;
+    index_keys(root, "", 0, -1, count, c.source.keys);
+  }
   const Section top(path, "top level", root, kTopKeys);
   c.name = top.string("name", std::filesystem::path(path).stem().string());
   // The name becomes a folder under out/: a plain file name, nothing that
