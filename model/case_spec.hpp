@@ -3,7 +3,6 @@
 // simulate, free of any file format.  model/build_model makes it a Model.
 #pragma once
 
-#include <algorithm>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -173,32 +172,16 @@ struct CaseSource {
   // that name (-1: any), in the body-th [[body]] (-1: any), whose value
   // holds `word` (empty: any value).
   struct Query {
-    std::string table, key = "*", word;
+    std::string table = {}, key = "*", word = {};
     int index = -1, body = -1;
   };
   std::vector<Key> keys;  // in file order
 
   // The first key the query matches (null: none).
-  const Key* find(const Query& q) const {
-    for (const Key& k : keys)
-      if (k.table == q.table && (q.index < 0 || k.index == q.index) && (q.body < 0 || k.body == q.body) &&
-          (q.key == "*" ? !k.key.empty() : k.key == q.key) &&
-          (q.word.empty() || std::find(k.words.begin(), k.words.end(), q.word) != k.words.end()))
-        return &k;
-    return nullptr;
-  }
+  const Key* find(const Query& q) const;
   // "path:line" of the key, else of the header of the table it would be
   // in, else "path" (the file says nothing of it, or a case made in code).
-  std::string at(const std::string& path, const Query& q) const {
-    const Key* k = find(q);
-    if (!k) {
-      Query table = q;
-      table.key = "";
-      table.word.clear();
-      k = find(table);
-    }
-    return k ? path + ":" + std::to_string(k->line) : path;
-  }
+  std::string at(const std::string& path, const Query& q) const;
 };
 
 // A case.  Its BodySpec part is its one body; with [[body]] tables (bodies
@@ -229,13 +212,7 @@ struct CaseSpec : BodySpec {
   // The same for a key of body b's table `table` ("geometry", "mesh",
   // "mesh.grading", "material"): [table] for the case's one body, the
   // [body.table] of b's [[body]] for one of several.
-  std::string where(const BodySpec& b, const std::string& table, const std::string& key) const {
-    if (b.body_name.empty()) return where({.table = table, .key = key});
-    int index = -1;
-    for (size_t i = 0; i < bodies.size(); ++i)
-      if (bodies[i].body_name == b.body_name) index = int(i);
-    return where({.table = "body." + table, .key = key, .body = index});
-  }
+  std::string where(const BodySpec& b, const std::string& table, const std::string& key) const;
 
   // Every load's curve (dirichlet, pressure, body force, obstacles), in that order.
   std::vector<const LoadCurve*> load_curves() const {
