@@ -47,9 +47,21 @@ class LoadCurve {
 // each; the last is where a run along them ends.  No curve with points: {1}.
 std::vector<double> curve_corners(const std::vector<const LoadCurve*>& curves);
 
+// The steps of the segment [a, b] at `per_unit_time` steps per unit of
+// time: ceil((b - a) * per_unit_time), at least 1.  A double: it may exceed
+// any integer type (a case file's check compares it with its bound).
+double segment_steps(double a, double b, double per_unit_time);
+// The steps of step_times(corners, per_unit_time), summed in double.
+double count_step_times(const std::vector<double>& corners, double per_unit_time);
+
 // Step times along [0, corners.back()]: each segment between corners cut in
-// ceil(length * steps_per_unit_time) equal steps, every corner a step's end
-// (exactly the corner's value).
+// segment_steps equal steps, every corner a step's end (exactly the
+// corner's value).  Throws std::length_error beyond kMaxLoadSteps in all.
 std::vector<double> step_times(const std::vector<double>& corners, int steps_per_unit_time);
+
+// The most load steps a run takes (each writes its ParaView step and state
+// file): what the case reader allows [loading] steps per unit time on
+// [0, 1], and in all along the curves.
+inline constexpr double kMaxLoadSteps = 100000;
 
 }  // namespace igac

@@ -18,6 +18,7 @@
 
 #include "contact/obstacle.hpp"
 #include "engine/geometry/shapes.hpp"
+#include "engine/load_curve.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/case_section.hpp"
 #include "io/toml_guard.hpp"
@@ -187,7 +188,8 @@ void check_load_curves(CaseSpec& c) {
   if (!c.has_load_curves()) return;
   if (c.reference != "none")
     throw InputError(fmt::format("{}: [reference] solution: a reference solution is compared with the loads at their "
-                                 "values, not along load curves; give solution = \"none\"", c.path));
+                                 "values, not along load curves; give solution = \"none\"",
+                                 c.where({.table = "reference", .key = "solution"})));
   auto hold = [](LoadCurve& curve) {
     if (!curve.has_points()) curve = LoadCurve::ramp_and_hold();
   };
@@ -196,6 +198,95 @@ void check_load_curves(CaseSpec& c) {
   for (TractionSpec& p : c.traction) hold(p.curve);
   hold(c.body_force_curve);
   for (ContactSpec& cs : c.contacts) hold(cs.obstacle.curve);
+}
+
+// Every key of `t` (a table called `name`, the index-th of that name, in
+// the body-th [[body]]) into `out`, its tables' keys after it; `count`
+// numbers the tables per name.
+void index_keys(const toml::table& t, const std::string& name, int index, int body,
+                std::map<std::string, int>& count, std::vector<CaseSource::Key>& out) {
+  out.push_back({name, index, body, "", int(t.source().begin.line), {}});
+  std::vector<std::pair<std::string, const toml::table*>> tables;
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str()), sub = name.empty() ? key : name + "." + key;
+    if (const auto* table = v.as_table()) {
+      tables.emplace_back(sub, table);
+      continue;
+    }
+    const auto* array = v.as_array();
+    if (array && !array->empty() && array->front().is_table()) {
+      for (const auto& e : *array)
+        if (const auto* table = e.as_table()) tables.emplace_back(sub, table);
+      continue;
+    }
+    CaseSource::Key entry{name, index, body, key, int(v.source().begin.line), {}};
+    if (const auto word = v.value<std::string>()) entry.words.push_back(*word);
+    if (array)
+      for (const auto& e : *array)
+        if (const auto word = e.value<std::string>()) entry.words.push_back(*word);
+    out.push_back(std::move(entry));
+  }
+  for (const auto& [sub, table] : tables) {
+    const int i = count[sub]++;
+    index_keys(*table, sub, i, sub == "body" ? i : body, count, out);
+  }
+}
+
+// The curve of `root` (any table, key curve or master_curve) whose last
+// time is the latest: its table's name, key and line (line 0: none).
+struct CurveKey {
+  double end = -1;
+  std::string table, key;
+  int line = 0;
+};
+void find_latest_curve(const toml::table& t, const std::string& name, CurveKey& best) {
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str()), sub = name.empty() ? key : name + "." + key;
+    if (const auto* table = v.as_table()) {
+      find_latest_curve(*table, sub, best);
+    } else if (const auto* array = v.as_array()) {
+      if (key == "curve" || key == "master_curve") {
+        const auto* last = array->empty() ? nullptr : array->back().as_array();
+        const auto end = last && !last->empty() ? (*last)[0].value<double>() : std::nullopt;
+        if (end && *end > best.end) best = {*end, name, key, int(v.source().begin.line)};
+      } else {
+        for (const auto& e : *array)
+          if (const auto* table = e.as_table()) find_latest_curve(*table, sub, best);
+      }
+    }
+  }
+}
+
+// A run in steps takes at most kMaxLoadSteps (engine/load_curve.hpp): small
+// deformation along load curves takes [loading] steps per unit time to the
+// curves' end, large deformation at least one step per max_increment of
+// time.  A long curve times many steps (2e9 step times: 16 GB) or a tiny
+// max_increment is refused on the key that sets the count: the [loading]
+// key when the case gives it, else the curve that ends last.
+void check_load_step_count(const CaseSpec& c, const toml::table& root, const std::string& path) {
+  const bool curves = c.has_load_curves();
+  if (!c.finite_strain() && !curves) return;  // (friction without curves: [loading] steps <= kMaxLoadSteps)
+  const std::vector<double> corners = curves ? curve_corners(c.load_curves()) : std::vector<double>{1.0};
+  const double per_unit = c.finite_strain() ? 1.0 / c.loading.max_increment : double(c.loading.steps);
+  const double n = count_step_times(corners, per_unit);
+  if (n <= kMaxLoadSteps) return;
+  const char* key = c.finite_strain() ? "max_increment" : "steps";
+  const std::string along = curves ? fmt::format(" along load curves that end at t = {:g}", corners.back()) : "";
+  const std::string why =
+      c.finite_strain()
+          ? fmt::format("max_increment = {:g}{} makes at least {:.3g} load steps, more than {:g} (each writes a "
+                        "ParaView step and a state file); give a larger max_increment{}",
+                        c.loading.max_increment, along, n, kMaxLoadSteps, curves ? " or shorter curves" : "")
+          : fmt::format("steps = {} per unit time{} make {:.3g} load steps, more than {:g} (each writes a ParaView "
+                        "step and a state file); give fewer steps per unit time or shorter curves",
+                        c.loading.steps, along, n, kMaxLoadSteps);
+  const toml::table* loading = root["loading"].as_table();
+  if (loading && loading->contains(key)) Section(path, "loading", *loading, kLoadingKeys).fail(key, why);
+  CurveKey latest;
+  find_latest_curve(root, "", latest);
+  if (latest.line > 0)
+    throw InputError(fmt::format("{}:{}: [{}] {}: {}", path, latest.line, latest.table, latest.key, why));
+  throw InputError(fmt::format("{}: [loading] {}: {}", path, key, why));
 }
 
 }  // namespace
@@ -224,6 +315,10 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
   }
   CaseSpec c;
   c.path = path;
+  {
+    std::map<std::string, int> count;
+    index_keys(root, "", 0, -1, count, c.source.keys);
+  }
   const Section top(path, "top level", root, kTopKeys);
   c.name = top.string("name", std::filesystem::path(path).stem().string());
   // The name becomes a folder under out/: a plain file name, nothing that
@@ -389,7 +484,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     const Section s(path, "loading", top.sub("loading"), kLoadingKeys);
     LoadingSpec& l = c.loading;
     l.steps = s.integer("steps", 10);
-    if (l.steps < 1 || l.steps > 100000) s.fail("steps", "must lie in 1..100000");
+    if (l.steps < 1 || l.steps > kMaxLoadSteps) s.fail("steps", fmt::format("must lie in 1..{:g}", kMaxLoadSteps));
     l.first_increment = s.number("first_increment", 0.0);
     if (s.has("first_increment") && !(l.first_increment > 0 && l.first_increment <= 1))
       s.fail("first_increment", "must lie in (0, 1]");
@@ -451,6 +546,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     u.stress = s.string("stress", u.stress);
   }
   check_load_curves(c);
+  check_load_step_count(c, root, path);
   apply_overrides(c, {}, {});
   return c;
 }

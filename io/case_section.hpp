@@ -41,9 +41,12 @@ class Section {
              v.source().begin.line);
       }
   }
+  // Names the key's line, or for a key the table lacks its header's (the
+  // top level has none).
   [[noreturn]] void fail(const std::string& key, const std::string& why, int line = 0) const {
     if (!line)
       if (const auto* n = t_.get(key)) line = int(n->source().begin.line);
+    if (!line && name_ != "top level") line = int(t_.source().begin.line);
     const std::string where = line ? fmt::format("{}:{}", file_, line) : file_;
     throw InputError(fmt::format("{}: [{}] {}: {}", where, name_, key, why));
   }

@@ -36,24 +36,28 @@ PatchSide side_in_file(const Model& m, PatchSide s) {
 }  // namespace
 
 std::vector<PatchSide> resolve_faces(const Model& m, const std::vector<std::string>& names, const char* section) {
+  // The key that names them: [faces] NAME, [contact] master, else faces.
+  const std::string table = section, key = table == "faces" ? "*" : table == "contact" ? "master" : "faces";
   std::vector<PatchSide> out;
   for (const auto& n : names) {
     auto f = find_faces(m, n);
     if (!f)
-      throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})", m.spec.path, section, n,
-                                   m.spec.shape, fmt::join(face_names(m), ", ")));
+      throw InputError(fmt::format("{}: [{}] faces: unknown face '{}' on a {} (known: {})",
+                                   m.spec.where({.table = table, .key = key, .word = n}), section, n, m.spec.shape,
+                                   fmt::join(face_names(m), ", ")));
     for (const PatchSide& side : *f)
       for (const PatchInterface& itf : m.body.interfaces())
         if (side == itf.first || side == itf.second)
           throw InputError(fmt::format("{}: [{}] faces: '{}' is the interface {} - {} inside the body, not a face on "
                                        "its boundary",
-                                       m.spec.path, section, n, m.body.describe(side_in_file(m, itf.first)),
+                                       m.spec.where({.table = table, .key = key, .word = n}), section, n, m.body.describe(side_in_file(m, itf.first)),
                                        m.body.describe(side_in_file(m, itf.second))));
     out.insert(out.end(), f->begin(), f->end());
   }
   for (auto it = out.begin(); it != out.end(); ++it)  // a load counted twice, multipliers made twice over
     if (std::find(out.begin(), it, *it) != it)
-      throw InputError(fmt::format("{}: [{}] faces {}: the side {} is listed twice", m.spec.path, section,
+      throw InputError(fmt::format("{}: [{}] faces {}: the side {} is listed twice",
+                                   m.spec.where({.table = table, .key = key, .word = names.front()}), section,
                                    fmt::join(names, ", "), m.body.describe(*it)));
   return out;
 }
@@ -93,7 +97,7 @@ NurbsPatch refine_patch(const CaseSpec& c, const BodySpec& spec, const NurbsPatc
     if (coarse.degree(d) > spec.degree)
       throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}{}: igac "
                                    "raises the degree, never lowers it, so that the geometry stays exact",
-                                   c.path, spec.degree, coarse.degree(d), "uvw"[d], which));
+                                   c.where(spec, "mesh", "degree"), spec.degree, coarse.degree(d), "uvw"[d], which));
   NurbsPatch patch = elevate_to(coarse, spec.degree);
   for (int d = 0; d < patch.param_dim(); ++d) {
     const GradingSpec* g = nullptr;
@@ -110,12 +114,12 @@ NurbsPatch refine_patch(const CaseSpec& c, const BodySpec& spec, const NurbsPatc
       if (!g) throw;
       throw InputError(fmt::format("{}: [mesh.grading] range_fraction = {:g}: the graded spans are too short to be "
                                    "told apart ({}); use a larger range_fraction or fewer elements",
-                                   c.path, g->range_fraction, e.what()));
+                                   c.where(spec, "mesh.grading", "range_fraction"), g->range_fraction, e.what()));
     }
     try {
       patch = refine_to(patch, d, target.united_with(patch.knots(d)));
     } catch (const SplineError& e) {
-      throw InputError(fmt::format("{}: [mesh] refining direction {}{}{}: {}", c.path, "uvw"[d], which,
+      throw InputError(fmt::format("{}: [mesh] refining direction {}{}{}: {}", c.where(spec, "mesh", "elements"), "uvw"[d], which,
                                    spec.geometry_file.empty() ? "" : " of " + spec.geometry_file, e.what()));
     }
   }
@@ -134,7 +138,7 @@ void check_patch_map(const CaseSpec& c, const BodySpec& spec, const NurbsPatch& 
       if (!(ed.JxW[q] > 0))
         throw InputError(fmt::format("{}: [geometry] file {}: patch {} folds: its Jacobian determinant is not positive "
                                      "at parameter ({:.4g}), point ({:.4g})",
-                                     c.path, spec.geometry_file, k, fmt::join(ed.xi.row(q), ", "),
+                                     c.where(spec, "geometry", "file"), spec.geometry_file, k, fmt::join(ed.xi.row(q), ", "),
                                      fmt::join(ed.X.row(q), ", ")));
   }
 }
@@ -339,7 +343,8 @@ Model build_model(const CaseSpec& spec) {
     m.body = patches.size() > 1 || !interfaces.empty() ? Body(std::move(patches), interfaces)
                                                        : Body(std::move(patches.front()));
   } catch (const BodyError& e) {
-    throw InputError(fmt::format("{}: [geometry] file {}: {}", spec.path, spec.geometry_file, e.what()));
+    throw InputError(fmt::format("{}: [geometry] file {}: {}", spec.where({.table = "geometry", .key = "file"}),
+                                 spec.geometry_file, e.what()));
   }
   double h = 0;
   for (const auto& p : m.body.patches()) h = std::max(h, largest_element_diameter(p));
@@ -347,7 +352,8 @@ Model build_model(const CaseSpec& spec) {
 
   for (const auto& [name, members] : spec.face_sets) {  // [faces]: names of the user's own
     if (find_faces(m, name))
-      throw InputError(fmt::format("{}: [faces] {}: the name is taken by a face of the body", spec.path, name));
+      throw InputError(fmt::format("{}: [faces] {}: the name is taken by a face of the body",
+                                   spec.where({.table = "faces", .key = name}), name));
     m.faces[name] = resolve_faces(m, members, "faces");
   }
 
@@ -389,7 +395,7 @@ Model build_model(const CaseSpec& spec) {
     try {
       part.material = small_strain_material(*part.law, m.body.space_dim());
     } catch (const MaterialError& e) {
-      throw InputError(fmt::format("{}: {} {}", spec.path, table, e.what()));
+      throw InputError(fmt::format("{}: {} {}", spec.where(b, "material", "model"), table, e.what()));
     }
     // Near nu = 0.5 the pure displacement formulation locks (too stiff a
     // body): say so rather than let a result pass unremarked.
@@ -402,31 +408,34 @@ Model build_model(const CaseSpec& spec) {
   }
   m.material = bodies.size() == 1 ? m.parts.front().material : small_strain_material(*m.law, m.body.space_dim());
 
+  int obstacles = -1;  // the [contact.obstacle] tables so far
   for (const ContactSpec& cs : spec.contacts) {
+    const std::string at_face = spec.where({.table = "contact", .key = "face", .word = cs.face}),
+                      at_master = spec.where({.table = "contact", .key = "master", .word = cs.master});
     const auto faces = find_faces(m, cs.face);
     if (!faces)
-      throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", spec.path, cs.face,
+      throw InputError(fmt::format("{}: [contact] face: unknown face '{}' on a {} (known: {})", at_face, cs.face,
                                    spec.shape, fmt::join(face_names(m), ", ")));
     Model::Contact c;
     c.face_name = cs.face;
     try {
       c.face = std::make_unique<ContactFace>(m.body, *faces);
     } catch (const SplineError& e) {
-      throw InputError(fmt::format("{}: [contact] face '{}': {}", spec.path, cs.face, e.what()));
+      throw InputError(fmt::format("{}: [contact] face '{}': {}", at_face, cs.face, e.what()));
     }
     if (!cs.master.empty()) {  // a second deformable body (contact/mortar_gap.hpp)
       // (resolve_faces refuses an unknown face, a side inside the body, a side twice)
       const std::vector<PatchSide> master = resolve_faces(m, {cs.master}, "contact");
       for (const PatchSide& s : master)
         if (std::find(faces->begin(), faces->end(), s) != faces->end())
-          throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", spec.path,
+          throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", at_master,
                                        cs.master, cs.face, m.body.describe(s)));
       const std::vector<int> part = m.body.parts();  // a master on the slave's own body holds nothing
       for (const PatchSide& s : master)
         for (const PatchSide& f : *faces)
           if (part[s.patch] == part[f.patch])
             throw InputError(fmt::format("{}: [contact] master '{}' is on the same body as the face '{}' ({} and {} are "
-                                         "joined): the master is a face of a second body", spec.path, cs.master,
+                                         "joined): the master is a face of a second body", at_master, cs.master,
                                          cs.face, m.body.describe(s), m.body.describe(f)));
       c.master_name = cs.master;
       c.friction = cs.friction;
@@ -442,7 +451,7 @@ Model build_model(const CaseSpec& spec) {
       // The reports read the master as an obstacle at its reference position.
       c.obstacle = std::make_unique<MasterAsObstacle>(*c.master, cs.master);
       if (auto why = contact_cannot_happen(*c.face, *c.obstacle))
-        throw InputError(fmt::format("{}: [contact] face '{}' and its master '{}': {}", spec.path, cs.face, cs.master,
+        throw InputError(fmt::format("{}: [contact] face '{}' and its master '{}': {}", at_face, cs.face, cs.master,
                                      *why));
       // Two bodies that start inside one another: a geometry placed wrong
       // (a translate forgotten), not a load.  Touching to round-off, or a
@@ -453,17 +462,20 @@ Model build_model(const CaseSpec& spec) {
       if (overlap.depth > kOverlapTolerance * extent)
         throw InputError(fmt::format("{}: [contact] face '{}' starts inside the body of its master '{}': {:.3g} deep at "
                                      "({:.4g}), more than {:g} of the face's size {:.3g}; place the bodies apart "
-                                     "([body.geometry] translate)", spec.path, cs.face, cs.master, overlap.depth,
+                                     "([body.geometry] translate)", at_face, cs.face, cs.master, overlap.depth,
                                      fmt::join(overlap.point, ", "), kOverlapTolerance, extent));
       m.contacts.push_back(std::move(c));
       continue;
     }
     const auto& o = cs.obstacle;
+    ++obstacles;
     c.friction = cs.friction;
     try {
       c.obstacle = find_obstacle_type(o.type)->make(o.values);
     } catch (const std::exception& e) {
-      throw InputError(fmt::format("{}: [contact.obstacle] {}", spec.path, e.what()));
+      throw InputError(fmt::format("{}: [contact.obstacle] {}",
+                                   spec.where({.table = "contact.obstacle", .key = "type", .index = obstacles}),
+                                   e.what()));
     }
     if (!o.motion.empty()) {
       c.motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
@@ -481,7 +493,7 @@ Model build_model(const CaseSpec& spec) {
                                          "obstacle's normal: the contact cannot act where it holds",
                                          spec.path, "xyz"[d.component], cs.face));
     if (auto why = contact_cannot_happen(*c.face, *c.obstacle))
-      throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", spec.path, cs.face, *why));
+      throw InputError(fmt::format("{}: [contact] face '{}' and its obstacle: {}", at_face, cs.face, *why));
     m.contacts.push_back(std::move(c));
   }
   return m;

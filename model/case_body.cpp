@@ -16,7 +16,7 @@ std::string table(const BodySpec& body) {
 
 Geometry shape_geometry(const CaseSpec& spec, const BodySpec& body) {
   if (!body.geometry_file.empty())  // a file's body: body_patches
-    throw InputError(fmt::format("{}: {} file: not a built-in shape", spec.path, table(body)));
+    throw InputError(fmt::format("{}: {} file: not a built-in shape", spec.where(body, "geometry", "file"), table(body)));
   try {
     if (const ShapeType* kind = find_shape_type(body.shape)) {
       if (!body.shape_values.empty()) return kind->make(body.shape_values);
@@ -28,11 +28,13 @@ Geometry shape_geometry(const CaseSpec& spec, const BodySpec& body) {
       return kind->make(v);
     }
   } catch (const SplineError& e) {
-    throw InputError(fmt::format("{}: {} {}", spec.path, table(body), e.what()));
+    throw InputError(fmt::format("{}: {} {}", spec.where(body, "geometry", "shape"), table(body), e.what()));
   } catch (const std::out_of_range&) {
-    throw InputError(fmt::format("{}: {} size: too few entries for a {}", spec.path, table(body), body.shape));
+    throw InputError(fmt::format("{}: {} size: too few entries for a {}", spec.where(body, "geometry", "size"),
+                                 table(body), body.shape));
   }
-  throw InputError(fmt::format("{}: {} shape: unknown shape \"{}\"", spec.path, table(body), body.shape));
+  throw InputError(fmt::format("{}: {} shape: unknown shape \"{}\"", spec.where(body, "geometry", "shape"), table(body),
+                               body.shape));
 }
 
 NurbsPatch translated(const NurbsPatch& p, const std::vector<double>& by) {
@@ -56,7 +58,7 @@ MultiPatch body_patches(const CaseSpec& spec, const BodySpec& body) {
   if (!body.geometry_file.empty()) {
     if (!body.file_body)
       throw InputError(fmt::format("{}: {} file {}: the case names a geometry file but holds no patches "
-                                   "(read it with io/case_file's read_case)", spec.path, table(body),
+                                   "(read it with io/case_file's read_case)", spec.where(body, "geometry", "file"), table(body),
                                    body.geometry_file));
     MultiPatch mp = *body.file_body;  // as the user wrote it, placed where the case puts it
     for (NurbsPatch& p : mp.patches) p = translated(p, body.translate);

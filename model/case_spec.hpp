@@ -157,6 +157,34 @@ struct BodySpec {
   }
 };
 
+// Where a case file gives its keys: what a check made after reading
+// (build_model, the solve, the memory guard) names in its message,
+// "file:line: [table] key: why", as the reader's own checks do.
+struct CaseSource {
+  struct Key {
+    std::string table;  // "dirichlet", "body.mesh", "contact.obstacle" ([x] and [[x]] alike; "" the top level)
+    int index = 0;      // which of the tables of that name, in file order
+    int body = -1;      // which [[body]] table it lies in (-1: none)
+    std::string key;    // "" the table's own header
+    int line = 0;
+    std::vector<std::string> words;  // the strings of the value (a face name, a list of them)
+  };
+  // Which key: `key` ("*": any) of a table named `table`, the index-th of
+  // that name (-1: any), in the body-th [[body]] (-1: any), whose value
+  // holds `word` (empty: any value).
+  struct Query {
+    std::string table = {}, key = "*", word = {};
+    int index = -1, body = -1;
+  };
+  std::vector<Key> keys;  // in file order
+
+  // The first key the query matches (null: none).
+  const Key* find(const Query& q) const;
+  // "path:line" of the key, else of the header of the table it would be
+  // in, else "path" (the file says nothing of it, or a case made in code).
+  std::string at(const std::string& path, const Query& q) const;
+};
+
 // A case.  Its BodySpec part is its one body; with [[body]] tables (bodies
 // not empty) it holds what the bodies share: the dimension, the smallest
 // degree (what the contact check needs), the model path (every body small or every body large
@@ -179,6 +207,13 @@ struct CaseSpec : BodySpec {
   bool write_vtk = true;
   SolverSpec solver;
   UnitsSpec units;
+  CaseSource source;  // the case file's lines (empty: a case made in code)
+  // "path:line" of a key (CaseSource::at): where a message after reading points.
+  std::string where(const CaseSource::Query& q) const { return source.at(path, q); }
+  // The same for a key of body b's table `table` ("geometry", "mesh",
+  // "mesh.grading", "material"): [table] for the case's one body, the
+  // [body.table] of b's [[body]] for one of several.
+  std::string where(const BodySpec& b, const std::string& table, const std::string& key) const;
 
   // Every load's curve (dirichlet, pressure, body force, obstacles), in that order.
   std::vector<const LoadCurve*> load_curves() const {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include "model/case_body.hpp"
@@ -53,9 +54,10 @@ void count_direction(const BodySpec& c, const KnotVector* own, int d, double& sp
 
 }  // namespace
 
-MeshCount estimated_mesh(const CaseSpec& spec) {
+namespace {
+MeshCount estimated_body_mesh(const CaseSpec& spec, const BodySpec& c) {
   MeshCount n;
-  for (const BodySpec& c : spec.body_list()) {
+  {
     MultiPatch coarse;
     try {
       coarse = body_patches(spec, c);
@@ -75,6 +77,17 @@ MeshCount estimated_mesh(const CaseSpec& spec) {
       n.elements += elements;
       n.control_points += points;  // an interface's points counted on both sides
     }
+  }
+  return n;
+}
+}  // namespace
+
+MeshCount estimated_mesh(const CaseSpec& spec) {
+  MeshCount n;
+  for (const BodySpec& c : spec.body_list()) {
+    const MeshCount b = estimated_body_mesh(spec, c);
+    n.elements += b.elements;
+    n.control_points += b.control_points;
   }
   return n;
 }
@@ -139,11 +152,28 @@ void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> 
   const MeshCount mesh = estimated_mesh(c);
   const double elements = mesh.elements, dofs = c.dim() * mesh.control_points;
   const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
-  if (!(bytes < physical) || elements > 2e9)
-    throw InputError(fmt::format(
-        "{}: [mesh] refine = {}: {:.3g} elements and {:.3g} unknowns need about {:.3g} GiB, more than this "
-        "machine's {:.1f} GiB",
-        c.path, c.refine, elements, dofs, bytes / (1 << 30), physical / (1 << 30)));
+  if (bytes < physical && elements <= 2e9) return;
+  const std::string need = fmt::format("{:.3g} elements and {:.3g} unknowns need about {:.3g} GiB, more than this "
+                                       "machine's {:.1f} GiB",
+                                       elements, dofs, bytes / (1 << 30), physical / (1 << 30));
+  if (refine) throw InputError(fmt::format("{}: --refine {}: {}", c.path, *refine, need));
+  // The key that makes the mesh: the refine, else the elements, of the
+  // body with the most elements ([mesh], or its [body.mesh]).
+  const std::vector<BodySpec> bodies = c.body_list();
+  size_t big = 0;
+  double most = -1;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (const double e = estimated_body_mesh(c, bodies[i]).elements; e > most) {
+      most = e;
+      big = i;
+    }
+  const BodySpec& b = c.bodies.empty() ? static_cast<const BodySpec&>(c) : c.bodies[big];
+  const char* table = c.bodies.empty() ? "mesh" : "body.mesh";
+  const std::string which = c.bodies.empty() ? "" : fmt::format(" (body '{}')", b.body_name);
+  if (b.refine > 0)
+    throw InputError(fmt::format("{}: [{}] refine = {}{}: {}", c.where(b, "mesh", "refine"), table, b.refine, which, need));
+  throw InputError(fmt::format("{}: [{}] elements = [{}]{}: {}", c.where(b, "mesh", "elements"), table,
+                               fmt::join(b.elements, ", "), which, need));
 }
 
 }  // namespace igac

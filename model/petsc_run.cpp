@@ -91,7 +91,7 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   try {
     s = solve_contact_petsc(sys.K, f_part, op, modes, rigid_motions(m), po);
   } catch (const PetscOptionError& e) {
-    throw InputError(fmt::format("{}: [solver] options: {}", m.spec.path, e.what()));
+    throw InputError(fmt::format("{}: [solver] options: {}", m.spec.where({.table = "solver", .key = "options"}), e.what()));
   }
   record.type = "petsc";
   record.method = s.linear_solver;

@@ -268,7 +268,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
                                  "only the contact holds them, but nothing presses the body on the obstacle and the "
                                  "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
                                  "obstacle",
-                                 m.spec.path, modes.modes.cols()));
+                                 m.spec.where({.table = "contact.obstacle", .key = "motion"}), modes.modes.cols()));
   if (m.on_solve_start) m.on_solve_start();
   progress.emplace(m.quiet);
   progress->now("in the first load step");

@@ -144,14 +144,27 @@ std::string loose_patches(const Model& m, const Eigen::MatrixXd& free) {
 }
 }  // namespace
 
+namespace {
+// "path:line" of the case's first load: a [[pressure]] or [[traction]]
+// value, else the [body_force].
+std::string load_key(const Model& m) {
+  for (const char* table : {"pressure", "traction", "body_force"})
+    if (m.spec.source.find({.table = table, .key = "value"})) return m.spec.where({.table = table, .key = "value"});
+  return m.spec.path;
+}
+}  // namespace
+
 void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::VectorXd& f,
                         const WeightedGapOperator* given) {
   const int k = int(modes.modes.cols());
   if (k == 0) return;
+  // Where the messages point: the conditions that leave the motions free
+  // (the first [[dirichlet]], else the file), the contact that cannot stop
+  // them, the load that pulls.
   if (m.contacts.empty())
     throw InputError(fmt::format(
         "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and there is no [contact]{}",
-        m.spec.path, k, loose_patches(m, modes.modes)));
+        m.spec.where({.table = "dirichlet", .key = "faces"}), k, loose_patches(m, modes.modes)));
   // A frictionless contact holds a rigid motion only if the motion changes
   // the weighted gaps: H = G * modes must have full column rank.
   std::optional<WeightedGapOperator> assembled;
@@ -173,14 +186,14 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
     throw InputError(fmt::format(
         "{}: the body is not held: {} rigid motion(s) are free of Dirichlet conditions and the frictionless contact "
         "cannot stop them (it pushes only along the obstacle's normal); add a [[dirichlet]] condition{}",
-        m.spec.path, k - held, loose_patches(m, modes.modes * svd.matrixV().rightCols(k - held))));
+        m.spec.where({.table = "contact", .key = "face"}), k - held, loose_patches(m, modes.modes * svd.matrixV().rightCols(k - held))));
   // One free motion (the usual symmetric case): the load must move the body
   // toward the obstacle, closing some gap, or nothing balances it.
   if (k == 1 && load_pulls_off(H.col(0).head(op.G.rows()), modes.modes.col(0).dot(f), f.norm()))
     throw InputError(fmt::format(
         "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
         "motion, and the load opens every gap (is the load's sign reversed?)",
-        m.spec.path));
+        load_key(m)));
 }
 
 namespace {

@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Hostile inputs that ran wrong (issue 35): each test failed before its fix.
 // --solver petsc on a case the PETSc path cannot run (it ran a frictional
-// case frictionless, exit 0, no word of it).
+// case frictionless, exit 0, no word of it); load curves and increments
+// that make billions of load steps (4.2 GB allocated, or an int overflowed
+// and a segment was done in one step); messages of checks made after
+// reading that named no line (overlapping bodies, a body not held, an
+// unknown contact face, the memory guard, which also named [mesh] refine
+// for a [body.mesh] key).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -65,6 +70,132 @@ TEST(PetscRefusal, SameReasonFromTheFileAndTheCommandLine) {
       EXPECT_FALSE(fs::exists(tmp.path() / "out")) << args;
     }
   }
+}
+
+// tests/data/curve_contact.toml (its top face pushed along a curve to t =
+// 2, [loading] steps = 2 per unit time) with its curve ending at `end` and
+// `steps` in place of its [loading] table, in dir/case.toml.
+fs::path long_curve_case(const std::string& end, const std::string& steps, const fs::path& dir) {
+  std::string text = source_text("tests/data/curve_contact.toml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"[2, 0]]", "[" + end + ", 0]]"},
+                                 {"[loading]\nsteps = 2\n", steps}}) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  std::ofstream(dir / "case.toml") << text;
+  return dir / "case.toml";
+}
+
+// The count of load steps is bounded (kMaxLoadSteps, 100000), and a case
+// beyond it is refused on the key that sets it: [loading] steps or
+// max_increment when given, else the curve that ends last.
+TEST(LoadSteps, TooManyAreRefusedOnTheKeyThatSetsThem) {
+  struct Refused {
+    std::string end, steps, message;
+  };
+  const std::string why = "(each writes a ParaView step and a state file); give fewer steps per unit time or shorter "
+                          "curves";
+  const std::vector<Refused> cases = {
+      {"2e6", "[loading]\nsteps = 1000\n",
+       "case.toml:30: [loading] steps: steps = 1000 per unit time along load curves that end at t = 2e+06 make "
+       "2e+09 load steps, more than 100000 " + why},
+      {"2e6", "",  // the default 10 per unit time: the curve is named
+       "case.toml:22: [dirichlet] curve: steps = 10 per unit time along load curves that end at t = 2e+06 make "
+       "2e+07 load steps, more than 100000 " + why},
+      {"3e9", "[loading]\nsteps = 1\n",  // 3e9 steps in one segment: beyond an int
+       "case.toml:30: [loading] steps: steps = 1 per unit time along load curves that end at t = 3e+09 make 3e+09 "
+       "load steps, more than 100000 " + why},
+  };
+  for (const Refused& r : cases) {
+    TempDir tmp("steps");
+    long_curve_case(r.end, r.steps, tmp.path());
+    const Outcome o = run_igac("run case.toml --out out", tmp.path());
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_EQ(o.output, "igac: error: " + r.message + "\n");
+    EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+  }
+  // large deformation: at least one step per max_increment
+  TempDir tmp("increments");
+  std::string text = source_text("cases/hertz2d_neohookean_pressure.toml");
+  text.replace(text.find("[loading]\n"), 10, "[loading]\nmax_increment = 1e-6\nmin_increment = 1e-7\n");
+  std::ofstream(tmp.path() / "case.toml") << text;
+  const int line = lines_of(text.substr(0, text.find("max_increment = 1e-6"))) + 1;
+  const Outcome o = run_igac("run case.toml --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "igac: error: case.toml:" + std::to_string(line) +
+                          ": [loading] max_increment: max_increment = 1e-06 makes at least 1e+06 load steps, more than "
+                          "100000 (each writes a ParaView step and a state file); give a larger max_increment\n");
+}
+
+// cases/NAME.toml with each `from` replaced by its `to` (each must occur),
+// in dir/case.toml; returns the text.
+std::string edited_case(const std::string& name, const std::vector<std::pair<std::string, std::string>>& edits,
+                        const fs::path& dir) {
+  std::string text = source_text("cases/" + name + ".toml");
+  for (const auto& [from, to] : edits) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+  }
+  std::ofstream(dir / "case.toml") << text;
+  return text;
+}
+
+// The 1-based line of the first line of `text` holding `marker`.
+int line_of(const std::string& text, const std::string& marker) {
+  const auto at = text.find(marker);
+  EXPECT_NE(at, std::string::npos) << marker;
+  return lines_of(text.substr(0, at)) + 1;
+}
+
+// Checks made after reading (build_model, the held-body check, the memory
+// guard) name the line of the key that causes them, as the reader's do.
+TEST(MessagesAfterReading, NameTheLineOfTheirKey) {
+  struct Refused {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> edits;
+    std::string marker, message;  // the line holding `marker` prefixes `message`
+    std::string args = "";
+  };
+  const std::vector<Refused> cases = {
+      {"roller_on_block",
+       {{"translate = [0.0, -5.0]", "translate = [0.0, -4.9]"}},
+       "face = \"roller:curved\"",
+       ": [contact] face 'roller:curved' starts inside the body of its master 'block:top': 0.1 deep at (0, -1), more "
+       "than 0.001 of the face's size 1.41; place the bodies apart ([body.geometry] translate)\n"},
+      {"hertz2d",
+       {{"value = 0.003", "value = -0.003"}},
+       "value = -0.003",
+       ": the load pulls the body away from the obstacle: only the contact holds it along its free rigid motion, and "
+       "the load opens every gap (is the load's sign reversed?)\n"},
+      {"hertz2d",
+       {{"face = \"curved\"", "face = \"curvd\""}},
+       "face = \"curvd\"",
+       ": [contact] face: unknown face 'curvd' on a quarter_disc (known: curved, left, top, u0, u1, v0, v1, 0:west, "
+       "0:east, 0:south, 0:north)\n"},
+      {"roller_on_block",
+       {{"elements = [48, 24]", "elements = [48, 24]\nrefine = 12"}},
+       "refine = 12",
+       ": [body.mesh] refine = 12 (body 'block'): "},  // (then the machine's memory)
+  };
+  for (const Refused& r : cases) {
+    TempDir tmp("lines");
+    const std::string text = edited_case(r.name, r.edits, tmp.path());
+    const Outcome o = run_igac("run case.toml --out out", tmp.path());
+    const std::string expected = "igac: error: case.toml:" + std::to_string(line_of(text, r.marker)) + r.message;
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_EQ(o.output.substr(0, expected.size()), expected);
+    EXPECT_EQ(lines_of(o.output), 1) << o.output;
+    EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+  }
+  // --refine on the command line is named as such, not as a key of the file
+  TempDir tmp("refine");
+  const Outcome o = run_igac("run " + quote((kSource / "cases/hertz2d.toml").string()) + " --refine 40 --out out",
+                             tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output.rfind("igac: error: " + (kSource / "cases/hertz2d.toml").string() + ": --refine 40: ", 0), 0u)
+      << o.output;
 }
 
 }  // namespace

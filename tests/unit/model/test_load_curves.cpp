@@ -83,6 +83,18 @@ TEST(LoadCurve, StepsEndOnEveryCorner) {
   EXPECT_TRUE(std::is_sorted(t.begin(), t.end()));
 }
 
+// Issue 35: 3e9 steps in one segment overflowed an int (the segment was
+// done in one step) and 2e9 step times were allocated before anything
+// said no.  Counted in double, refused beyond kMaxLoadSteps.
+TEST(LoadCurve, StepCountBeyondTheBoundIsRefusedNotWrapped) {
+  EXPECT_EQ(count_step_times({0.3, 1, 2}, 4), 9.0);
+  EXPECT_EQ(count_step_times({3e9}, 1), 3e9);
+  EXPECT_EQ(segment_steps(0, 3e9, 1), 3e9);
+  EXPECT_THROW(step_times({3e9}, 1), std::length_error);
+  EXPECT_THROW(step_times({1, 2e6}, 1000), std::length_error);
+  EXPECT_EQ(step_times({kMaxLoadSteps}, 1).size(), size_t(kMaxLoadSteps));  // the bound itself runs
+}
+
 // A block [0, 2] x [0, 1] held at its left face, pulled by a pressure on
 // its right face.  `material` and `extra` complete it.
 std::string block(const std::string& material, const std::string& curve, const std::string& extra = "") {

@@ -88,7 +88,8 @@ TEST(PulledOff, SmallDeformationPairsAndObstaclesFail) {
 }
 
 // The upper block lifted by its top face's prescribed displacement (down
-// 0.01, then up 0.01): the pair opens and every multiplier is released.
+// 0.01, then up 0.01): the pair opens and every multiplier is released; the
+// same in large deformation.
 TEST(PulledOff, PairHeldOtherwiseOpens) {
   std::string text = edited("cases/two_blocks.toml", "value = 0.01", "", "[loading]\nsteps = 2");
   const std::string pressure = "[[pressure]]\nfaces = [\"1:north\"]\nvalue = 0.01\n";
@@ -103,6 +104,20 @@ TEST(PulledOff, PairHeldOtherwiseOpens) {
   EXPECT_EQ(r.contact->solution.lambda.norm(), 0.0);
   EXPECT_EQ(std::count(r.contact->solution.active.begin(), r.contact->solution.active.end(), 1), 0);
   EXPECT_EQ(r.contacts.at(0).report.total_force, 0.0);
+  // Large deformation: the roller of finite_strain_two_bodies pressed down
+  // 0.05 by its top face, then lifted 0.025 above where it started.
+  std::string large = igac_test::read_file(kSource / "tests/data/finite_strain_two_bodies.toml");
+  large = replaced(large, "[[pressure]]\nfaces = [\"roller:top\"]\nvalue = 0.05\n",
+                   "[[dirichlet]]\nfaces = [\"roller:top\"]\ncomponent = \"y\"\nvalue = -0.05\n"
+                   "curve = [[0, 0], [1, 1], [2, -0.5]]\n");
+  const RunResult lifted = solved(large);
+  ASSERT_EQ(lifted.status, "converged");
+  ASSERT_GE(lifted.load_curve.size(), 3u);
+  double pressed = 0;
+  for (const LoadCurvePoint& p : lifted.load_curve) pressed = std::max(pressed, p.contact_force());
+  EXPECT_GT(pressed, 0.0);
+  EXPECT_EQ(lifted.load_curve.back().contact_force(), 0.0);
+  EXPECT_EQ(lifted.contacts.at(0).report.total_force, 0.0);
 }
 
 // Large deformation, two bodies and an obstacle: the steps cut back until the

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "model/case_spec.hpp"
+
+#include <algorithm>
+
+namespace igac {
+
+const CaseSource::Key* CaseSource::find(const Query& q) const {
+  for (const Key& k : keys)
+    if (k.table == q.table && (q.index < 0 || k.index == q.index) && (q.body < 0 || k.body == q.body) &&
+        (q.key == "*" ? !k.key.empty() : k.key == q.key) &&
+        (q.word.empty() || std::find(k.words.begin(), k.words.end(), q.word) != k.words.end()))
+      return &k;
+  return nullptr;
+}
+
+std::string CaseSource::at(const std::string& path, const Query& q) const {
+  const Key* k = find(q);
+  if (!k) {
+    Query table = q;
+    table.key = "";
+    table.word.clear();
+    k = find(table);
+  }
+  return k ? path + ":" + std::to_string(k->line) : path;
+}
+
+std::string CaseSpec::where(const BodySpec& b, const std::string& table, const std::string& key) const {
+  if (b.body_name.empty()) return where({.table = table, .key = key});
+  int index = -1;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].body_name == b.body_name) index = int(i);
+  return where({.table = "body." + table, .key = key, .body = index});
+}
+
+}  // namespace igac
