@@ -6,7 +6,8 @@
 //   igac study CASE.toml --levels N [--degree P] [--out DIR] [--quiet] [--solver petsc ...] (one process)
 //   igac geometry CASE.toml --out BODY.xml
 // Exit codes: 0 converged, 1 the solve failed (summary.json says why),
-// 2 bad input (one line on stderr naming file, key and reason).
+// 2 bad input (one line on stderr naming file, key and reason), 3 an
+// internal error ("igac: internal error: ...", a bug in igac).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>

@@ -16,7 +16,9 @@ namespace igac {
 
 ObstacleProbe MasterAsObstacle::probe(const Eigen::VectorXd& x, bool with_derivative) const {
   if (with_derivative)
-    throw std::logic_error("a master surface has no normal derivative here: two-body contact is small-deformation");
+    // (the reports and checks read the gap only; the large-deformation
+    // coupling linearises the master itself: contact/finite_strain_mortar)
+    throw std::logic_error("MasterAsObstacle::probe: no derivative: a master seen as an obstacle serves the reports only");
   const std::optional<MasterPoint> mp = master_->project(x);
   if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
   ObstacleProbe out;

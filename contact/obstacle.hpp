@@ -55,7 +55,8 @@ class TranslatedObstacle final : public Obstacle {
 };
 
 // The obstacle types a case file can name, one file each under
-// contact/obstacles/ and one line in contact/obstacle_registry.cpp.  A type
+// contact/obstacles/ (listed in contact/CMakeLists.txt) and one line in
+// kObstacleTypes (contact/obstacle.cpp).  A type
 // declares its keys; the case file checks them (presence, length, sign) with
 // one-line errors and hands the values to `make`.
 using ObstacleValues = std::map<std::string, std::vector<double>, std::less<>>;

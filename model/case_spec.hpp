@@ -66,8 +66,9 @@ struct ContactSpec {
   std::string face;      // the slave face: the multipliers live on it
   ObstacleSpec obstacle;  // a rigid obstacle, or:
   std::string master;     // the face of a second deformable body (empty: the obstacle)
-  std::vector<double> master_motion;  // a rigid translation of the master body with its supports (as an obstacle's motion)
-  double friction = 0;    // Coulomb coefficient (small deformation); 0: frictionless
+  std::vector<double> master_motion;  // a rigid translation of the master body with its supports (as an obstacle's
+                                      // motion; small deformation, refused in large)
+  double friction = 0;    // Coulomb coefficient (small and large deformation, obstacle or master); 0: frictionless
   std::string integration = "segmented";  // with master: "segmented" or "element" (contact/mortar_gap.hpp)
 };
 

@@ -72,13 +72,15 @@ struct Model {
   struct Contact {
     std::string face_name;
     std::unique_ptr<ContactFace> face;
-    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion); or
-    std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (obstacle null)
+    std::unique_ptr<Obstacle> obstacle;  // where it stands (small deformation: after its motion); with a
+                                         // master, the master at its reference position (MasterAsObstacle:
+                                         // the reports and checks read it, the coupling does not)
+    std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (null: a rigid obstacle)
     std::string master_name;
     Eigen::VectorXd motion;              // large deformation: the obstacle is moved by curve(t) * motion; a master
                                          // body: moved rigidly with its supports (small deformation)
     LoadCurve curve;                     // of the motion (no points: the factor is t)
-    double friction = 0;                 // Coulomb coefficient (small deformation)
+    double friction = 0;                 // Coulomb coefficient (small and large deformation, obstacle or master)
     MortarIntegration integration = MortarIntegration::segmented;  // with a master
   };
   std::vector<Contact> contacts;
