@@ -24,7 +24,7 @@
 #include "model/model.hpp"
 #include "model/progress.hpp"
 #include "model/solve.hpp"
-#include "contact/small_strain_friction.hpp"
+#include "contact/friction_state.hpp"
 #include "app/launcher.hpp"
 #include "engine/stopwatch.hpp"
 #include "io/gismo_xml.hpp"

@@ -47,7 +47,7 @@
 #include <vector>
 
 #include "contact/mortar_gap.hpp"
-#include "contact/small_strain_friction.hpp"  // FrictionHistory
+#include "contact/small_strain_friction.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/load_curve.hpp"
 
@@ -99,7 +99,7 @@ class FiniteStrainFriction {
   FrictionHistory history() const;
   void restore(const FrictionHistory& h, const Eigen::MatrixXd& u_from);
 
-  // The state of each multiplier (FrictionState, small_strain_friction.hpp)
+  // The state of each multiplier (FrictionState, friction_state.hpp)
   // for the normal multipliers, their weighted gaps gamma, the normal
   // rows' activity and the tangential multipliers, at (t, u).
   std::vector<char> states(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda_n,

@@ -32,6 +32,7 @@
 
 #include <memory>
 
+#include "contact/friction_state.hpp"
 #include "contact/small_strain_contact.hpp"
 
 namespace igac {
@@ -71,30 +72,6 @@ Eigen::VectorXd tangential_scales(double cn, double mesh_size, const Eigen::Vect
 // both tangential scales.
 Eigen::VectorXd per_multiplier_scales(double cn, double mesh_size, const Eigen::VectorXd& weights, int dim,
                                       double factor);
-
-// Per multiplier: 0 open, 1 stick, 2 slip.
-enum FrictionState : char { kOpen = 0, kStick = 1, kSlip = 2 };
-
-// What a frictional solve carries from one step to the next: its slip
-// history, as a restart reads it back from the step's state file
-// (io/state_file.hpp), so that the steps after it are the ones a run that
-// never stopped takes, bit for bit.
-//   small deformation (SmallStrainFriction): the weighted tangential
-//     position T u + t0 where the step ended, the accumulated slip, the
-//     state, slip direction (m x nt, row-major) and b / |xi| of each
-//     multiplier (the next step starts from them), and the Schur columns
-//     computed so far, in the order and the batches they were computed in
-//     (recomputed on restoring: the same columns, bit for bit);
-//   large deformation (FiniteStrainFriction): the slip accumulated up to
-//     the start of the step, and the time it started at (`from`); the rest
-//     is recomputed from the converged state there.
-struct FrictionHistory {
-  Eigen::VectorXd position, slip, direction, alpha;
-  std::vector<char> state;
-  std::vector<std::vector<int>> schur_batches;
-  double from = 0;
-  bool empty() const { return slip.size() == 0 && state.empty(); }
-};
 
 class SmallStrainFriction {
  public:

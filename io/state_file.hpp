@@ -22,7 +22,7 @@
 //           obstacle displacement, reactions (count, then per face set:
 //           name (length, bytes), force (length, doubles)), tangential
 //           forces (count, then per contact: length, doubles)
-//   friction history (FrictionHistory, contact/small_strain_friction.hpp;
+//   friction history (FrictionHistory, contact/friction_state.hpp;
 //           empty vectors without friction): position, slip, direction,
 //           alpha (each length, doubles), state (length, int64s), Schur
 //           batches (count, then each: length, int64s), from (double)

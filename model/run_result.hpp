@@ -12,7 +12,7 @@
 
 #include "contact/pressure.hpp"
 #include "contact/small_strain_contact.hpp"
-#include "contact/small_strain_friction.hpp"  // FrictionHistory
+#include "contact/friction_state.hpp"
 #include "engine/error_norms.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/load_stepping.hpp"

@@ -53,10 +53,9 @@ struct Outcome {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `igac ARGS` with the working directory `cwd`, capturing 2>&1;
-// `shell` runs first in the same shell (e.g. "ulimit -v N;").
-inline Outcome run_igac(const std::string& args, const std::filesystem::path& cwd, const std::string& shell = "") {
-  const std::string cmd = "cd " + quote(cwd.string()) + " && " + shell + " " + quote(IGAC_BINARY) + " " + args + " 2>&1";
+// Runs the shell command COMMAND (stderr joined to stdout) in `cwd`.
+inline Outcome run_command(const std::string& command, const std::filesystem::path& cwd) {
+  const std::string cmd = "cd " + quote(cwd.string()) + " && " + command + " 2>&1";
   Outcome o;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) {
@@ -69,6 +68,12 @@ inline Outcome run_igac(const std::string& args, const std::filesystem::path& cw
   const int status = pclose(pipe);
   o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return o;
+}
+
+// Runs `igac ARGS` with the working directory `cwd`, capturing 2>&1;
+// `shell` runs first in the same shell (e.g. "ulimit -v N;").
+inline Outcome run_igac(const std::string& args, const std::filesystem::path& cwd, const std::string& shell = "") {
+  return run_command(shell + " " + quote(IGAC_BINARY) + " " + args, cwd);
 }
 
 // The whole text of a file ("" when it cannot be read).
