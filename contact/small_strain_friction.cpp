@@ -37,6 +37,14 @@ struct SmallStrainFriction::Impl {
 
 SmallStrainFriction::~SmallStrainFriction() = default;
 
+namespace {
+// The state a closed multiplier starts from: stuck where it has friction;
+// a frictionless one (a contact of f = 0 beside frictional ones) slides
+// from the start, its tangential rows being zero (a stick unknown there
+// has no column: the system was singular at the first iteration).
+char closed_state(double f) { return f > 0 ? kStick : kSlip; }
+}  // namespace
+
 double slip_compliance(double alpha, double ct) {
   const double a = std::clamp(alpha, kMinAlpha, 1.0);
   return (1 - a) / (a * ct);
@@ -118,7 +126,7 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   s.slip_total = Eigen::VectorXd::Zero(s.m * s.nt);
   const std::vector<char> active = initial_active_set(op, s.k, opt);
   s.state.assign(s.m, kOpen);
-  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? kStick : kOpen;
+  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? closed_state(op.friction[i]) : char(kOpen);
   s.dir = Eigen::MatrixXd::Zero(s.m, s.nt);
   if (s.nt > 0) s.dir.col(0).setOnes();
   s.alpha = Eigen::VectorXd::Ones(s.m);
@@ -253,8 +261,14 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     rhs.tail(k) = -s.Rf;
     Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
     if (lu.rank() < nc + k) {
-      sol.status = "singular contact system: the active multipliers do not hold the body's rigid motions (with "
-                   "friction: a load along the obstacle above f times the normal force slides the body away)";
+      // Friction's reason only where a frictional multiplier slides: stuck
+      // ones hold the motion along the obstacle.
+      bool sliding = false;
+      for (int K = 0; K < m; ++K) sliding = sliding || (s.state[K] == kSlip && fr[K] > 0);
+      sol.status = std::string("singular contact system: the active multipliers do not hold the body's rigid motions") +
+                   (sliding ? " (with friction: a load along the obstacle above f times the normal force slides the "
+                              "body away)"
+                            : "");
       break;
     }
     const Eigen::VectorXd x = lu.solve(rhs);
@@ -316,7 +330,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
         if (restarts++ > 0) ct_factor *= 0.1;
         seen.clear();
         for (int K = 0; K < m; ++K)
-          if (next[K] != kOpen) next[K] = kStick;
+          if (next[K] != kOpen) next[K] = closed_state(fr[K]);
         s.state = next;
         continue;
       }

@@ -264,6 +264,38 @@ TEST(Friction, CattaneoMindlinStickZone) {
   EXPECT_NEAR(z.half_width, c, z.spacing);
 }
 
+// A frictional and a frictionless contact together: the block free of
+// Dirichlet conditions, pressed by P on its top onto the frictional plane,
+// pushed by q on its right side against a frictionless wall at x = 0.  It
+// stopped at the first iteration, "singular contact system ... (with
+// friction: a load along the obstacle above f times the normal force slides
+// the body away)": the wall's multipliers started stuck, with tangential
+// rows of zeros.  Now it converges and balances: the plane carries P, the
+// wall and the plane's friction together carry the push, the wall no
+// tangential force.
+TEST(Friction, FrictionalAndFrictionlessContactsTogether) {
+  const double P = 0.01, q = 0.2 * kF * P / 0.25;  // a push of 0.2 f N over the side's height 0.25
+  const std::string text = "[geometry]\nshape = \"rectangle\"\nsize = [1.0, 0.25]\n"
+                           "[mesh]\ndegree = 2\nelements = [16, 4]\n[material]\nE = 1.0\nnu = 0.0\n"
+                           "[[pressure]]\nfaces = [\"top\"]\nvalue = " + std::to_string(P) + "\n"
+                           "[[pressure]]\nfaces = [\"right\"]\nvalue = " + std::to_string(q) + "\n"
+                           "[[contact]]\nface = \"bottom\"\nfriction = 0.3\n"
+                           "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [0.0, 1.0]\n"
+                           "[[contact]]\nface = \"left\"\n"
+                           "[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0]\nnormal = [1.0, 0.0]\n";
+  const FrictionRun run = run_spec(read_case(write_case("wall", text).string()));
+  ASSERT_EQ(run.result.status, "converged");
+  ASSERT_EQ(run.result.reactions.size(), 2u);
+  const ObstacleReaction &plane = run.result.reactions[0], &wall = run.result.reactions[1];
+  EXPECT_NEAR(plane.normal_force, P, kRoundOff * P);
+  EXPECT_GT(wall.normal_force, 0.0);
+  // x: the wall's normal force (+x on the body) and the plane's friction
+  // (tangent +x) hold the push q h.
+  EXPECT_NEAR(wall.normal_force + plane.tangential_force[0], q * 0.25, kRoundOff * q);
+  ASSERT_EQ(wall.tangential_force.size(), 1);
+  EXPECT_EQ(wall.tangential_force[0], 0.0);
+}
+
 TEST(Friction, BadCoefficientIsOneLine) {
   const std::string base = block_case(kF, 0.05, 2);
   for (const std::string& bad : {std::string("-0.1"), std::string("nan"), std::string("10.5")}) {
