@@ -296,6 +296,19 @@ TEST(Friction, FrictionalAndFrictionlessContactsTogether) {
   EXPECT_EQ(wall.tangential_force[0], 0.0);
 }
 
+// [loading] on a frictionless linear case was refused, so a sweep of
+// friction 0, 0.1, ... over one case file broke at 0.  It is read, and the
+// case is still the one linear solve.
+TEST(Friction, SweepFromZeroKeepsTheLoadingTable) {
+  const std::string loading = "[loading]\nsteps = 4\n";
+  const FrictionRun with = run_spec(read_case(write_case("zero_loading", block_case(0.0, 0.0, 4) + loading).string()));
+  const FrictionRun without = run_spec(read_case(write_case("zero", block_case(0.0, 0.0, 4)).string()));
+  ASSERT_EQ(with.result.status, "converged");
+  EXPECT_EQ(with.result.u, without.result.u);
+  EXPECT_EQ(with.result.contact->solution.lambda, without.result.contact->solution.lambda);
+  EXPECT_EQ(with.result.contact->solution.lambda_t.size(), 0);
+}
+
 TEST(Friction, BadCoefficientIsOneLine) {
   const std::string base = block_case(kF, 0.05, 2);
   for (const std::string& bad : {std::string("-0.1"), std::string("nan"), std::string("10.5")}) {
