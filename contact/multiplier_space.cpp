@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "contact/multiplier_space.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace igac {
@@ -14,11 +15,7 @@ MultiplierSpace::MultiplierSpace(const NurbsPatch& face) {
     const auto b = kv.breakpoints();
     const auto m = kv.multiplicities();
     std::vector<double> k(p - 1, b.front());
-    for (size_t j = 1; j + 1 < b.size(); ++j) {
-      if (m[j] > p - 1)
-        throw SplineError(fmt::format("contact face knot {} has multiplicity {} > p-1 = {}", b[j], m[j], p - 1));
-      k.insert(k.end(), m[j], b[j]);
-    }
+    for (size_t j = 1; j + 1 < b.size(); ++j) k.insert(k.end(), std::min(m[j], p - 1), b[j]);
     k.insert(k.end(), p - 1, b.back());
     knots_.emplace_back(p - 2, std::move(k));
     size_ *= knots_.back().num_basis();

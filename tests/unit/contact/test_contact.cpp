@@ -33,6 +33,7 @@
 #include "engine/geometry/shapes.hpp"
 #include "engine/linear_static.hpp"
 #include "engine/spline/refinement.hpp"
+#include "engine/spline/split.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
@@ -121,15 +122,30 @@ TEST(ContactMultipliers, DegreeOneIsRefused) {
 }
 
 TEST(ContactMultipliers, InteriorMultiplicityFollowsTheDisplacement) {
-  // p = 3 with a double knot at 0.5 (C^1 -> C^0 there): the multipliers
-  // become discontinuous there, one more function; a triple knot (> p-1)
-  // is refused.
+  // p = 3 with a double knot at 0.5 (C^2 -> C^1 there): the multipliers
+  // become discontinuous there, one more function.
   const NurbsPatch base = quarter_disc_mesh(3, 4, 1);
   const NurbsPatch doubled = insert_knots(base, 0, {0.5}).patch;
   const ContactFace cf(doubled, kArc);
   EXPECT_EQ(cf.sides[0].space.size(), 4 + 1 + 1);
+}
+
+TEST(ContactMultipliers, C0KnotGivesTheSpaceOfTwoPatches) {
+  // A triple knot at p = 3 (the displacement C0 there, as a ring of one
+  // patch at its quarter points) was refused ("contact face knot 0.5 has
+  // multiplicity 3 > p-1 = 2"): the multipliers are discontinuous there,
+  // the double knot's space, which is the two halves' spaces side by side.
+  const NurbsPatch base = quarter_disc_mesh(3, 4, 1);
+  const NurbsPatch doubled = insert_knots(base, 0, {0.5}).patch;
   const NurbsPatch tripled = insert_knots(doubled, 0, {0.5}).patch;
-  EXPECT_THROW(ContactFace(tripled, kArc), SplineError);
+  const ContactFace c0(tripled, kArc), c1(doubled, kArc);
+  EXPECT_EQ(c0.sides[0].space.knots()[0].knots(), c1.sides[0].space.knots()[0].knots());
+  const auto [left, right] = split_patch(tripled, 0, 0.5);
+  EXPECT_EQ(c0.num_multipliers(), ContactFace(left, kArc).num_multipliers() + ContactFace(right, kArc).num_multipliers());
+  // At p = 2 a double knot is C0 (the issue's ring: "knot 0.25 has
+  // multiplicity 2 > p-1 = 1"): one constant per element, as everywhere.
+  const NurbsPatch p2 = insert_knots(quarter_disc_mesh(2, 4, 1), 0, {0.5}).patch;
+  EXPECT_EQ(ContactFace(p2, kArc).num_multipliers(), 4);
 }
 
 TEST(ContactMultipliers, PartitionOfUnity) {
