@@ -14,6 +14,7 @@
 #include <sundials/sundials_matrix.h>
 
 #include "engine/numerical_failure.hpp"
+#include "engine/progress_bar.hpp"
 #include "engine/stopwatch.hpp"
 
 namespace igac {
@@ -399,11 +400,11 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
         if (first_solve <= opt.fast_iterations) dt *= opt.growth;
         if (opt.on_state) opt.on_state({t, dt, dt_old, x, x_old});
         if (!opt.quiet)
-          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}{}\n",
+          fmt::print(stderr, "step {:3d}: {} {:.4f} (increment {:.3g}), {} Newton iterations, |R|/F {:.2e}, active {}{}{}{}\n",
                      steps_done, curves ? "time" : "load factor", t, h, a.record.newton_iterations,
                      a.record.residual_norms.back(), a.record.active_set_sizes.back(),
                      a.record.augmentations ? fmt::format(", {} augmentation(s)", a.record.augmentations) : "",
-                     cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "");
+                     cut_backs ? fmt::format(", {} cut-back(s)", cut_backs) : "", progress_suffix(t / corners.back()));
         if (on_step) on_step(summary.steps.back(), x);
         cut_backs = 0;
         done = true;

@@ -248,11 +248,11 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     step.step_state = std::move(state);
     r.timing.postprocess += clock.seconds();
     if (!m.quiet)
-      progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s)", steps.steps.size(), t,
+      progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s){}", steps.steps.size(), t,
                                 step.contact ? fmt::format(", {} active", std::count(step.contact->solution.active.begin(),
                                                                                      step.contact->solution.active.end(), 1))
                                              : "",
-                                progress.seconds()));
+                                progress.seconds(), progress_suffix(t / times.back())));
     if (on_step) on_step(step, t);
     last = std::move(step);
   }

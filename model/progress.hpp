@@ -7,11 +7,10 @@
 // the bar, with room for a busy machine).  Where the solve knows
 // how far it is (fraction(): the load steps' load factor over the last)
 // and stderr is a terminal, the heartbeat line ends with a bar
-// "[########------------] 40 %"; plain lines otherwise (a log, a pipe).
+// (engine/progress_bar.hpp), as the step lines do; plain lines otherwise
+// (a log, a pipe).
 // Quiet: nothing, and no thread.
 #pragma once
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -24,6 +23,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/progress_bar.hpp"
 #include "engine/stopwatch.hpp"
 
 namespace igac {
@@ -96,13 +96,6 @@ class Progress {
     std::lock_guard<std::mutex> lock(mutex_);
     fraction_ = done;
   }
-  // The heartbeat's bar at fraction `done` (clamped to [0, 1]), `width` cells.
-  static std::string bar(double done, int width = 20) {
-    const double f = std::clamp(std::isfinite(done) ? done : 0.0, 0.0, 1.0);
-    const int full = int(std::floor(f * width + 1e-9));
-    return fmt::format("[{}{}] {:.0f} %", std::string(size_t(full), '#'), std::string(size_t(width - full), '-'),
-                       std::floor(100 * f + 1e-9));
-  }
   double seconds() const { return offset_ + clock_.seconds(); }
   bool quiet() const { return quiet_; }
 
@@ -146,7 +139,7 @@ class Progress {
         }
         if (!phase_.empty())
           print(fmt::format("  ... still {} ({:.0f} s){}", phase_, seconds(),
-                            terminal_ && fraction_ >= 0 ? "  " + bar(fraction_) : std::string()));
+                            fraction_ >= 0 ? progress_suffix(fraction_) : std::string()));
         mark_line();
         continue;
       }
@@ -159,7 +152,6 @@ class Progress {
   Stopwatch clock_;
   std::string phase_;
   double fraction_ = -1;                             // not known
-  const bool terminal_ = isatty(STDERR_FILENO) == 1;  // a bar only where a person watches
   bool stop_ = false, held_ = false, late_release_ = false;
   std::function<void()> on_release_;  // of hold_until_late
   std::mutex mutex_;

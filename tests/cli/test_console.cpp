@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // What the console and the summary tell a user while and after a run
 // (issue 25): the header before the progress lines, a line per active-set
-// iteration, --quiet quiet; the [units] labels.
+// iteration, --quiet quiet; the [units] labels; the progress bar of the
+// step lines on a terminal, and not in a pipe.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <pty.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <string>
 
 #include "tests/support/igac_process.hpp"
@@ -89,6 +93,52 @@ TEST(Console, PlotAxesCarryTheUnits) {
   const std::string svg = igac_test::read_file(tmp.path() / "out" / "pressure.svg");
   EXPECT_NE(svg.find("[MPa]"), std::string::npos);
   EXPECT_NE(svg.find("[mm]"), std::string::npos);
+}
+
+// `igac ARGS` in `cwd` with its output on a pseudo-terminal, as `script`
+// runs it: what a person at a terminal sees (the pty writes \r\n).
+igac_test::Outcome run_on_terminal(const std::string& args, const fs::path& cwd) {
+  igac_test::Outcome o;
+  int master = -1;
+  const std::string cmd = "cd " + igac_test::quote(cwd.string()) + " && exec " + igac_test::quote(IGAC_BINARY) + " " + args;
+  const pid_t pid = forkpty(&master, nullptr, nullptr, nullptr);
+  if (pid < 0) {
+    ADD_FAILURE() << "forkpty failed";
+    return o;
+  }
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  char buf[4096];
+  for (ssize_t n; (n = read(master, buf, sizeof buf)) > 0;) o.output.append(buf, size_t(n));  // EIO once it ends
+  close(master);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+// The bar showed only in the heartbeat, after 4 s without a line, so a run
+// whose steps come faster never showed it (tried under `script`).  Now every
+// step line ends with it on a terminal: the load steps of large
+// deformation and the steps of a small-deformation load history, the last
+// at 100 %; in a pipe the lines stay plain.
+TEST(Console, StepLinesEndWithTheBarOnATerminal) {
+  igac_test::TempDir tmp("bar");
+  for (const std::string c : {"curve_block_neohookean.toml", "curve_block.toml"}) {
+    const std::string args = "run " + igac_test::quote(std::string(IGAC_SOURCE_DIR) + "/tests/data/" + c) + " --no-output";
+    const auto t = run_on_terminal(args, tmp.path());
+    ASSERT_EQ(t.exit_code, 0) << c << ": " << t.output;
+    EXPECT_NE(t.output.find("step   1: time "), std::string::npos) << t.output;
+    EXPECT_NE(t.output.find("%\r\n"), std::string::npos) << c << ": " << t.output;  // a step line ends with a bar
+    EXPECT_NE(t.output.find("  [####################] 100 %\r\n"), std::string::npos) << c << ": " << t.output;
+    const auto p = igac_test::run_igac(args, tmp.path());
+    ASSERT_EQ(p.exit_code, 0) << p.output;
+    EXPECT_NE(p.output.find("step   1: time "), std::string::npos) << p.output;
+    EXPECT_EQ(p.output.find("[#"), std::string::npos) << c << ": " << p.output;
+    EXPECT_EQ(p.output.find("%\n"), std::string::npos) << c << ": " << p.output;
+  }
 }
 
 }  // namespace

@@ -38,11 +38,11 @@ TEST(Progress, HeartbeatNamesWhatRunsLong) {
 }
 
 TEST(Progress, BarShowsTheFractionDone) {
-  EXPECT_EQ(Progress::bar(0.0), "[--------------------] 0 %");
-  EXPECT_EQ(Progress::bar(0.4), "[########------------] 40 %");
-  EXPECT_EQ(Progress::bar(1.0), "[####################] 100 %");
-  EXPECT_EQ(Progress::bar(1.7), Progress::bar(1.0));  // clamped
-  EXPECT_EQ(Progress::bar(-0.2, 4), "[----] 0 %");
+  EXPECT_EQ(progress_bar(0.0), "[--------------------] 0 %");
+  EXPECT_EQ(progress_bar(0.4), "[########------------] 40 %");
+  EXPECT_EQ(progress_bar(1.0), "[####################] 100 %");
+  EXPECT_EQ(progress_bar(1.7), progress_bar(1.0));  // clamped
+  EXPECT_EQ(progress_bar(-0.2, 4), "[----] 0 %");
 }
 
 TEST(Progress, QuietAndHeldPrintNothing) {
