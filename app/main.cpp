@@ -230,16 +230,28 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
   if (!out.empty()) fmt::print("  output        {}/summary.json\n", out);
 }
 
+// A run that asks for PETSc (--solver petsc, or [solver] type = "petsc"):
+// igac hands it to igac-petsc beside it (app/launcher.hpp); where there is
+// none (./run.sh builds igac only, and PETSc may not be installed) one line
+// says how to get it, before anything runs.  igac-petsc itself goes on.
+void petsc_or_refuse([[maybe_unused]] const CaseSpec& spec, [[maybe_unused]] const std::string& solver,
+                     [[maybe_unused]] char** argv) {
+#ifndef IGAC_WITH_PETSC
+  if ((solver.empty() ? spec.solver.type : solver) != "petsc") return;
+  hand_over_to_petsc_build(argv);
+  throw InputError(fmt::format("{}: {}: this igac has no PETSc solver (no igac-petsc beside it): "
+                               "`scripts/bootstrap.sh petsc` installs PETSc and Open MPI (Debian's libpetsc-real-dev "
+                               "and openmpi-bin) and builds it",
+                               spec.path, solver.empty() ? "[solver] type = \"petsc\"" : "--solver petsc"));
+#endif
+}
+
 int run_command(const std::string& path, std::string out, std::optional<int> refine, std::optional<int> degree,
                 bool quiet, bool no_output, const std::string& solver, const std::string& petsc_options,
                 const std::string& preconditioner, const RestartOptions& restart, char** argv) {
   const Stopwatch wall;  // the "time ... in all" of the console
   CaseSpec spec = read_case(path);
-#ifndef IGAC_WITH_PETSC
-  // The PETSc path lives in igac-petsc (app/launcher.hpp); without it the
-  // solve below says so in one line.
-  if ((solver.empty() ? spec.solver.type : solver) == "petsc") hand_over_to_petsc_build(argv);
-#endif
+  petsc_or_refuse(spec, solver, argv);
   apply_solver_options(spec, solver, petsc_options, preconditioner);
   apply_overrides(spec, degree, refine);
   if (process_rank() > 0) {  // the first process writes and prints
@@ -485,9 +497,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     CaseSpec spec = read_case(case_path);
-#ifndef IGAC_WITH_PETSC
-    if ((solver.empty() ? spec.solver.type : solver) == "petsc") hand_over_to_petsc_build(argv);
-#endif
+    petsc_or_refuse(spec, solver, argv);
     apply_solver_options(spec, solver, petsc_options, preconditioner);
     apply_overrides(spec, degree, {});
     // A study writes and prints as one program: PETSc on one process (its

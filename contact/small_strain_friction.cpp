@@ -126,7 +126,7 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   s.slip_total = Eigen::VectorXd::Zero(s.m * s.nt);
   const std::vector<char> active = initial_active_set(op, s.k, opt);
   s.state.assign(s.m, kOpen);
-  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? closed_state(op.friction[i]) : kOpen;
+  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? closed_state(op.friction[i]) : char(kOpen);
   s.dir = Eigen::MatrixXd::Zero(s.m, s.nt);
   if (s.nt > 0) s.dir.col(0).setOnes();
   s.alpha = Eigen::VectorXd::Ones(s.m);

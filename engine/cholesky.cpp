@@ -355,4 +355,16 @@ Eigen::VectorXd SparseCholesky::backward_full(const Eigen::VectorXd& y) const {
   return cholmod_system(CHOLMOD_Pt, I.L, cholmod_system(CHOLMOD_Lt, I.L, y, &I.c), &I.c);
 }
 
+Eigen::VectorXd SparseCholesky::pivots() const {
+  const auto& I = *impl_;
+  if (!I.L || !I.L->x) throw std::logic_error("SparseCholesky::pivots before factorize");
+  const int* P = static_cast<const int*>(I.L->Perm);
+  Eigen::VectorXd out(Eigen::Index(I.L->n));
+  for (int k = 0; k < int(I.L->nsuper); ++k) {
+    const Supernode s = supernode(I.L, k);
+    for (int j = 0; j < s.nscol; ++j) out[P[s.k1 + j]] = s.x[j * s.nsrow + j] * s.x[j * s.nsrow + j];
+  }
+  return out;
+}
+
 }  // namespace igac

@@ -68,6 +68,13 @@ class SparseCholesky {
   // (engine/condition_estimate.hpp); the factor must exist.
   double condition_estimate() const;
 
+  // The pivots L_jj^2 of the factor per original equation: what is left of
+  // the equation's own stiffness A_ii once every equation before it in the
+  // elimination is eliminated.  A_ii / pivot_i large (MSC Nastran's
+  // MAXRATIO) says A is nearly singular along a motion that moves that
+  // unknown: a near-mechanism.
+  Eigen::VectorXd pivots() const;
+
   bool analyzed() const;
   double analyze_seconds() const { return analyze_s_; }
   double factorize_seconds() const { return factorize_s_; }

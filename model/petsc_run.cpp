@@ -105,8 +105,8 @@ ElementRange process_elements(const Model&) { return {}; }
 void sum_over_processes(Eigen::VectorXd&) {}
 ContactSolution solve_with_petsc(const Model& m, LinearSystem&, const WeightedGapOperator&, const RigidModes&,
                                  const ContactSolverOptions&, LinearSolverRecord&) {
-  throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc (install "
-                               "libpetsc-real-dev, see scripts/bootstrap.sh, and rebuild)", m.spec.path));
+  throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "
+                               "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));
 }
 #endif
 

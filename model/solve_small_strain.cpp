@@ -17,6 +17,7 @@
 #include "engine/follower_pressure.hpp"
 #include "engine/prolongation.hpp"
 #include "model/deformation_check.hpp"
+#include "model/held_motions.hpp"
 #include "model/load_history.hpp"
 #include "model/petsc_run.hpp"
 #include "model/progress.hpp"
@@ -346,6 +347,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     t0.restart();
     r.u = m.dofs->expand(chol.solve(sys.f));
     r.timing.linear_solve = t0.seconds();
+    if (auto w = stiffness_warning(m, sys.K, {}, chol)) r.warnings.push_back(std::move(*w));
   } else {
     ContactSolve* c = &r.contact.emplace();
     c->op = std::move(*op);
@@ -380,6 +382,12 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     r.u = m.dofs->expand(c->solution.u);
     add_master_motions(m, r.u);
     t0.restart();
+    // A motion the stiffness or the contact barely holds (the factor is K's
+    // with the free rigid motions pinned).
+    if (!petsc && r.status == "converged") {
+      if (auto w = stiffness_warning(m, sys.K, modes.pinned, chol)) r.warnings.push_back(std::move(*w));
+      if (auto w = contact_hold_warning(m, c->op, c->solution, modes)) r.warnings.push_back(std::move(*w));
+    }
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active, c->solution.lambda_t);
     r.contacts = report_contacts(m, *c);
     // A rigid obstacle can only push: a net pull on the body (tensile

@@ -7,6 +7,7 @@
 // ends the run with a failed status (exit 1), never "converged".
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -429,6 +430,29 @@ TEST(SolverSection, UnknownTypeIsAnInputError) {
   const auto o = run_igac("run " + quote(c.string()) + " --out out", tmp.path());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("[solver] type: unknown solver 'magic'"), std::string::npos) << o.output;
+}
+
+// ./run.sh builds igac only, without igac-petsc (and installs no PETSc):
+// --solver petsc, or [solver] type = "petsc", is then one line saying how
+// to get it, exit 2, before anything runs or is written.  (It was a line
+// from the solve, after the setup, that named a package and "rebuild".)
+TEST(SolverSection, PetscWithoutIgacPetscSaysHowToGetIt) {
+  TempDir tmp("nopetsc");
+  fs::copy_file(IGAC_BINARY, tmp.path() / "igac");  // an igac with no igac-petsc beside it
+  const fs::path c = coarse_case("hertz2d", "[16, 4]", tmp.path());
+  const std::string igac = quote((tmp.path() / "igac").string());
+  const auto o = igac_test::run_command(igac + " run " + quote(c.string()) + " --solver petsc --out out", tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "igac: error: " + c.string() + ": --solver petsc: this igac has no PETSc solver (no igac-petsc "
+                      "beside it): `scripts/bootstrap.sh petsc` installs PETSc and Open MPI (Debian's libpetsc-real-dev "
+                      "and openmpi-bin) and builds it\n");
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+  std::ofstream(c, std::ios::app) << "\n[solver]\ntype = \"petsc\"\n";
+  const auto f = igac_test::run_command(igac + " run " + quote(c.string()) + " --out out", tmp.path());
+  EXPECT_EQ(f.exit_code, 2) << f.output;
+  EXPECT_NE(f.output.find(": [solver] type = \"petsc\": this igac has no PETSc solver"), std::string::npos) << f.output;
+  EXPECT_EQ(std::count(f.output.begin(), f.output.end(), '\n'), 1) << f.output;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
 }
 
 }  // namespace

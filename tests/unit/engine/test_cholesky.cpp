@@ -5,9 +5,13 @@
 // CHOLMOD never prints (its warnings go to stdout, where a run's summary is
 // read by people and scripts; an indefinite matrix is an exception the
 // caller handles, e.g. the Newton path's fallback, not a warning line).
+// The factor's pivots: their product is det A at round-off, and a matrix
+// nearly singular along some motion has one pivot far below its diagonal.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <dlfcn.h>
 #include <omp.h>
 #include <stdexcept>
@@ -89,6 +93,26 @@ TEST(CholeskyThreads, IndefiniteMatrixIsAnExceptionAndNothingIsPrinted) {
   threw = false;
   EXPECT_EQ(written_to(fileno(stderr), factorize_indefinite), "");
   EXPECT_TRUE(threw);
+}
+
+TEST(CholeskyPivots, ProductIsTheDeterminantAndANearNullVectorShowsAsOneSmallPivot) {
+  // A sum of the logs of n pivots: round-off about n eps.
+  constexpr double kLogRoundOff = 1e-12;
+  const int n = 200;
+  SparseCholesky chol;
+  chol.factorize(laplacian(n));
+  const Eigen::VectorXd d = chol.pivots();
+  ASSERT_EQ(d.size(), n);
+  EXPECT_NEAR(d.array().log().sum(), std::log(n + 1.0), kLogRoundOff * n);  // det = n + 1
+  EXPECT_LT((2.0 / d.array()).maxCoeff(), 10.0);  // A_ii / pivot_i: nothing nearly singular
+  // Shifted to 1e-9 of its smallest eigenvalue above singular: whatever the
+  // elimination order, the last pivot of the near-null vector's support
+  // keeps about 1e-9 of its stiffness, beyond MAXRATIO's 1e7.
+  const int m = 20;
+  const double lambda_min = 4 * std::pow(std::sin(std::numbers::pi / (2 * (m + 1))), 2);
+  SparseCholesky near;
+  near.factorize(laplacian(m, -lambda_min * (1 - 1e-9)));
+  EXPECT_GT((2.0 / near.pivots().array()).maxCoeff(), 1e7);
 }
 
 }  // namespace
