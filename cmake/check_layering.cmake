@@ -40,6 +40,7 @@ set(allowed
     engine/spline/bezier_extraction   # ParaView's rational Bezier cells are the extraction operators
     engine/geometry/shapes            # the built-in shapes' names and keys (case files)
     engine/geometry/multipatch        # a multi-patch geometry (G+Smo XML files)
+    engine/load_curve                 # LoadCurve, a case's curves, and how many load steps they make (case files)
     contact/obstacle                  # the obstacle types' names and keys (case files)
     contact/friction_state            # open / stick / slip and the slip history (outputs, state files)
     materials/hyperelastic            # the material laws' names and keys (case files)
