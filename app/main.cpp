@@ -10,6 +10,7 @@
 // internal error ("igac: internal error: ...", a bug in igac).
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -290,7 +291,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   const StateOrigin origin{fnv1a64_of_file(path), run_options(spec)};
   EarlierRun earlier;
   if (!restart.dir.empty()) {
-    earlier = read_earlier_run(path, origin.options, restart);
+    earlier = read_earlier_run(model.spec, origin.options, restart);
     model.resume = earlier.steps;
   }
   model.stop_after_step = restart.stop_after_step;
@@ -305,7 +306,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!quiet && earlier.stopped)
     fmt::print(stderr, "igac: continuing after step {} of the run stopped in {}\n", model.resume.size(), earlier.folder);
   if (folder && !model.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
-    series.resume(adopt_earlier_steps(earlier.folder, dir, int(model.resume.size()), vtk));
+    series.resume(adopt_earlier_steps(earlier, dir, vtk));
     if (vtk) write_pvd(dir, series.steps());
     // Our staging folder now holds the steps: it is the stopped run if this one stops too.
     folder->keep_on_termination();
@@ -377,7 +378,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     // ParaView files (and the stress recovery they need) only when asked for.
     if (vtk && !stepped && finite) series.write_step(model, r, 1.0);
     write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
-    folder->commit();
+    if (const std::string note = folder->commit(); !note.empty()) fmt::print(stderr, "igac: warning: {}\n", note);
   }
   if (!quiet && !header) print_header(model);
   if (!quiet) print_summary(model, r, folder ? folder->target() : std::string(), wall.seconds());
@@ -422,11 +423,21 @@ int main(int argc, char** argv) {
   RestartOptions restart;
   run->add_option("--restart", restart.dir,
                   "continue the run whose output is in this folder (same case file) after its last step");
+  // (CLI::PositiveNumber's message printed the range up to DBL_MAX, 309 digits)
+  const CLI::Validator step_number(
+      [](std::string& s) {
+        int v = 0;
+        const auto [end, err] = std::from_chars(s.data(), s.data() + s.size(), v);
+        return err == std::errc() && end == s.data() + s.size() && v >= 1
+                   ? std::string()
+                   : fmt::format("{:?} is not a step number (1, 2, ...)", s);
+      },
+      "STEP");
   run->add_option("--from-step", restart.from_step, "with --restart: continue after this step instead of the last")
       ->needs("--restart")
-      ->check(CLI::PositiveNumber);
+      ->check(step_number);
   run->add_option("--stop-after-step", restart.stop_after_step, "stop once this many load steps are done")
-      ->check(CLI::PositiveNumber);
+      ->check(step_number);
 
   auto* study = app.add_subcommand("study", "refinement study on nested meshes");
   study->add_option("case", case_path, "case file (TOML)")->required();
@@ -485,6 +496,11 @@ int main(int argc, char** argv) {
       say("igac: error: --out: an empty folder name (give a folder, or leave --out out for out/<name>)");
       return 2;
     }
+  // The same for --restart: an empty one started the run afresh, silently.
+  if (run->parsed() && run->get_option("--restart")->count() > 0 && restart.dir.empty()) {
+    say("igac: error: --restart: an empty folder name (give the output folder of the run to continue)");
+    return 2;
+  }
   try {
     if (run->parsed()) return run_command(case_path, out, refine, degree, quiet, no_output, solver, petsc_options,
                                           preconditioner, restart, argv);

@@ -14,10 +14,12 @@
 #include <fmt/ranges.h>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <vector>
 
 #include "app/launcher.hpp"
 #include "io/case_file.hpp"
+#include "io/input_file.hpp"
 #include "io/json_out.hpp"
 
 namespace igac {
@@ -49,12 +51,17 @@ bool is_igac_output_name(const std::string& f) {
 // What in the existing folder `dir` igac did not write (at most a few names).
 std::vector<std::string> foreign_entries(const fs::path& dir) {
   std::set<std::string> ours{kManifest};
-  std::ifstream manifest(dir / kManifest);
-  const bool has_manifest = bool(manifest);
-  for (std::string line; std::getline(manifest, line);)
-    if (!line.empty()) ours.insert(line);
-  std::vector<std::string> out;
+  bool has_manifest = false;
   std::error_code ec;
+  if (fs::exists(fs::symlink_status(dir / kManifest, ec))) try {
+      // (a FIFO or a device there is not a manifest, and is foreign below)
+      std::istringstream manifest(read_input_file((dir / kManifest).string(), kManifestFile));
+      has_manifest = true;
+      for (std::string line; std::getline(manifest, line);)
+        if (!line.empty()) ours.insert(line);
+    } catch (const InputError&) {
+    }
+  std::vector<std::string> out;
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string f = e.path().filename().string();
     const bool listed = has_manifest ? ours.count(f) > 0 : is_igac_output_name(f);
@@ -160,7 +167,7 @@ void OutputFolder::create_staging(const std::string& keep) {
     throw bad(fmt::format("cannot create a folder beside it ({})", ec ? ec.message() : "already exists"));
 }
 
-void OutputFolder::commit() {
+std::string OutputFolder::commit() {
   std::error_code ec;
   {  // the manifest: what this run wrote, the only files a later run may replace
     std::vector<std::string> names;
@@ -176,10 +183,36 @@ void OutputFolder::commit() {
   } else {
     if (renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0)
       throw std::runtime_error(fmt::format("cannot move the results into {}: {}", target_, std::strerror(errno)));
-    fs::remove_all(staging_, ec);  // now the previous run's files
+    // staging_ now holds the previous output.  Of it, only what igac wrote
+    // (its manifest) goes: anything put there since the check at the start
+    // goes into the new output (where a later run refuses it as not igac's,
+    // so it is never deleted), or, where the new output has a file of its
+    // name, stays with the rest in a visible folder beside.
+    std::vector<std::string> clashing;
+    for (const std::string& f : foreign_entries(staging_)) {
+      const fs::path from = fs::path(staging_) / f, to = fs::path(target_) / f;
+      if (fs::exists(fs::symlink_status(to, ec)) || (fs::rename(from, to, ec), ec)) clashing.push_back(f);
+    }
+    if (clashing.empty()) {
+      fs::remove_all(staging_, ec);  // now igac's files only
+      committed_ = true;
+      remove_on_termination("");
+      return {};
+    }
+    // (RENAME_NOREPLACE: a folder of that name, even an empty one, stays as it is)
+    std::string kept = staging_;
+    for (int k = 0; k < 100 && kept == staging_; ++k) {
+      const std::string name = fmt::format("{}.igac-kept-{}{}", target_, getpid(), k ? fmt::format("-{}", k) : "");
+      if (renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, name.c_str(), RENAME_NOREPLACE) == 0) kept = name;
+    }
+    committed_ = true;
+    remove_on_termination("");
+    return fmt::format("--out '{}': {} put there during the run, where the run wrote a file of the same name: kept in "
+                       "{}, with the previous output", target_, fmt::join(clashing, ", "), kept);
   }
   committed_ = true;
   remove_on_termination("");
+  return {};
 }
 
 void OutputFolder::keep_on_termination() {

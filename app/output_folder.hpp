@@ -41,9 +41,14 @@ class OutputFolder {
   // Where the run writes its files.
   const std::string& staging() const { return staging_; }
   const std::string& target() const { return target_; }
-  // Puts the staged files in place of the target, atomically.  Throws
-  // std::runtime_error naming the folder when the file system refuses.
-  void commit();
+  // Puts the staged files in place of the target, atomically, and removes
+  // of the previous output only the files igac wrote (its manifest): what
+  // anyone put into the target during the run is moved into the new output,
+  // or, where the run wrote a file of its name, kept with the previous
+  // output in a folder beside, TARGET.igac-kept-PID.  Returns "" or, then, a
+  // line saying so.  Throws std::runtime_error naming the folder when the
+  // file system refuses the swap.
+  std::string commit();
 
  private:
   std::string target_, staging_;

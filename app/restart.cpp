@@ -2,15 +2,19 @@
 #include "app/restart.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
 
 #include "app/output_folder.hpp"
+#include "engine/load_curve.hpp"
+#include "engine/load_stepping.hpp"
+#include "io/input_file.hpp"
 #include "io/json_out.hpp"
 #include "io/state_file.hpp"
 
@@ -60,15 +64,119 @@ std::string options_that_differ(const std::string& earlier, const std::string& n
 
 }  // namespace
 
-EarlierRun read_earlier_run(const std::string& case_path, const std::string& options, const RestartOptions& o) {
-  EarlierRun run{o.dir, false, {}};
+namespace {
+
+// The slack of a time (absolute) or an increment (relative) read back
+// against the bounds the driver keeps: it ends a run within 1e-12 of its
+// last corner (engine/load_stepping.cpp), and rounds an increment it grows.
+constexpr double kScheduleSlack = 1e-12;
+
+// The earlier run's steps are steps this case takes (a state file's t and
+// dt are read back, and the driver believed them: a t of NaN or 1e300 ended
+// the run at once as "converged", a dt of 0 or below ran it forever).  In
+// small deformation the times are the case's own (engine/load_curve.hpp,
+// step_times); in large deformation they increase inside the case's span,
+// and the next increment is one its [loading] gives: at least the smallest
+// it cuts back to (or the first, when that is smaller), at most the largest
+// grown once; a run that has reached the end takes no increment more.
+void check_schedule(const CaseSpec& spec, const fs::path& dir, const std::vector<StepState>& steps) {
+  const std::vector<double> corners = curve_corners(spec.load_curves());
+  const double end = corners.back();
+  const std::vector<double> times = spec.finite_strain() ? std::vector<double>{} : step_times(corners, spec.loading.steps);
+  const LoadingSpec& l = spec.loading;
+  const double first = l.first_increment > 0 ? l.first_increment : 1.0 / l.steps;
+  const double lo = std::min(l.min_increment, first), hi = l.max_increment * LoadSteppingOptions{}.growth;
+  double before = 0;
+  for (const StepState& s : steps) {
+    const auto bad = [&](const std::string& why) {
+      return InputError(fmt::format("{}: not a state of this case: {}", (dir / state_file_name(s.step)).string(), why));
+    };
+    const LoadSteppingState& d = s.driver;
+    if (!times.empty()) {
+      if (size_t(s.step) > times.size() || !(d.t == times[size_t(s.step) - 1]))
+        throw bad(fmt::format("t = {}, where this case has {}", d.t,
+                              size_t(s.step) > times.size() ? fmt::format("{} steps", times.size())
+                                                            : fmt::format("step {} at t = {}", s.step, times[size_t(s.step) - 1])));
+    } else if (!(d.t > before && d.t <= end + kScheduleSlack)) {
+      throw bad(fmt::format("t = {}, where step {} lies in ({}, {}]", d.t, s.step, before, end));
+    }
+    if (!(s.record.load_factor == d.t && s.point.load_factor == d.t))
+      throw bad(fmt::format("its step's record is at t = {} and {}, its state at {}", s.record.load_factor,
+                            s.point.load_factor, d.t));
+    if (spec.finite_strain()) {
+      const double low = d.t < end - kScheduleSlack ? lo : 0;  // (the last step's dt is what remained of the span)
+      if (!(d.dt > 0 && d.dt >= low * (1 - kScheduleSlack) && d.dt <= hi * (1 + kScheduleSlack)))
+        throw bad(fmt::format("the next increment dt = {} lies outside [{}, {}], where [loading] puts it", d.dt,
+                              low, hi));
+      if (!(d.dt_old >= 0 && d.dt_old <= l.max_increment * (1 + kScheduleSlack)))
+        throw bad(fmt::format("the last increment dt_old = {} lies outside [0, {}]", d.dt_old, l.max_increment));
+    }
+    if (!d.x.allFinite() || !d.x_old.allFinite()) throw bad("its unknowns hold a number that is not finite");
+    before = d.t;
+  }
+}
+
+// An entry of the earlier run's .pvd is one of the files igac wrote there:
+// a plain name in that folder (never "../x" nor "/x": those files are linked
+// into the new output, and the name there is removed first), a regular file.
+void check_pvd_entry(const fs::path& folder, const std::string& where, const std::string& file) {
+  static const std::regex igac_name(R"re([A-Za-z0-9_.-]+_\d{4,}\.vtu)re");
+  if (!std::regex_match(file, igac_name))
+    throw InputError(fmt::format("{}: file={:?} is not the name of a ParaView file igac writes (NAME_NNNN.vtu in the "
+                                 "run's own folder)", where, file));
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(folder / file, ec)))
+    throw InputError(fmt::format("{}: {} is not there, or not a regular file", where, (folder / file).string()));
+}
+
+// The steps 0..n of the earlier run's solution.pvd (none when it has none).
+std::vector<VtkStep> read_pvd(const fs::path& folder, int n) {
+  std::vector<VtkStep> steps;
+  const fs::path path = folder / "solution.pvd";
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(path, ec))) return steps;
+  std::istringstream pvd(read_input_file(path.string(), kPvdFile));
+  // <DataSet timestep="T" part="K" name="NAME" file="FILE_NNNN.vtu"/>, the parts of a step one after the other
+  static const std::regex line(R"re(<DataSet timestep="([^"]*)" part="(\d+)" name="([^"]*)" file="([^"]*)"/>)re");
+  int number = 0;
+  for (std::string text; std::getline(pvd, text);) {
+    const std::string where = fmt::format("{}:{}", path.string(), ++number);
+    std::smatch m;
+    if (!std::regex_search(text, m, line)) {
+      if (text.find("<DataSet") != std::string::npos)
+        throw InputError(fmt::format("{}: not a <DataSet .../> line igac writes", where));
+      continue;
+    }
+    const std::string t = m[1], file = m[4];
+    check_pvd_entry(folder, where, file);
+    double time = 0;
+    const auto [end, err] = std::from_chars(t.data(), t.data() + t.size(), time);
+    if (err != std::errc() || end != t.data() + t.size() || !std::isfinite(time))
+      throw InputError(fmt::format("{}: timestep={:?} is not a number", where, t));
+    const std::string digits = file.substr(file.rfind('_') + 1, file.size() - file.rfind('_') - 5);
+    if (digits.size() > 9) throw InputError(fmt::format("{}: {} is beyond any step", where, file));
+    const int step = std::stoi(digits);
+    if (step > n) continue;
+    if (m[2] == "0") steps.push_back({step, time, {}, {}});
+    if (steps.empty()) continue;
+    steps.back().files.push_back(file);
+    steps.back().parts.push_back(m[3]);
+  }
+  return steps;
+}
+
+}  // namespace
+
+EarlierRun read_earlier_run(const CaseSpec& spec, const std::string& options, const RestartOptions& o) {
+  EarlierRun run{o.dir, false, {}, {}};
   // A run into the folder that was stopped before it ended (its staging
   // folder, kept for this): the later one, with the most steps.
   int last = 0;
   for (const std::string& s : stopped_runs_beside(o.dir))
-    if (const int n = last_state_in(s); n > last) run = {s, true, {}}, last = n;
+    if (const int n = last_state_in(s); n > last) run = {s, true, {}, {}}, last = n;
   const fs::path dir(run.folder);
   if (!run.stopped) last = last_state_in(dir);
+  const std::string& case_path = spec.path;
   const std::string hash = fnv1a64_of_file(case_path);
   if (last == 0) {
     if (!fs::exists(dir / "summary.json"))
@@ -94,12 +202,15 @@ EarlierRun read_earlier_run(const std::string& case_path, const std::string& opt
     if (written_with.case_hash != hash || written_with.options != options || run.steps.back().step != k)
       throw InputError(fmt::format("--restart {}: {} is not step {} of this run", o.dir, state_file_name(k), k));
   }
+  check_schedule(spec, dir, run.steps);
+  if (spec.write_vtk) run.vtk_steps = read_pvd(dir, n);
   return run;
 }
 
 namespace {
 // A file of the earlier run into the new output: a hard link (nothing is
-// copied, and the earlier folder may go), a copy where that fails.
+// copied, and the earlier folder may go), a copy where that fails.  Both
+// names are plain names in their folders (read_pvd, state_file_name).
 void adopt_file(const fs::path& from, const fs::path& to) {
   std::error_code ec;
   fs::remove(to, ec);
@@ -108,25 +219,13 @@ void adopt_file(const fs::path& from, const fs::path& to) {
 }
 }  // namespace
 
-std::vector<VtkStep> adopt_earlier_steps(const std::string& dir, const std::string& staging, int n, bool vtk) {
-  for (int k = 1; k <= n; ++k) adopt_file(fs::path(dir) / state_file_name(k), fs::path(staging) / state_file_name(k));
-  std::vector<VtkStep> steps;
-  std::ifstream pvd(fs::path(dir) / "solution.pvd");
-  if (!vtk || !pvd) return steps;
-  // <DataSet timestep="T" part="K" name="NAME" file="FILE_NNNN.vtu"/>, the parts of a step one after the other
-  static const std::regex line(R"re(<DataSet timestep="([^"]+)" part="(\d+)" name="([^"]+)" file="([^"]+_(\d{4})\.vtu)"/>)re");
-  for (std::string text; std::getline(pvd, text);) {
-    std::smatch m;
-    if (!std::regex_search(text, m, line)) continue;
-    const int step = std::stoi(m[5]);
-    if (step > n) continue;
-    if (m[2] == "0") steps.push_back({step, std::stod(m[1]), {}, {}});
-    if (steps.empty()) continue;
-    steps.back().files.push_back(m[4]);
-    steps.back().parts.push_back(m[3]);
-    adopt_file(fs::path(dir) / std::string(m[4]), fs::path(staging) / std::string(m[4]));
-  }
-  return steps;
+std::vector<VtkStep> adopt_earlier_steps(const EarlierRun& run, const std::string& staging, bool vtk) {
+  const fs::path from(run.folder), to(staging);
+  for (const StepState& s : run.steps) adopt_file(from / state_file_name(s.step), to / state_file_name(s.step));
+  if (!vtk) return {};
+  for (const VtkStep& step : run.vtk_steps)
+    for (const std::string& f : step.files) adopt_file(from / f, to / f);
+  return run.vtk_steps;
 }
 
 }  // namespace igac

@@ -40,23 +40,26 @@ struct RestartOptions {
 std::string run_options(const CaseSpec& spec);
 
 // The earlier run a restart continues: the folder its state files are in,
-// whether that is a stopped run's staging folder, and its steps 1..N.
+// whether that is a stopped run's staging folder, its steps 1..N, and the
+// steps 0..N of its solution.pvd (none without one, or with [output] vtk = false).
 struct EarlierRun {
   std::string folder;
   bool stopped = false;
   std::vector<StepState> steps;
+  std::vector<VtkStep> vtk_steps;
 };
 
-// Finds and checks the earlier run of options.dir (above): its state files
-// were written from the same case file (the hash of `case_path`) with the
-// same `options` (run_options).  Throws InputError in one line naming what
-// differs or what is missing.
-EarlierRun read_earlier_run(const std::string& case_path, const std::string& options, const RestartOptions& o);
+// Finds and checks the earlier run of o.dir (above), writing nothing: its
+// state files were written from the same case file (the hash of spec.path)
+// with the same `options` (run_options), are whole (their checksums), and
+// are steps of the case's schedule (their times and next increments); its
+// solution.pvd names only ParaView files of its own folder.  Throws
+// InputError in one line naming the file and what differs or is wrong.
+EarlierRun read_earlier_run(const CaseSpec& spec, const std::string& options, const RestartOptions& o);
 
-// Takes the earlier run's files of steps 0..n (the .vtu listed in its
-// solution.pvd, when it has one and `vtk`, and the state files) into
-// `staging` (hard links, copies where the file system has none); returns
-// the .pvd's steps among them.
-std::vector<VtkStep> adopt_earlier_steps(const std::string& dir, const std::string& staging, int n, bool vtk);
+// Takes the earlier run's files of its steps (the state files and, with
+// `vtk`, the .vtu of its .pvd's steps) into `staging` (hard links, copies
+// where the file system has none); returns the .pvd's steps.
+std::vector<VtkStep> adopt_earlier_steps(const EarlierRun& run, const std::string& staging, bool vtk);
 
 }  // namespace igac

@@ -100,7 +100,7 @@ int run_study(CaseSpec spec, const StudyOptions& opt) {
       for (auto& e : plotted) e.values.push_back(errors[l].at(e.name));
     }
     write_file_atomically(dir + "/study.svg", svg::render(study_figure(h, plotted, spec.name)));
-    folder->commit();
+    if (const std::string note = folder->commit(); !note.empty()) fmt::print(stderr, "igac: warning: {}\n", note);
   }
   return 0;
 }

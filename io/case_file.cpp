@@ -20,7 +20,9 @@
 #include "engine/geometry/shapes.hpp"
 #include "engine/load_curve.hpp"
 #include "io/gismo_xml.hpp"
+#include "io/input_file.hpp"
 #include "io/case_section.hpp"
+#include "io/case_table.hpp"
 #include "io/toml_guard.hpp"
 #include "model/references.hpp"
 #include "materials/hyperelastic.hpp"
@@ -182,6 +184,10 @@ void read_bodies(const std::string& path, const toml::table& root, CaseSpec& c) 
   for (const BodySpec& b : c.bodies) c.degree = std::min(c.degree, b.degree);
 }
 
+bool has_control_character(std::string_view text) {
+  return std::any_of(text.begin(), text.end(), [](unsigned char ch) { return ch < 32 || ch == 127; });
+}
+
 // A case with load curves: what they do not run with, one line; then every
 // load without a curve of its own ramps to its value over [0, 1] and keeps it.
 void check_load_curves(CaseSpec& c) {
@@ -291,28 +297,23 @@ void check_load_step_count(const CaseSpec& c, const toml::table& root, const std
 
 }  // namespace
 
-CaseSpec read_case(const std::string& path) {
-  std::error_code ec;  // (a symlink loop, a folder without search permission: not a library's words, exit 1)
-  const auto st = std::filesystem::status(path, ec);
-  if (st.type() == std::filesystem::file_type::not_found) throw InputError(fmt::format("{}: no such case file", path));
-  if (!std::filesystem::exists(st))
-    throw InputError(fmt::format("{}: cannot read the case file ({})", path, ec.message()));
-  if (!std::filesystem::is_regular_file(st))
-    throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a case file must be a regular file", path));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the case file ({})", path, std::strerror(errno)));
-  return read_case_text(std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}, path);
-}
+CaseSpec read_case(const std::string& path) { return read_case_text(read_input_file(path, kCaseFile), path); }
 
-CaseSpec read_case_text(const std::string& text, const std::string& path) {
+toml::table parse_case_text(const std::string& text, const std::string& path) {
   if (const auto line = overlong_toml_key(text))  // (toml++ would overflow its stack)
     throw InputError(fmt::format("{}:{}: a key of more than {} dotted parts", path, *line, kMaxTomlKeyParts));
-  toml::table root;
   try {
-    root = toml::parse(text, path);
+    return toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw InputError(fmt::format("{}:{}: malformed TOML: {}", path, e.source().begin.line, e.description()));
   }
+}
+
+CaseSpec read_case_text(const std::string& text, const std::string& path) {
+  return read_case_table(parse_case_text(text, path), path);
+}
+
+CaseSpec read_case_table(const toml::table& root, const std::string& path) {
   CaseSpec c;
   c.path = path;
   {
@@ -324,7 +325,8 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
   // The name becomes a folder under out/: a plain file name, nothing that
   // climbs out of it or that a shell or a file system would read otherwise.
   const bool plain = !c.name.empty() && c.name != "." && c.name != ".." && c.name.size() <= 200 &&
-                     std::none_of(c.name.begin(), c.name.end(), [](unsigned char ch) { return ch == '/' || ch == '\\' || ch < 32 || ch == 127; });
+                     !has_control_character(c.name) &&
+                     std::none_of(c.name.begin(), c.name.end(), [](unsigned char ch) { return ch == '/' || ch == '\\'; });
   if (!plain)
     top.fail("name", fmt::format("{:?} is not a plain file name (it names the output folder out/<name>: "
                                  "no '/', not empty, not '.' or '..')", c.name));
@@ -346,7 +348,11 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
   if (root.contains("faces")) {  // names of one's own for sets of faces
     const toml::table& ft = top.sub("faces");
     std::set<std::string> keys;
-    for (const auto& [k, v] : ft) keys.insert(std::string(k.str()));
+    for (const auto& [k, v] : ft) {
+      keys.insert(std::string(k.str()));
+      if (has_control_character(k.str()))  // (a face's name is printed, and titles the SVG plots)
+        top.fail("faces", fmt::format("the name {:?} holds a control character", std::string(k.str())), &v);
+    }
     const Section faces(path, "faces", ft, keys);
     for (const auto& k : keys) c.face_sets[k] = faces.strings(k);
   }
@@ -544,6 +550,12 @@ CaseSpec read_case_text(const std::string& text, const std::string& path) {
     u.length = s.string("length", u.length);
     u.force = s.string("force", u.force);
     u.stress = s.string("stress", u.stress);
+    // Labels printed on the console and in the SVG plots, which XML forbids
+    // control characters in (and a terminal reads as commands).
+    for (const auto& [key, label] : {std::pair{"length", &u.length}, {"force", &u.force}, {"stress", &u.stress}})
+      if (has_control_character(*label))
+        s.fail(key, fmt::format("{:?} holds a control character: a unit's name is a label (\"mm\", \"N\", \"MPa\")",
+                                *label));
   }
   check_load_curves(c);
   check_load_step_count(c, root, path);

@@ -26,6 +26,18 @@ inline const std::set<std::string> kGeometryFileKeys{"radius", "inner_radius", "
 inline const std::set<std::string> kMeshKeys{"degree", "elements", "refine", "grading"};
 inline const std::set<std::string> kGradingKeys{"direction", "toward", "span_fraction", "range_fraction", "coarse"};
 
+// Where a node of the case stands, for messages: "case.toml:12"; for a
+// node set from elsewhere, whose source is named otherwise (a Python
+// override, io/case_table.hpp), "case.toml: override 'material.E'"; the
+// file alone when nothing says (a table made to hold an override, a case
+// given as a Python dict).
+inline std::string node_place(const std::string& file, const toml::node* n) {
+  if (!n) return file;
+  const toml::source_region& s = n->source();
+  if (s.path && *s.path != file) return fmt::format("{}: {}", file, *s.path);
+  return s.begin.line ? fmt::format("{}:{}", file, s.begin.line) : file;
+}
+
 // A view of one TOML table that knows its name for messages and refuses
 // keys it does not expect.
 class Section {
@@ -38,17 +50,16 @@ class Section {
         fail(std::string(k.str()),
              fmt::format("unknown key{} (expected one of: {})", near ? fmt::format("; did you mean '{}'?", *near) : "",
                          fmt::join(allowed, ", ")),
-             v.source().begin.line);
+             &v);
       }
   }
-  // Names the key's line, or for a key the table lacks its header's (the
-  // top level has none).
-  [[noreturn]] void fail(const std::string& key, const std::string& why, int line = 0) const {
-    if (!line)
-      if (const auto* n = t_.get(key)) line = int(n->source().begin.line);
-    if (!line && name_ != "top level") line = int(t_.source().begin.line);
-    const std::string where = line ? fmt::format("{}:{}", file_, line) : file_;
-    throw InputError(fmt::format("{}: [{}] {}: {}", where, name_, key, why));
+  // "FILE:LINE: [name] key: why", where the node `at` stands (by default
+  // the key's; for a key the table lacks, its header's: the top level has
+  // none) (node_place).
+  [[noreturn]] void fail(const std::string& key, const std::string& why, const toml::node* at = nullptr) const {
+    if (!at) at = t_.get(key);
+    if (!at && name_ != "top level") at = &t_;
+    throw InputError(fmt::format("{}: [{}] {}: {}", node_place(file_, at), name_, key, why));
   }
   bool has(const std::string& key) const { return t_.contains(key); }
   const toml::node* node(const std::string& key) const { return t_.get(key); }
@@ -122,7 +133,8 @@ class Section {
   bool boolean(const std::string& key, bool def) const {
     const auto* n = t_.get(key);
     if (!n) return def;
-    if (auto v = n->value<bool>()) return *v;
+    // (is_boolean: toml++'s value<bool>() takes an integer too, and vtk = 0 read as false)
+    if (n->is_boolean()) return *n->value<bool>();
     fail(key, "must be true or false");
   }
   std::vector<double> numbers(const std::string& key, std::optional<size_t> len = {}) const {
@@ -213,7 +225,7 @@ inline std::vector<const toml::table*> tables(const std::string& file, const tom
     }
     if (out.size() == a->size()) return out;
   }
-  throw InputError(fmt::format("{}:{}: {}: must be a table ([{}] or [[{}]])", file, n->source().begin.line, key, key, key));
+  throw InputError(fmt::format("{}: {}: must be a table ([{}] or [[{}]])", node_place(file, n), key, key, key));
 }
 
 

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "io/case_file.hpp"
+#include "io/input_file.hpp"
 #include "io/json_out.hpp"
 
 namespace igac {
@@ -416,18 +417,8 @@ void read_topology(const Source& src, pugi::xml_node mp, const std::map<long, in
 
 
 MultiPatch read_gismo_xml(const std::string& path) {
-  // Regular files only: a FIFO would be read forever, /dev/zero until the
-  // memory runs out.
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw InputError(fmt::format("{}: not a regular file (a folder, FIFO or device): a geometry file must be a "
-                                 "regular file", path));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open the geometry file", path));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const Source src(path, ss.str());
+  // (io/input_file.hpp: a FIFO would be read forever, /dev/zero until the memory runs out)
+  const Source src(path, read_input_file(path, kGeometryFile));
 
   pugi::xml_document doc;
   const pugi::xml_parse_result parsed = doc.load_buffer(src.text().data(), src.text().size());

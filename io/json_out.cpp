@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "io/json_out.hpp"
 #include "model/memory_estimate.hpp"
+#include "io/input_file.hpp"
 
 #include <algorithm>
 #include <array>
@@ -121,18 +122,11 @@ Json reactions_json(const std::vector<FaceReaction>& reactions) {
 }  // namespace
 
 std::string fnv1a64_of_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return "";
-  std::uint64_t h = 14695981039346656037ull;
-  char buf[4096];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      h ^= static_cast<unsigned char>(buf[i]);
-      h *= 1099511628211ull;
-    }
-    if (!in) break;
+  try {
+    return fmt::format("{:016x}", fnv1a64(read_input_file(path, kCaseFile)));
+  } catch (const InputError&) {
+    return "";
   }
-  return fmt::format("{:016x}", h);
 }
 
 Json run_summary(const Model& m, const RunResult& r) {

@@ -22,8 +22,9 @@ void write_file_atomically(const std::string& path, const std::string& text);
 // known): a missing or read-only folder is said as such (it was blamed on a
 // full disk), anything else as the system says it ("File too large").
 std::string why_not_written(const std::string& path, int err);
-// FNV-1a (64 bits) of a file's bytes, as 16 hex digits: which input a
-// summary came from (not a cryptographic hash).  Empty when unreadable.
+// FNV-1a (64 bits) of a case file's bytes, as 16 hex digits: which input a
+// summary came from (not a cryptographic hash).  Empty when it is not one
+// that read_case would read (io/input_file.hpp).
 std::string fnv1a64_of_file(const std::string& path);
 // A number, or null when it is not finite.
 Json finite_or_null(double v);

@@ -5,9 +5,8 @@
 #include <cstdint>
 #include <cstring>
 #include <fmt/format.h>
-#include <fstream>
-#include <iterator>
 
+#include "io/input_file.hpp"
 #include "io/json_out.hpp"
 
 namespace igac {
@@ -19,8 +18,11 @@ constexpr char kMagic[8] = {'I', 'G', 'A', 'C', 'S', 'T', 'E', 'P'};
 // (friction, incompressible), the step's augmentations and tangential forces;
 // 4: the mixed formulation's dilatations and multipliers per pressure block
 // (since the pressure space, per pressure function: the same layout, a file
-// of another count refused).
-constexpr int64_t kVersion = 4;
+// of another count refused); 5: the checksum at the end (a file without one
+// is refused: its numbers cannot be told from damaged ones).
+constexpr int64_t kVersion = 5;
+constexpr size_t kHead = sizeof kMagic + sizeof kVersion;  // magic and version
+constexpr size_t kChecksum = sizeof(uint64_t);
 
 struct Writer {
   std::string bytes;
@@ -135,20 +137,29 @@ void write_state_file(const std::string& path, const StateOrigin& origin, const 
   for (const std::vector<int>& b : h.schur_batches) w.integers(b);
   w.real(h.from);
   w.reals(s.pressure_multipliers);
+  const uint64_t checksum = fnv1a64(w.bytes);
+  w.raw(&checksum, sizeof checksum);
   write_file_atomically(path, w.bytes);
 }
 
 StepState read_state_file(const std::string& path, StateOrigin& origin) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the state file (is the step there?)", path));
-  Reader r{path, std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()}};
+  // (io/input_file.hpp: a folder, FIFO or device, or a file larger than any state, in one line)
+  Reader r{path, read_input_file(path, kStateFile)};
   char magic[8];
   r.raw(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof kMagic) != 0) r.fail("no IGACSTEP magic");
-  if (const int64_t v = r.integer(); v < kVersion)  // (2 lacks the friction and incompressible histories; 3 holds them per element)
+  // (2 lacks the friction and incompressible histories; 3 holds them per element; 4 has no checksum)
+  if (const int64_t v = r.integer(); v < kVersion)
     r.fail(fmt::format("written by an older igac: state-file version {}, this igac reads {}; run the case again", v, kVersion));
   else if (v != kVersion)
     r.fail(fmt::format("version {}, this igac reads {}", v, kVersion));
+  // Every byte checked before one is believed: a damaged length or number
+  // is refused, not read as another state.
+  if (r.bytes.size() < kHead + kChecksum) r.fail("cut short");
+  uint64_t checksum;
+  std::memcpy(&checksum, r.bytes.data() + r.bytes.size() - kChecksum, kChecksum);
+  r.bytes.resize(r.bytes.size() - kChecksum);
+  if (fnv1a64(r.bytes) != checksum) r.fail("damaged: its checksum does not match its contents, cut short or altered");
   origin.case_hash = r.text();
   origin.options = r.text();
   StepState s;

@@ -5,8 +5,9 @@
 // integer an int64 and every real an IEEE-754 double, in this order:
 //
 //   "IGACSTEP"                       8 bytes, the magic
-//   version                          4 (older ones are refused: run the case again;
-//                                    3 held the mixed formulation's values per element)
+//   version                          5 (older ones are refused: run the case again;
+//                                    4 had no checksum, 3 held the mixed formulation's
+//                                    values per element)
 //   case hash                        length, then its bytes: summary.json's input.fnv1a64
 //   run options                      length, then its bytes: the options that change the
 //                                    result (--refine, --degree, the solver's), one
@@ -28,6 +29,8 @@
 //           batches (count, then each: length, int64s), from (double)
 //   pressure multipliers             length, then the doubles, one per pressure function
 //                                    (incompressible; else 0)
+//   checksum                         8 bytes: FNV-1a 64 (io/input_file.hpp) of every byte
+//                                    before it; a file whose bytes do not match is refused
 //
 // Written atomically (a temporary file renamed over the name), so a file
 // that exists is whole; read back it gives the same doubles, bit for bit.
@@ -49,8 +52,9 @@ struct StateOrigin {
 
 std::string state_file_name(int step);  // state_NNNN.bin
 void write_state_file(const std::string& path, const StateOrigin& origin, const StepState& state);
-// Throws InputError naming the file when it is not a state file of this
-// version or is cut short; `origin` receives what it was written with.
+// Throws InputError naming the file when it is not a regular file, not a
+// state file of this version, or damaged (its checksum); `origin` receives
+// what it was written with.
 StepState read_state_file(const std::string& path, StateOrigin& origin);
 
 }  // namespace igac

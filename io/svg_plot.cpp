@@ -328,7 +328,11 @@ std::string escape(std::string_view text) {
       case '>': s += "&gt;"; break;
       case '"': s += "&quot;"; break;
       case '\'': s += "&apos;"; break;
-      default: s += c;
+      default:
+        // XML 1.0 has no control characters but tab, line feed and carriage
+        // return, not even as &#N;: U+FFFD, the replacement character, instead
+        if ((unsigned char)c < 32 && c != '\t' && c != '\n' && c != '\r') s += "\xEF\xBF\xBD";
+        else s += c;
     }
   return s;
 }

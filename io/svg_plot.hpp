@@ -94,7 +94,8 @@ std::vector<Tick> ticks(Range range, Scale scale);
 // v in [range.lo, range.hi] onto [from, to] px (to < from for a y axis);
 // NaN when v cannot be drawn (not finite, or not positive on a log axis).
 double to_pixel(double v, Range range, Scale scale, double from, double to);
-// & < > " ' as XML entities.
+// & < > " ' as XML entities, and the control characters XML 1.0 cannot hold
+// (all but tab, line feed and carriage return) as U+FFFD.
 std::string escape(std::string_view text);
 
 }  // namespace igac::svg

@@ -278,6 +278,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
                                      m.spec.path));
     x.setZero();  // no multiplier either (activate_nearest primed some for Newton)
     summary.steps.push_back({1.0, 0, {0.0}, {0}, 0});
+    latest = {1.0, 1.0, 0.0, x, x};  // (its state file names the step's time, as a driver's step does)
     record_step(summary.steps.back(), x);
   } else {
     summary = run_load_steps(problem, x, opt, record_step);

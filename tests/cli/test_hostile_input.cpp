@@ -186,7 +186,17 @@ INSTANTIATE_TEST_SUITE_P(
                     {"[contact.obstacle] type:", "a cylinder obstacle needs a 3D body"}},
         // a name with a line break made the one-line error two lines
         MessageCase{"name_with_line_break", "hertz2d", "name = \"hertz2d\"", "name = \"new\\nline\"",
-                    {"[top level] name:", "\"new\\nline\" is not a plain file name"}}),
+                    {"[top level] name:", "\"new\\nline\" is not a plain file name"}},
+        // issue 35: toml++ reads an integer as a boolean (vtk = 0 was false)
+        MessageCase{"integer_as_boolean", "hertz2d", "[reference]", "[output]\nvtk = 0\n[reference]",
+                    {"case.toml:51: [output] vtk: must be true or false"}},
+        // issue 35: a control character in a unit's name made the SVG plots invalid XML
+        MessageCase{"unit_with_control_character", "hertz2d", "[reference]", "[units]\nlength = \"m\\u0007m\"\n[reference]",
+                    {"case.toml:51: [units] length: \"m\\x07m\" holds a control character"}},
+        // ... and in the name of a set of faces, which titles a plot of several contacts
+        MessageCase{"face_set_name_with_control_character", "hertz2d", "face = \"curved\"",
+                    "face = \"c\\u0001\"\n[faces]\n\"c\\u0001\" = [\"curved\"]",
+                    {"[top level] faces: the name \"c\\x01\" holds a control character"}}),
     [](const ::testing::TestParamInfo<MessageCase>& info) { return info.param.name; });
 
 TEST(HostileInput, SelfContradictingCaseIsWarnedAbout) {

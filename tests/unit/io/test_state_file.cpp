@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The restart state file (io/state_file.hpp): what is written is read back
 // bit for bit (the friction and incompressible histories too), and a file
-// that is not one (cut short, another magic) or of an older version (3:
-// the mixed formulation's values per element, not per pressure block) is an
-// InputError naming it.
+// that is not one (cut short, another magic, a folder or a FIFO), of an
+// older version (3: the mixed formulation's values per element, not per
+// pressure block; 4: no checksum) or damaged (any one bit flipped: its
+// checksum) is an InputError naming it.
 #include <gtest/gtest.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "io/state_file.hpp"
 
@@ -87,15 +92,97 @@ TEST(StateFile, RoundTripIsBitForBit) {
     f.seekp(8);  // after the magic
     f.write(reinterpret_cast<const char*>(&three), sizeof three);
   }
-  expect_refused(path, "written by an older igac: state-file version 3, this igac reads 4; run the case again");
+  expect_refused(path, "written by an older igac: state-file version 3, this igac reads 5; run the case again");
   write_state_file(path, {"0123456789abcdef", "refine=1\ndegree=3\n"}, s);
-  // Cut short: refused, naming the file.
+  // Cut short: refused, naming the file (by its checksum; before the checksum, by its size).
   const auto size = std::filesystem::file_size(path);
   std::filesystem::resize_file(path, size - 3);
+  expect_refused(path, "damaged: its checksum does not match its contents, cut short or altered");
+  std::filesystem::resize_file(path, 20);
   expect_refused(path, "cut short");
   std::ofstream(path) << "a text file";
   EXPECT_THROW(read_state_file(path, hash), InputError);
   std::filesystem::remove(path);
+}
+
+StepState some_state() {
+  StepState s;
+  s.step = 3;
+  s.driver = {0.625, 0.5625, 0.375, Eigen::VectorXd::LinSpaced(7, -1.0 / 3, 2.0 / 7), Eigen::VectorXd::LinSpaced(7, 0.1, 0.2)};
+  s.record = {0.625, 4, {1.0, 1e-3 / 3, 2.2e-14}, {3, 4, 4, 4}, 0};
+  s.point.load_factor = 0.625;
+  s.point.contact_forces = {0.1 / 7};
+  return s;
+}
+
+// Issue 35: a state file carried no checksum, and a flipped bit of a number
+// (its mantissa, its exponent) gave another state that the restart took.
+// Now a bit flipped anywhere past the magic and version is refused: one per
+// byte, each bit position in turn.
+TEST(StateFile, AnyFlippedBitIsRefused) {
+  const auto path = (std::filesystem::temp_directory_path() / "igac_test_state_flipped.bin").string();
+  write_state_file(path, {"0123456789abcdef", "refine=0\n"}, some_state());
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const size_t head = 16;  // the magic and the version: refused for what they are
+  ASSERT_GT(bytes.size(), head + 8);
+  int refused = 0;
+  for (size_t at = head; at < bytes.size(); ++at) {
+    const int bit = int(at % 8);  // each bit position, across the bytes
+    {
+      std::string flipped = bytes;
+      flipped[at] = char(flipped[at] ^ (1 << bit));
+      std::ofstream(path, std::ios::binary | std::ios::trunc) << flipped;
+      StateOrigin origin;
+      try {
+        read_state_file(path, origin);
+        ADD_FAILURE() << "byte " << at << " bit " << bit << " flipped: read";
+      } catch (const InputError& e) {
+        refused += std::string(e.what()).find("damaged: its checksum does not match its contents") != std::string::npos;
+      }
+    }
+  }
+  EXPECT_EQ(refused, int(bytes.size() - head));
+  std::filesystem::remove(path);
+}
+
+// A state file of version 4 (no checksum) is refused in one line, not read
+// on trust.
+TEST(StateFile, VersionFourWithoutChecksumIsRefused) {
+  const auto path = (std::filesystem::temp_directory_path() / "igac_test_state_v4.bin").string();
+  write_state_file(path, {"0123456789abcdef", "refine=0\n"}, some_state());
+  {
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    const int64_t four = 4;
+    f.seekp(8);
+    f.write(reinterpret_cast<const char*>(&four), sizeof four);
+  }
+  expect_refused(path, "written by an older igac: state-file version 4, this igac reads 5; run the case again");
+  std::filesystem::remove(path);
+}
+
+// A folder or a FIFO named as a state file: one line naming it (a folder
+// gave the library's "basic_filebuf::underflow error reading the file: Is a
+// directory", a FIFO waited for a writer forever).
+TEST(StateFile, FolderOrFifoIsRefusedInOneLine) {
+  const auto dir = std::filesystem::temp_directory_path() / ("igac_test_state_special_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir / "state_0001.bin");
+  ASSERT_EQ(mkfifo((dir / "state_0002.bin").c_str(), 0600), 0);
+  for (const char* name : {"state_0001.bin", "state_0002.bin"}) {
+    const std::string path = (dir / name).string();
+    StateOrigin origin;
+    try {
+      read_state_file(path, origin);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                path + ": not a regular file (a folder, FIFO or device): a state file must be a regular file");
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

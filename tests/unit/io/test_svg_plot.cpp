@@ -3,7 +3,7 @@
 // data lands on the pixels the axes say (linear: proportional; log: a decade
 // is a fixed number of pixels; the axis ends are the frame's edges); ticks
 // step by 1-2-5 and by decades; non-finite points are never written; text
-// is escaped; the pressure plot of a real 2D Hertz run draws one segment
+// is escaped, control characters replaced; the pressure plot of a real 2D Hertz run draws one segment
 // per S0 multiplier in view and the Hertz curve.
 #include <gtest/gtest.h>
 
@@ -202,6 +202,22 @@ TEST(SvgPlot, TextIsEscaped) {
   EXPECT_EQ(std::string(doc.child("svg").find_child_by_attribute("text", "class", "title").text().get()), title);
   EXPECT_EQ(std::string(doc.select_node("//text[@class='xlabel']").node().text().get()), "x & y");
   EXPECT_TRUE(series(doc, "s<1>"));
+}
+
+// Issue 35: a control character in a label (a unit's name, a face's) was
+// written as it is, and XML 1.0 holds none but tab, line feed and carriage
+// return (not even as &#1;): the plot was not XML.  U+FFFD stands for it.
+TEST(SvgPlot, ControlCharactersNeverReachTheDocument) {
+  std::string label = "mm";
+  for (int c = 1; c < 32; ++c) label += char(c);
+  label += "N";
+  svg::Figure fig = one_panel({.label = label}, {.label = "y"}, {{.label = "s", .x = {0, 1}, .y = {0, 1}}});
+  fig.title = label;
+  const std::string text = svg::render(fig);
+  for (const char c : text)
+    EXPECT_FALSE((unsigned char)c < 32 && c != '\t' && c != '\n' && c != '\r') << "control character " << int(c);
+  EXPECT_EQ(svg::escape("a\x01" "b\tc"), "a\xEF\xBF\xBD" "b\tc");
+  EXPECT_TRUE(parse(text).child("svg"));
 }
 
 TEST(SvgPlot, SegmentsAreDisconnectedAndLinesClippedToTheFrame) {
