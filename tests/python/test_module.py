@@ -176,5 +176,63 @@ class ModuleAgainstCommandLine(unittest.TestCase):
         self.assertGreater(len(r["summary"]["load_steps"]), 4)
 
 
+class HostileValues(unittest.TestCase):
+    """Bad Python input is igac.InputError in one line, never a crash or a hang."""
+
+    HERTZ = os.path.join(CASES, "hertz2d.toml")
+
+    def assertInputError(self, call, *fragments):
+        with self.assertRaises(igac.InputError) as e:
+            call()
+        message = str(e.exception)
+        self.assertNotIn("\n", message)
+        for f in fragments:
+            self.assertIn(f, message)
+
+    def test_a_list_that_holds_itself_and_a_dict_that_holds_itself(self):
+        loop = [0.0, -0.1]
+        loop.append(loop)
+        self.assertInputError(lambda: igac.run(self.HERTZ, {"contact.obstacle.motion": loop}), "holds itself")
+        with open(self.HERTZ, "rb") as f:
+            case = tomllib.load(f)
+        case["material"]["self"] = case["material"]
+        self.assertInputError(lambda: igac.run_dict(case, folder=CASES), "holds itself")
+
+    def test_a_value_nested_1e5_deep(self):
+        deep = 1.0
+        for _ in range(100000):
+            deep = [deep]
+        self.assertInputError(lambda: igac.run(self.HERTZ, {"material.E": deep}), "nested more than")
+        self.assertInputError(lambda: igac.run_dict({"name": "x", "material": {"E": deep}}), "nested more than")
+
+    def test_numpy_scalars_are_the_numbers_they_are(self):
+        plain = igac.run(self.HERTZ, {"material.E": 2.0, "mesh.refine": 1})["summary"]
+        numpy = igac.run(self.HERTZ, {"material.E": np.float64(2.0), "mesh.refine": np.arange(3)[1]},
+                         refine=None, degree=np.int64(2))["summary"]
+        compare(self, plain, numpy)
+
+    def test_huge_integers_bad_paths_and_nul_characters(self):
+        self.assertInputError(lambda: igac.run(self.HERTZ, {"mesh.refine": 10 ** 30}), "beyond 64 bits")
+        self.assertInputError(lambda: igac.run(self.HERTZ, refine=10 ** 30), "refine")
+        self.assertInputError(lambda: igac.run(os.path.join(CASES, "no_such_case.toml")), "no such case file")
+        self.assertInputError(lambda: igac.run(self.HERTZ + "\0.txt"), "NUL")
+        self.assertInputError(lambda: igac.run(3.5), "not a path")
+        self.assertInputError(lambda: igac.run(self.HERTZ, {"contact.0.x": 1}), "")
+        self.assertInputError(lambda: igac.run(self.HERTZ, {1: 2.0}), "a key of type int")
+
+    def test_special_files_are_refused_without_reading_them(self):
+        self.assertInputError(lambda: igac.run("/dev/zero"), "not a regular file")
+        with tempfile.TemporaryDirectory() as tmp:
+            fifo = os.path.join(tmp, "fifo.toml")
+            os.mkfifo(fifo)
+            self.assertInputError(lambda: igac.run(fifo), "not a regular file")
+            self.assertInputError(lambda: igac.run(tmp), "not a regular file")
+
+    def test_an_overrides_error_names_the_override_not_a_line_of_the_file(self):
+        with self.assertRaises(igac.InputError) as e:
+            igac.run(self.HERTZ, {"material.nu": 0.7})
+        self.assertIn("override 'material.nu'", str(e.exception))
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
