@@ -12,11 +12,10 @@
 #include <sstream>
 
 #include "app/output_folder.hpp"
-#include "engine/load_curve.hpp"
-#include "engine/load_stepping.hpp"
 #include "io/input_file.hpp"
 #include "io/json_out.hpp"
 #include "io/state_file.hpp"
+#include "model/resumed_steps.hpp"
 
 namespace igac {
 namespace fs = std::filesystem;
@@ -60,60 +59,6 @@ std::string options_that_differ(const std::string& earlier, const std::string& n
     out.push_back(fmt::format("{} '{}' there, '{}' here ({})", key, was, value, f == flag.end() ? key : f->second));
   }
   return fmt::format("{}", fmt::join(out, "; "));
-}
-
-}  // namespace
-
-namespace {
-
-// The slack of a time (absolute) or an increment (relative) read back
-// against the bounds the driver keeps: it ends a run within 1e-12 of its
-// last corner (engine/load_stepping.cpp), and rounds an increment it grows.
-constexpr double kScheduleSlack = 1e-12;
-
-// The earlier run's steps are steps this case takes (a state file's t and
-// dt are read back, and the driver believed them: a t of NaN or 1e300 ended
-// the run at once as "converged", a dt of 0 or below ran it forever).  In
-// small deformation the times are the case's own (engine/load_curve.hpp,
-// step_times); in large deformation they increase inside the case's span,
-// and the next increment is one its [loading] gives: at least the smallest
-// it cuts back to (or the first, when that is smaller), at most the largest
-// grown once; a run that has reached the end takes no increment more.
-void check_schedule(const CaseSpec& spec, const fs::path& dir, const std::vector<StepState>& steps) {
-  const std::vector<double> corners = curve_corners(spec.load_curves());
-  const double end = corners.back();
-  const std::vector<double> times = spec.finite_strain() ? std::vector<double>{} : step_times(corners, spec.loading.steps);
-  const LoadingSpec& l = spec.loading;
-  const double first = l.first_increment > 0 ? l.first_increment : 1.0 / l.steps;
-  const double lo = std::min(l.min_increment, first), hi = l.max_increment * LoadSteppingOptions{}.growth;
-  double before = 0;
-  for (const StepState& s : steps) {
-    const auto bad = [&](const std::string& why) {
-      return InputError(fmt::format("{}: not a state of this case: {}", (dir / state_file_name(s.step)).string(), why));
-    };
-    const LoadSteppingState& d = s.driver;
-    if (!times.empty()) {
-      if (size_t(s.step) > times.size() || !(d.t == times[size_t(s.step) - 1]))
-        throw bad(fmt::format("t = {}, where this case has {}", d.t,
-                              size_t(s.step) > times.size() ? fmt::format("{} steps", times.size())
-                                                            : fmt::format("step {} at t = {}", s.step, times[size_t(s.step) - 1])));
-    } else if (!(d.t > before && d.t <= end + kScheduleSlack)) {
-      throw bad(fmt::format("t = {}, where step {} lies in ({}, {}]", d.t, s.step, before, end));
-    }
-    if (!(s.record.load_factor == d.t && s.point.load_factor == d.t))
-      throw bad(fmt::format("its step's record is at t = {} and {}, its state at {}", s.record.load_factor,
-                            s.point.load_factor, d.t));
-    if (spec.finite_strain()) {
-      const double low = d.t < end - kScheduleSlack ? lo : 0;  // (the last step's dt is what remained of the span)
-      if (!(d.dt > 0 && d.dt >= low * (1 - kScheduleSlack) && d.dt <= hi * (1 + kScheduleSlack)))
-        throw bad(fmt::format("the next increment dt = {} lies outside [{}, {}], where [loading] puts it", d.dt,
-                              low, hi));
-      if (!(d.dt_old >= 0 && d.dt_old <= l.max_increment * (1 + kScheduleSlack)))
-        throw bad(fmt::format("the last increment dt_old = {} lies outside [0, {}]", d.dt_old, l.max_increment));
-    }
-    if (!d.x.allFinite() || !d.x_old.allFinite()) throw bad("its unknowns hold a number that is not finite");
-    before = d.t;
-  }
 }
 
 // An entry of the earlier run's .pvd is one of the files igac wrote there:
@@ -202,7 +147,9 @@ EarlierRun read_earlier_run(const CaseSpec& spec, const std::string& options, co
     if (written_with.case_hash != hash || written_with.options != options || run.steps.back().step != k)
       throw InputError(fmt::format("--restart {}: {} is not step {} of this run", o.dir, state_file_name(k), k));
   }
-  check_schedule(spec, dir, run.steps);
+  if (const auto off = off_schedule(spec, run.steps))
+    throw InputError(fmt::format("{}: not a state of this case: {}", (dir / state_file_name(off->step)).string(),
+                                 off->why));
   if (spec.write_vtk) run.vtk_steps = read_pvd(dir, n);
   return run;
 }
