@@ -42,6 +42,7 @@ set(allowed
     engine/geometry/multipatch        # a multi-patch geometry (G+Smo XML files)
     engine/load_curve                 # LoadCurve, a case's curves, and how many load steps they make (case files)
     contact/obstacle                  # the obstacle types' names and keys (case files)
+    contact/interface_law             # the interface laws' names and whether they take a coefficient (case files)
     contact/friction_state            # open / stick / slip and the slip history (outputs, state files)
     materials/hyperelastic            # the material laws' names and keys (case files)
     solvers/petsc_contact)            # PetscSession: MPI and PETSc started and ended by the program

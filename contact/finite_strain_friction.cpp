@@ -30,8 +30,11 @@ FiniteStrainFriction::FiniteStrainFriction(const Body& body, const DofMap& dofs,
       friction_(Eigen::VectorXd::Zero(weights.size())) {
   for (const FrictionContact& c : contacts_) {
     masters_.push_back(c.master ? std::make_unique<MasterSurface>(*c.master) : nullptr);
-    if (c.friction > 0) friction_.segment(c.offset, c.face->num_multipliers()).setConstant(c.friction);
+    if (c.law.get().has_coefficient()) friction_.segment(c.offset, c.face->num_multipliers()).setConstant(c.law.friction);
   }
+  laws_.assign(size_t(m_), nullptr);
+  for (const FrictionContact& c : contacts_)
+    std::fill_n(laws_.begin() + c.offset, c.face->num_multipliers(), &c.law.get());
   on_obstacle_.assign(m_, 0);
   for (const FrictionContact& c : contacts_)
     if (!c.master) std::fill_n(on_obstacle_.begin() + c.offset, c.face->num_multipliers(), char(1));
@@ -51,15 +54,15 @@ void FiniteStrainFriction::assemble_rows(double t, const Eigen::MatrixXd& u) {
   for (size_t k = 0; k < contacts_.size(); ++k) {
     const FrictionContact& c = contacts_[k];
     t0_.push_back(Eigen::VectorXd::Zero(m_ * nt_));
-    if (!(c.friction > 0)) continue;  // a frictionless contact among frictional ones: lambda_t = 0
+    if (!c.law.tangential()) continue;  // a frictionless contact among frictional ones: lambda_t = 0
     WeightedGapOperator op;
     if (masters_[k]) {
       masters_[k]->update(u);
-      op = assemble_mortar_gaps(every_, *c.face, *masters_[k], c.integration, c.friction, {}, &u);
+      op = assemble_mortar_gaps(every_, *c.face, *masters_[k], c.integration, c.law, {}, &u);
     } else {
       const Eigen::VectorXd motion = c.motion.size() ? c.motion : Eigen::VectorXd::Zero(dim_);
       const TranslatedObstacle where(*c.obstacle, (*c.curve)(t) * motion);  // as the step starts
-      op = assemble_weighted_gaps(every_, *c.face, where, c.friction, motion, &u);
+      op = assemble_weighted_gaps(every_, *c.face, where, c.law, motion, &u);
     }
     const int count = int(op.weights.size());
     t0_.back().segment(c.offset * nt_, count * nt_) = op.t0;
@@ -129,18 +132,20 @@ std::vector<char> FiniteStrainFriction::states(double t, const Eigen::MatrixXd& 
   std::vector<char> out(m_, kOpen);
   for (int K = 0; K < m_; ++K) {
     if (!normal_active[K]) continue;
-    if (!(friction_[K] > 0)) {  // frictionless: always sliding, no force
+    const InterfaceLaw& law = *laws_[size_t(K)];
+    if (!law.tangential()) {  // frictionless: always sliding, no force
       out[K] = kSlip;
       continue;
     }
     const double w = weights_[K];
     const Eigen::VectorXd xi = lambda_t.segment(K * nt_, nt_) + ct_[K] / w * s.segment(K * nt_, nt_);
     const double b = -friction_[K] * (lambda_n[K] + c_ * gamma[K] / w);
-    out[K] = xi.norm() <= b ? kStick : kSlip;
+    out[K] = law.tangential_state(xi.norm(), b, kOpen, 0);
     // Closed but carrying no normal force yet (lambda_n = 0: the predictor
     // of a multiplier that was open): nothing holds it, it slips.  Between
-    // two bodies the rule cost iterations (docs/benchmarks.md): not there.
-    if (lambda_n[K] == 0.0 && on_obstacle_[K] && xi.norm() > 0) out[K] = kSlip;
+    // two bodies the rule cost iterations (docs/benchmarks.md): not there;
+    // nor for a tie, which holds without a normal force.
+    if (lambda_n[K] == 0.0 && on_obstacle_[K] && xi.norm() > 0 && !law.bilateral()) out[K] = kSlip;
   }
   return out;
 }

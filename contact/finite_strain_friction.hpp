@@ -61,7 +61,7 @@ struct FrictionContact {
   MortarIntegration integration = MortarIntegration::element;
   Eigen::VectorXd motion;              // an obstacle's translation at curve(t) = 1 (empty: none)
   const LoadCurve* curve = nullptr;    // (no points: the factor is t)
-  double friction = 0;
+  ContactLaw law;                      // (contact/interface_law.hpp)
   int offset = 0;                      // its first multiplier
 };
 
@@ -136,6 +136,7 @@ class FiniteStrainFriction {
   Eigen::MatrixXd row_tangent_;            // per row: int B_K t_j on the slave face (m nt x dim)
   std::vector<Eigen::VectorXd> t0_;        // per contact: the rows of its motion at curve = 1 (m nt)
   Eigen::VectorXd weights_, friction_, row_weights_;  // row_weights_: K_K per tangential row
+  std::vector<const InterfaceLaw*> laws_;  // per multiplier (contact/interface_law.hpp)
   std::vector<char> on_obstacle_;          // per multiplier: its contact is against an obstacle (not a master)
   // history
   bool started_ = false;

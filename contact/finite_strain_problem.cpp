@@ -41,11 +41,24 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
                    : assemble_weighted_gaps(*s_.dofs, *c.face, *c.obstacle).weights;
     }
   }
-  if (std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const auto& c) { return c.friction > 0; })) {
+  laws_.assign(size_t(m_), nullptr);
+  for (size_t k = 0; k < s_.contacts.size(); ++k)
+    std::fill(laws_.begin() + offsets_[k], laws_.begin() + offsets_[k + 1], &s_.contacts[k].law.get());
+  // A tie holds the weighted gaps the run starts with (g - g_0 = 0): g_0 of
+  // the reference configuration, taken off every gap evaluate_contact gives.
+  if (std::any_of(laws_.begin(), laws_.end(), [](const InterfaceLaw* l) { return l->bilateral(); })) {
+    ContactEval start;
+    evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.dofs->num_dofs() / s_.dofs->dim(), s_.dofs->dim()),
+                     Eigen::VectorXd(), nullptr, start, false);
+    gamma_start_ = Eigen::VectorXd::Zero(m_);
+    for (int K = 0; K < m_; ++K)
+      if (laws_[size_t(K)]->bilateral()) gamma_start_[K] = start.gamma[K];
+  }
+  if (std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const auto& c) { return c.law.tangential(); })) {
     std::vector<FrictionContact> fc;
     for (size_t k = 0; k < s_.contacts.size(); ++k) {
       const auto& c = s_.contacts[k];
-      fc.push_back({c.face, c.obstacle, c.master, c.integration, c.motion, &c.curve, c.friction, offsets_[k]});
+      fc.push_back({c.face, c.obstacle, c.master, c.integration, c.motion, &c.curve, c.law, offsets_[k]});
     }
     friction_ = std::make_unique<FiniteStrainFriction>(
         *s_.body, *s_.dofs, fc, weights_, s_.complementarity_scale,
@@ -150,11 +163,13 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
       scatter_element_matrix(*K, K->valuePtr(), eq, Kc);
     });
   }
+  if (gamma_start_.size()) out.gamma -= gamma_start_;  // a tie's gap counts from where it started
 }
 
 std::vector<char> FiniteStrainProblem::decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const {
   std::vector<char> active(m_);
-  for (int K = 0; K < m_; ++K) active[K] = weights_[K] * lambda[K] + s_.complementarity_scale * gamma[K] < 0;
+  for (int K = 0; K < m_; ++K)
+    active[K] = laws_[size_t(K)]->closed(weights_[K] * lambda[K] + s_.complementarity_scale * gamma[K], false, 0);
   return active;
 }
 

@@ -97,8 +97,9 @@ struct FiniteStrainSetup {
     const MasterSurface* master = nullptr;
     MortarIntegration integration = MortarIntegration::element;
     LoadCurve curve;                     // the translation at t is curve(t) * motion (no points: t)
-    // Coulomb coefficient (contact/finite_strain_friction.hpp); 0: frictionless.
-    double friction = 0;
+    // Its interface law and coefficient (contact/interface_law.hpp): a law
+    // with tangential rows brings contact/finite_strain_friction.hpp in.
+    ContactLaw law;
   };
   std::vector<Contact> contacts;
   double complementarity_scale = 1;           // c, stress per length
@@ -206,6 +207,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd local_scale_, weights_of_rows_;
   // r_z = h (Pi_A J - 1 - z) from the assembler's per-function values
   Eigen::VectorXd local_residual(const TotalLagrangianAssembler::LocalDilatation& local, const Eigen::VectorXd& z) const;
+  std::vector<const InterfaceLaw*> laws_;  // per multiplier
+  Eigen::VectorXd gamma_start_;             // a tie's g_0 per multiplier (empty: no tie)
   std::unique_ptr<FiniteStrainFriction> friction_;  // null: frictionless
   Eigen::VectorXd normal_multipliers(const Eigen::VectorXd& x) const { return x.segment(n_, m_); }
   std::unique_ptr<TotalLagrangianAssembler> tl_;

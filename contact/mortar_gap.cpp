@@ -172,15 +172,17 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
 }
 
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
-                                         MortarIntegration integration, double friction, const Eigen::VectorXd& shift,
+                                         MortarIntegration integration, const ContactLaw& law, const Eigen::VectorXd& shift,
                                          const Eigen::MatrixXd* u) {
   const int m = slave.num_multipliers(), nt = dofs.dim() - 1;
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
-  if (friction > 0) {
+  const bool tangential = law.tangential();
+  op.laws.assign(size_t(m), &law.get());
+  if (tangential) {
     op.t0 = Eigen::VectorXd::Zero(m * nt);
-    op.friction = Eigen::VectorXd::Constant(m, friction);
+    op.friction = Eigen::VectorXd::Constant(m, law.get().has_coefficient() ? law.friction : 0.0);
   }
   op.directions = Eigen::MatrixXd::Zero(m, dofs.dim());
   GapCouplings trip, ttrip;
@@ -192,7 +194,7 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
     if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
     master.side_patch(mp->side).rational_basis(mp->xi, master_local, master_values, master_derivs);
     const std::vector<int>& master_cps = master.side_control_points(mp->side);
-    const Eigen::MatrixXd t = friction > 0 ? tangent_basis(mp->normal) : Eigen::MatrixXd();
+    const Eigen::MatrixXd t = tangential ? tangent_basis(mp->normal) : Eigen::MatrixXd();
     const double gap = shift.size() ? mp->gap - shift.dot(mp->normal) : mp->gap;
     for (size_t k = 0; k < sp.K.size(); ++k) {
       const double bw = sp.B[k] * sp.JxW;
@@ -217,7 +219,7 @@ WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& 
     }
   });
   trip.build(dofs, m, op.G, op.G_held);
-  if (friction > 0) ttrip.build(dofs, m * nt, op.T, op.T_held);
+  if (tangential) ttrip.build(dofs, m * nt, op.T, op.T_held);
   return op;
 }
 

@@ -98,7 +98,7 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
 // it to u): large-deformation friction's rows of a load step
 // (contact/finite_strain_friction.hpp).
 WeightedGapOperator assemble_mortar_gaps(const DofMap& dofs, const ContactFace& slave, const MasterSurface& master,
-                                         MortarIntegration integration, double friction = 0,
+                                         MortarIntegration integration, const ContactLaw& law = {},
                                          const Eigen::VectorXd& shift = {}, const Eigen::MatrixXd* u = nullptr);
 
 // Weighted gaps of the exact gap in the displaced configuration, u per body

@@ -37,8 +37,7 @@ std::vector<char> next_active_set(const Eigen::VectorXd& lambda, const Eigen::Ve
   const double tol = 1e-12 * scale;
   std::vector<char> next(m, 0);
   for (int K_ = 0; K_ < m; ++K_) {
-    const double v = lambda[K_] + cn * gap[K_];
-    next[K_] = std::abs(v) <= tol ? active[K_] : v < 0;
+    next[K_] = unilateral_closed(lambda[K_] + cn * gap[K_], active[K_], tol);
   }
   if (forced) *forced = 0;
   if (k > 0 && std::count(next.begin(), next.end(), 1) < k) {

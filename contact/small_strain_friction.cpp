@@ -30,6 +30,7 @@ struct SmallStrainFriction::Impl {
   std::vector<char> state;
   Eigen::MatrixXd dir;  // m x nt
   Eigen::VectorXd alpha;  // b / |xi| where the slip direction was last taken (3D: the linearised slip law)
+  Eigen::VectorXd g_start;  // the weighted gaps where the run starts: a tie holds them
 
   Impl(const RigidModes& md, SparseCholesky& c) : modes(md), chol(c) {}
   int trow(int K, int j) const { return m + K * nt + j; }
@@ -38,11 +39,11 @@ struct SmallStrainFriction::Impl {
 SmallStrainFriction::~SmallStrainFriction() = default;
 
 namespace {
-// The state a closed multiplier starts from: stuck where it has friction;
-// a frictionless one (a contact of f = 0 beside frictional ones) slides
-// from the start, its tangential rows being zero (a stick unknown there
-// has no column: the system was singular at the first iteration).
-char closed_state(double f) { return f > 0 ? kStick : kSlip; }
+// The state a closed multiplier starts from: stuck where its law has
+// tangential rows; a frictionless one (beside frictional ones) slides from
+// the start, its tangential rows being zero (a stick unknown there has no
+// column: the system was singular at the first iteration).
+char closed_state(const InterfaceLaw& law) { return law.tangential() ? kStick : kSlip; }
 }  // namespace
 
 double slip_compliance(double alpha, double ct) {
@@ -126,7 +127,10 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   s.slip_total = Eigen::VectorXd::Zero(s.m * s.nt);
   const std::vector<char> active = initial_active_set(op, s.k, opt);
   s.state.assign(s.m, kOpen);
-  for (int i = 0; i < s.m; ++i) s.state[i] = active[i] ? closed_state(op.friction[i]) : char(kOpen);
+  // (a tie is closed from the start, and holds the gap it starts with)
+  for (int i = 0; i < s.m; ++i)
+    s.state[i] = active[i] || op.law(i).bilateral() ? closed_state(op.law(i)) : char(kOpen);
+  s.g_start = op.g0;
   s.dir = Eigen::MatrixXd::Zero(s.m, s.nt);
   if (s.nt > 0) s.dir.col(0).setOnes();
   s.alpha = Eigen::VectorXd::Ones(s.m);
@@ -140,7 +144,10 @@ void SmallStrainFriction::set_load(const Eigen::VectorXd& f) {
   s.Rf = s.modes.modes.transpose() * f;
 }
 
-void SmallStrainFriction::start_from(const WeightedGapOperator& op0) { impl_->tau_prev = op0.t0; }
+void SmallStrainFriction::start_from(const WeightedGapOperator& op0) {
+  impl_->tau_prev = op0.t0;
+  impl_->g_start = op0.g0;
+}
 
 FrictionHistory SmallStrainFriction::history() const {
   const Impl& s = *impl_;
@@ -186,10 +193,12 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   ContactSolution sol;
   Eigen::VectorXd r0(rows_all);
   r0.head(m) = op.g0;
+  for (int K = 0; K < m; ++K)
+    if (op.law(K).bilateral()) r0[K] -= s.g_start[K];  // a tie: g - g_0 = 0
   r0.tail(m * nt) = op.t0 - s.tau_prev;
   // One free rigid motion that the load drives off the contact: friction
   // needs a normal force, and no multiplier can push against this load.
-  if (k == 1 && load_pulls_off(s.GR.col(0).head(m), s.Rf[0], s.fp.norm())) {
+  if (k == 1 && !op.bilateral() && load_pulls_off(s.GR.col(0).head(m), s.Rf[0], s.fp.norm())) {
     sol.status = pulled_off_status();
     sol.u = Eigen::VectorXd::Zero(s.n);
     sol.lambda = Eigen::VectorXd::Zero(m);
@@ -296,7 +305,9 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     std::vector<char> active(m);
     for (int K = 0; K < m; ++K) active[K] = s.state[K] != kOpen;
     int forced = 0;
-    const std::vector<char> next_active = next_active_set(lam_n, gap, active, k, s.cn, &forced);
+    // (a tie is closed whatever its sign: the rigid motions' extension of
+    // next_active_set would count its pulling multipliers as forced)
+    std::vector<char> next_active = next_active_set(lam_n, gap, active, op.bilateral() ? 0 : k, s.cn, &forced);
     const double scale = std::max({lam.cwiseAbs().maxCoeff(), s.cn * gap.cwiseAbs().maxCoeff(),
                                    nt ? s.cn * slip.cwiseAbs().maxCoeff() : 0.0});
     const double tol = 1e-12 * scale;
@@ -305,16 +316,18 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     Eigen::VectorXd next_alpha = s.alpha;
     bool directions_settled = true;
     for (int K = 0; K < m; ++K) {
+      const InterfaceLaw& law = op.law(K);
+      // (a unilateral law's rule, with the rigid motions' extension, is next_active_set's)
+      if (law.bilateral()) next_active[K] = law.closed(lam_n[K] + s.cn * gap[K], true, tol);
       if (!next_active[K]) continue;
-      if (fr[K] <= 0) {  // a frictionless contact among frictional ones: always sliding, no force
+      if (!law.tangential()) {  // a frictionless contact among frictional ones: always sliding, no force
         next[K] = kSlip;
         continue;
       }
       const Eigen::VectorXd xi = lam_t.segment(K * nt, nt) + ct_factor * s.ct[K] * slip.segment(K * nt, nt);
       const double b = std::max(0.0, -fr[K] * (lam_n[K] + s.cn * gap[K]));
       const double norm = xi.norm();
-      if (std::abs(norm - b) <= tol && s.state[K] != kOpen) next[K] = s.state[K];  // on the cone to round-off
-      else next[K] = norm <= b ? kStick : kSlip;
+      next[K] = law.tangential_state(norm, b, FrictionState(s.state[K]), tol);
       if (next[K] == kSlip && norm > tol) {
         next_dir.row(K) = (xi / norm).transpose();
         next_alpha[K] = b / norm;
@@ -342,7 +355,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
         if (restarts++ > 0) ct_factor *= 0.1;
         seen.clear();
         for (int K = 0; K < m; ++K)
-          if (next[K] != kOpen) next[K] = closed_state(fr[K]);
+          if (next[K] != kOpen) next[K] = closed_state(op.law(K));
         s.state = next;
         continue;
       }

@@ -76,21 +76,23 @@ Eigen::MatrixXd tangent_basis(const Eigen::VectorXd& n) {
 }
 
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle,
-                                           double friction, const Eigen::VectorXd& shift, const Eigen::MatrixXd* u) {
+                                           const ContactLaw& law, const Eigen::VectorXd& shift, const Eigen::MatrixXd* u) {
   const int m = cf.num_multipliers(), nt = dofs.dim() - 1;
   WeightedGapOperator op;
   op.weights = Eigen::VectorXd::Zero(m);
   op.g0 = Eigen::VectorXd::Zero(m);
-  if (friction > 0) {
+  const bool tangential = law.tangential();
+  op.laws.assign(size_t(m), &law.get());
+  if (tangential) {
     op.t0 = Eigen::VectorXd::Zero(m * nt);
-    op.friction = Eigen::VectorXd::Constant(m, friction);
+    op.friction = Eigen::VectorXd::Constant(m, law.get().has_coefficient() ? law.friction : 0.0);
   }
   op.directions = Eigen::MatrixXd::Zero(m, dofs.dim());
   GapCouplings trip, ttrip;
   ContactQuadrature(cf).for_each_point([&](const auto& ev, int q, const std::vector<int>& K,
                                            const std::vector<double>& B) {
     const ObstacleProbe pr = u ? obstacle.probe(ev.displaced(q, *u)) : obstacle.probe(ev.X[q]);
-    const Eigen::MatrixXd t = friction > 0 ? tangent_basis(pr.normal) : Eigen::MatrixXd();
+    const Eigen::MatrixXd t = tangential ? tangent_basis(pr.normal) : Eigen::MatrixXd();
     for (size_t k = 0; k < K.size(); ++k) {
       const double bw = B[k] * ev.JxW[q];
       if (bw == 0.0) continue;
@@ -106,7 +108,7 @@ WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace
     }
   });
   trip.build(dofs, m, op.G, op.G_held);
-  if (friction > 0) ttrip.build(dofs, m * nt, op.T, op.T_held);
+  if (tangential) ttrip.build(dofs, m * nt, op.T, op.T_held);
   return op;
 }
 
@@ -160,14 +162,16 @@ WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops) {
     out.g0.segment(first[k], ops[k].G.rows()) = ops[k].g0;
   }
   out.G = stacked(ops, &WeightedGapOperator::G, first, rows);
+  for (const auto& op : ops)
+    for (int K = 0; K < op.G.rows(); ++K) out.laws.push_back(&op.law(K));
   out.G_held = stacked(ops, &WeightedGapOperator::G_held, first, rows);
   const Eigen::Index dim = ops.empty() ? 0 : ops.front().directions.cols();
   out.directions = Eigen::MatrixXd::Zero(rows, dim);
   for (size_t k = 0; k < ops.size(); ++k)
     if (ops[k].directions.rows() == ops[k].G.rows() && ops[k].directions.cols() == dim)
       out.directions.middleRows(first[k], ops[k].G.rows()) = ops[k].directions;
-  // Friction: every contact gets its tangential rows (zero, f = 0, for a
-  // frictionless one) once one contact has them.
+  // Every contact gets its tangential rows (zero, f = 0, for a law without
+  // them) once one contact's law has them.
   int nt = 0;
   for (const auto& op : ops)
     if (op.G.rows() > 0 && op.T.rows() > 0) nt = int(op.T.rows() / op.G.rows());

@@ -9,6 +9,8 @@
 // face move into g0.
 #pragma once
 
+#include "contact/interface_law.hpp"
+
 #include <Eigen/Sparse>
 
 #include "contact/multiplier_space.hpp"
@@ -100,7 +102,19 @@ struct WeightedGapOperator {
   // gap is measured along: the normal force on the (slave) face is
   // -sum_K lambda_K directions_K (ContactResult::resultant).
   Eigen::MatrixXd directions;
-  bool frictional() const { return friction.size() > 0 && friction.maxCoeff() > 0; }
+  // The interface law of each multiplier (contact/interface_law.hpp; empty:
+  // frictionless everywhere).  T and t0 are there when one law has
+  // tangential rows (Coulomb, a tie): then every contact has them (zero for
+  // a law without).
+  std::vector<const InterfaceLaw*> laws;
+  const InterfaceLaw& law(int K) const { return laws.empty() ? frictionless_law() : *laws[size_t(K)]; }
+  bool tangential() const { return T.rows() > 0; }
+  // Whether a multiplier may pull (a tie): no "pulled off" check applies.
+  bool bilateral() const {
+    for (const InterfaceLaw* l : laws)
+      if (l->bilateral()) return true;
+    return false;
+  }
   // Weighted gaps (Pi g)_K for free displacements u.
   Eigen::VectorXd weighted_gaps(const Eigen::VectorXd& u_free) const {
     return (g0 + G * u_free).cwiseQuotient(weights);
@@ -124,14 +138,14 @@ void add_gap_coupling(const DofMap& dofs, int K, int a, double w, const Eigen::R
 
 // Several operators (one per contact) as one: rows stacked in order.
 WeightedGapOperator stack(const std::vector<WeightedGapOperator>& ops);
-// With friction > 0 also the tangential rows T, t0 (the obstacle translated
+// With a law that has them (Coulomb, a tie) also the tangential rows T, t0 (the obstacle translated
 // by `shift` from where its tangential displacement counts; empty: none).
 // `u` (n_cp x dim; null: none): the obstacle probed at the displaced points
 // X + u(X) (its normals and tangents there; the integrals stay on the
 // reference face): large-deformation friction's rows of a load step
 // (contact/finite_strain_friction.hpp).
 WeightedGapOperator assemble_weighted_gaps(const DofMap& dofs, const ContactFace& cf, const Obstacle& obstacle,
-                                           double friction = 0, const Eigen::VectorXd& shift = {},
+                                           const ContactLaw& law = {}, const Eigen::VectorXd& shift = {},
                                            const Eigen::MatrixXd* u = nullptr);
 // The obstacle's tangents at a point of normal n: t (2D, n rotated by -90
 // degrees: (n_y, -n_x)) or t1, t2 (3D, t1 the coordinate axis least aligned

@@ -16,6 +16,7 @@
 #include <toml++/toml.h>
 #include <algorithm>
 
+#include "contact/interface_law.hpp"
 #include "contact/obstacle.hpp"
 #include "engine/geometry/shapes.hpp"
 #include "engine/load_curve.hpp"
@@ -44,7 +45,7 @@ const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
 const std::set<std::string> kTractionKeys{"faces", "value", "curve"};
 const std::set<std::string> kBodyForceKeys{"value", "curve"};
 const std::set<std::string> kContactKeys{"face",         "obstacle", "master",     "master_motion",
-                                          "master_curve", "friction", "integration"};
+                                          "master_curve", "friction", "integration", "law"};
 const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -459,6 +460,20 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
       cs.friction = s.number("friction");  // finite
       if (!(cs.friction >= 0 && cs.friction <= 10)) s.fail("friction", "must lie in [0, 10] (a Coulomb coefficient)");
     }
+    if (s.has("law")) {  // the interface law (contact/interface_law.hpp)
+      cs.law = s.string("law");
+      const InterfaceLaw* law = nullptr;
+      try {
+        law = &interface_law(cs.law);
+      } catch (const std::invalid_argument& e) {
+        s.fail("law", e.what());
+      }
+      if (law->has_coefficient() && !(cs.friction > 0))
+        s.fail("law", fmt::format("\"{}\" needs a friction coefficient: friction = f > 0 in the same table", cs.law));
+      if (!law->has_coefficient() && cs.friction > 0)
+        s.fail("friction", fmt::format("a coefficient of the law \"{}\", which takes none (friction is law = "
+                                       "\"coulomb\", the default where friction > 0)", cs.law));
+    }
     if (s.has("integration")) {  // the mortar integral between two bodies (contact/mortar_gap.hpp)
       if (!s.has("master"))
         s.fail("integration", "is the mortar integration of a contact between two bodies (with master); against an "
@@ -602,10 +617,14 @@ std::string check_petsc_case(const CaseSpec& c) {
   if (c.finite_strain())
     return fmt::format("the PETSc solver runs small deformation (linear_elastic) only, not the {} law; use the direct "
                        "solver", c.model);
-  for (const ContactSpec& cs : c.contacts)
+  for (const ContactSpec& cs : c.contacts) {
     if (cs.friction > 0)
       return fmt::format("the PETSc solver runs frictionless contact only, not the friction = {:g} of contact face '{}'; "
                          "use the direct solver", cs.friction, cs.face);
+    if (!cs.law.empty() && cs.law != "frictionless")
+      return fmt::format("the PETSc solver runs frictionless contact only, not the law \"{}\" of contact face '{}'; "
+                         "use the direct solver", cs.law, cs.face);
+  }
   if (c.has_load_curves())
     return "the PETSc solver runs without load curves only (the case has a curve); use the direct solver";
   return {};

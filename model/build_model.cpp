@@ -439,6 +439,7 @@ Model build_model(const CaseSpec& spec) {
                                          cs.face, m.body.describe(s), m.body.describe(f)));
       c.master_name = cs.master;
       c.friction = cs.friction;
+      if (!cs.law.empty()) c.law = &interface_law(cs.law);
       c.integration = cs.integration == "element" ? MortarIntegration::element : MortarIntegration::segmented;
       // The master body moved rigidly with its supports: its motion enters
       // the gaps (assemble_contact_operator) and, after the solve, its
@@ -470,6 +471,7 @@ Model build_model(const CaseSpec& spec) {
     const auto& o = cs.obstacle;
     ++obstacles;
     c.friction = cs.friction;
+    if (!cs.law.empty()) c.law = &interface_law(cs.law);
     try {
       c.obstacle = find_obstacle_type(o.type)->make(o.values);
     } catch (const std::exception& e) {

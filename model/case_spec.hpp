@@ -69,6 +69,8 @@ struct ContactSpec {
   std::vector<double> master_motion;  // a rigid translation of the master body with its supports (as an obstacle's
                                       // motion; small deformation, refused in large)
   double friction = 0;    // Coulomb coefficient (small and large deformation, obstacle or master); 0: frictionless
+  std::string law;        // the interface law (contact/interface_law.hpp); empty: coulomb where friction > 0, else
+                          // frictionless
   std::string integration = "segmented";  // with master: "segmented" or "element" (contact/mortar_gap.hpp)
 };
 

@@ -135,7 +135,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   // restart builds it as the run did (at the first step's time) and takes
   // the history of the step before the first it solves from its state file.
   bool frictional = false;
-  for (const auto& c : m.contacts) frictional = frictional || c.friction > 0;
+  for (const auto& c : m.contacts) frictional = frictional || c.contact_law().tangential();
   std::optional<SmallStrainFriction> friction;
   std::vector<int> friction_steps;  // active-set iterations per step
   SparseCholesky chol;

@@ -81,6 +81,8 @@ struct Model {
                                          // body: moved rigidly with its supports (small deformation)
     LoadCurve curve;                     // of the motion (no points: the factor is t)
     double friction = 0;                 // Coulomb coefficient (small and large deformation, obstacle or master)
+    const InterfaceLaw* law = nullptr;   // [contact] law; null: by the coefficient (default_interface_law)
+    ContactLaw contact_law() const { return law ? ContactLaw(*law, friction) : ContactLaw(friction); }
     MortarIntegration integration = MortarIntegration::segmented;  // with a master
   };
   std::vector<Contact> contacts;

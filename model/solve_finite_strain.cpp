@@ -139,7 +139,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
-                              c.integration, c.curve, c.friction});
+                              c.integration, c.curve, c.contact_law()});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   setup.mesh_size = m.mesh_size;
   if (m.spec.incompressible) setup.incompressibility_tolerance = TotalLagrangianAssembler::kIncompressibilityTolerance;
@@ -170,7 +170,7 @@ std::optional<double> pulled_off_after(const Model& m, const RigidModes& modes, 
     add_pressure_load(m.body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.curve(t) * p.value, f);
   add_traction_loads(m, *m.dofs, t, f);
   const WeightedGapOperator op = assemble_contact_operator_at_time(m, t);
-  if (load_pulls_off(op.G * modes.modes.col(0), modes.modes.col(0).dot(f), f.norm())) return t;
+  if (!op.bilateral() && load_pulls_off(op.G * modes.modes.col(0), modes.modes.col(0).dot(f), f.norm())) return t;
   return std::nullopt;
 }
 }  // namespace

@@ -64,7 +64,7 @@ WeightedGapOperator contact_operator(const Model& m, Factor&& factor) {
     if (c.master) {  // a master body moved (master_motion) by t * motion
       const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
       ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, c.integration,
-                                         c.friction, shift));
+                                         c.contact_law(), shift));
       continue;
     }
     const bool moved = t != 1.0 && c.motion.size() > 0;
@@ -72,7 +72,7 @@ WeightedGapOperator contact_operator(const Model& m, Factor&& factor) {
     std::optional<TranslatedObstacle> at;  // the obstacle at t * motion (c.obstacle stands at 1 * motion)
     if (moved) at.emplace(*c.obstacle, (t - 1.0) * c.motion);
     ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, at ? static_cast<const Obstacle&>(*at) : *c.obstacle,
-                                         c.friction, shift));
+                                         c.contact_law(), shift));
   }
   return stack(ops);
 }
@@ -173,7 +173,7 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
   // With friction a motion along the obstacle is held too (by the
   // tangential rows T) as long as the load does not exceed f N.
   Eigen::MatrixXd H = op.G * modes.modes;
-  if (op.frictional()) {
+  if (op.tangential()) {
     const Eigen::MatrixXd HT = op.T * modes.modes;
     H.conservativeResize(H.rows() + HT.rows(), Eigen::NoChange);
     H.bottomRows(HT.rows()) = HT;
@@ -189,8 +189,9 @@ void check_body_is_held(const Model& m, const RigidModes& modes, const Eigen::Ve
         "cannot stop them (it pushes only along the obstacle's normal); add a [[dirichlet]] condition{}",
         m.spec.where({.table = "contact", .key = "face"}), k - held, loose_patches(m, modes.modes * svd.matrixV().rightCols(k - held))));
   // One free motion (the usual symmetric case): the load must move the body
-  // toward the obstacle, closing some gap, or nothing balances it.
-  if (k == 1 && load_pulls_off(H.col(0).head(op.G.rows()), modes.modes.col(0).dot(f), f.norm()))
+  // toward the obstacle, closing some gap, or nothing balances it (a tie
+  // holds either way).
+  if (k == 1 && !op.bilateral() && load_pulls_off(H.col(0).head(op.G.rows()), modes.modes.col(0).dot(f), f.norm()))
     throw InputError(fmt::format(
         "{}: the load pulls the body away from the obstacle: only the contact holds it along its free rigid "
         "motion, and the load opens every gap (is the load's sign reversed?)",
@@ -369,10 +370,10 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     // "Nested iteration").
     if (m.spec.refine > 0 && (petsc || coarser.result))
       start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
-    if (petsc && c->op.frictional())  // (check_petsc_case refuses such a case as input)
+    if (petsc && c->op.tangential())  // (check_petsc_case refuses such a case as input)
       throw std::logic_error("the PETSc path runs frictionless contact only");
     c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
-                  : c->op.frictional() ? solve_with_friction(m, sys, c->op, modes, chol, opt)
+                  : c->op.tangential() ? solve_with_friction(m, sys, c->op, modes, chol, opt)
                                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;
     r.timing.contact = t0.seconds() - c->solution.factorize_s;
@@ -390,10 +391,11 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     }
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active, c->solution.lambda_t);
     r.contacts = report_contacts(m, *c);
-    // A rigid obstacle can only push: a net pull on the body (tensile
-    // multipliers) is a wrong result, never a converged one.
-    for (const auto& rr : r.reactions)
-      if (r.status == "converged" && rr.normal_force < -1e-9 * std::max(r.applied_force, 1e-300))
+    // A unilateral partner can only push: a net pull on the body (tensile
+    // multipliers) is a wrong result, never a converged one; a tie pulls.
+    for (size_t i = 0; i < r.reactions.size(); ++i)
+      if (const auto& rr = r.reactions[i]; r.status == "converged" && !m.contacts[i].contact_law().get().bilateral() &&
+                                           rr.normal_force < -1e-9 * std::max(r.applied_force, 1e-300))
         r.status = fmt::format("failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)",
                                rr.face, rr.normal_force);
     r.timing.postprocess += t0.seconds();
