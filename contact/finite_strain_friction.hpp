@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Large-deformation Coulomb friction against rigid obstacles (that may
 // translate) and between two bodies: the tangential rows of the
-// large-deformation contact (contact/finite_strain_problem.hpp), in the
+// large-deformation contact (model/finite_strain_problem.hpp), in the
 // same semismooth Newton.
 //
 // Per multiplier K (S^{p-2}, the normal one's space) dim-1 tangential

@@ -3,7 +3,7 @@
 // tangential part does once it is.  A contact pair is a slave face, a
 // partner (a rigid obstacle or a face of a body) and one of these laws; the
 // solvers of both kinematics (contact/small_strain_contact.hpp,
-// small_strain_friction.hpp, finite_strain_problem.hpp,
+// small_strain_friction.hpp, model/finite_strain_problem.hpp,
 // finite_strain_friction.hpp) ask the pair's law and write no rule of
 // their own.  The rules are stated on the complementarity values the
 // primal-dual active set works with (Hueber, Stadler & Wohlmuth 2008):

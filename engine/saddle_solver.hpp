@@ -7,8 +7,8 @@
 //                                  (inactive: d_k dl_k = b_k) or d_k = 0
 //                                  (active: s_k B_k du = b_k).
 //
-// This is the semismooth-Newton matrix of weighted-gap contact (contact/
-// finite_strain_problem.hpp): B holds the gap derivatives, s the scale c of
+// This is the semismooth-Newton matrix of weighted-gap contact
+// (model/finite_strain_problem.hpp): B holds the gap derivatives, s the scale c of
 // the active rows, d the weights of the inactive ones.
 //
 // How it is solved, per Newton iteration (the small-deformation contact

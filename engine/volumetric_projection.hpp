@@ -54,7 +54,7 @@
 //
 // Large deformation iterates on theta too (the u-p Newton, since issue 24):
 // TotalLagrangianAssembler::assemble takes the dilatations, p = U'(theta),
-// and contact/finite_strain_problem.hpp carries them in Newton's unknowns,
+// and model/finite_strain_problem.hpp carries them in Newton's unknowns,
 // condensed in the solve (docs/design.md, "The u-p Newton iteration").
 #pragma once
 

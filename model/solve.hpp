@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "model/model.hpp"
 #include "model/run_result.hpp"
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <fmt/format.h>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "engine/stopwatch.hpp"
 #include "engine/face_quadrature.hpp"
 #include "engine/follower_pressure.hpp"

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <string>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "engine/linear_static.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"

@@ -21,7 +21,7 @@
 #include <sstream>
 #include <string>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "contact/small_strain_friction.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"

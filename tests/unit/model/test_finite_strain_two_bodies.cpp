@@ -8,7 +8,7 @@
 
 #include <algorithm>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "engine/linear_static.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The u-p Newton of the mixed formulation (contact/finite_strain_problem.hpp,
+// The u-p Newton of the mixed formulation (model/finite_strain_problem.hpp,
 // docs/design.md "Nearly incompressible solids"): every pressure block's
 // dilatation theta_b (2 x 2 elements; the leftover of an odd direction in
 // the last block) is an unknown of the iteration, condensed block by block in
@@ -21,7 +21,7 @@
 
 #include <cmath>
 
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"

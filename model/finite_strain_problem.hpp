@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Large-deformation frictionless contact as a NonlinearProblem for the
+// The large-deformation problem (model/: it composes the body's stored
+// energy, its loads and its contact interfaces), as a NonlinearProblem for the
 // load-stepping driver (engine/load_stepping.hpp): total-Lagrangian
 // elasticity with a hyperelastic law, follower (or dead) pressure, dead
 // tractions and body force, ramped prescribed displacements, and the weighted-gap contact of the paper

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "contact/finite_strain_problem.hpp"
+#include "model/finite_strain_problem.hpp"
 
 #include "engine/assembly.hpp"
 
