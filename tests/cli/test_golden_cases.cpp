@@ -20,8 +20,17 @@
 //    anywhere in the record (every max_pressure of every step; every force,
 //    kind_of below), so that a reaction component that is round-off itself
 //    is held to eps kappa times the forces, not to eps kappa times itself.
-//  - residual_norms, the Newton history (relative residuals, in units of
-//    the step's force scale): scale max(1, the step's first residual).
+//  - the Newton path of a load step (residual_norms, newton_iterations,
+//    active_set_sizes of a step that has residual_norms): not compared.
+//    It is the way to the step's solution, not the solution: a decision on
+//    the way sits near its threshold where another machine's round-off
+//    moves it (oring_on_plate's first step, with two threads: the attempt
+//    from the tangent predictor converges in 7 iterations, with one it
+//    fails and the step converges from the last state in 6), and every
+//    residual after it differs; the step's solution, its reactions and
+//    every later step's agree to the rule (measured: at most 1e-3 of it).
+//    Every other count, the small-deformation active-set iterations among
+//    them, is compared exactly.
 //  - an error norm X with a relative X_rel beside it: scale X / X_rel, the
 //    norm it is relative to (an error is a small difference of large
 //    numbers); X_rel: scale 1.
@@ -67,15 +76,16 @@ const fs::path kGolden = kSource / "tests" / "data" / "golden";
 
 constexpr double kCsvPrinted = 1.5e-9;  // 10 printed digits
 
-// Numbers compared, and the largest |a - b| / tolerance per kind: results,
-// the Newton history (residual_norms) and the CSV files: how much of the
-// rule's margin a run used (the portability script's measure).
+// Numbers compared, and the largest |a - b| / tolerance per kind: results
+// and the CSV files: how much of the rule's margin a run used (the
+// portability script's measure).
 struct Tally {
   int numbers = 0, exact = 0;
   struct Worst {
     double ratio = 0;
     std::string at = "-";
-  } result, residual, csv;
+  } result, csv;
+  int newton_paths = 0;  // load steps whose Newton path was not compared
 };
 
 // What one comparison holds: the rule, the scale of every key's kind.
@@ -110,9 +120,7 @@ bool close(double golden, double actual, double scale, const std::string& where,
   const double tol = printed * std::max(std::abs(golden), std::abs(actual)) +
                      rule.accuracy.relative() * std::max({scale, std::abs(golden), std::abs(actual)});
   ++t.numbers;
-  Tally::Worst& w = where.find(".csv") != std::string::npos              ? t.csv
-                    : where.find("residual_norms") != std::string::npos ? t.residual
-                                                                        : t.result;
+  Tally::Worst& w = where.find(".csv") != std::string::npos ? t.csv : t.result;
   if (diff > 0 && tol > 0 && diff / tol > w.ratio) w = {diff / tol, where};
   if (diff <= tol) return true;
   ADD_FAILURE() << where << ": recorded " << std::setprecision(17) << golden << ", now " << actual << " (|diff| "
@@ -171,12 +179,11 @@ void compare(const json& g, const json& a, const std::string& where, double scal
         }
         if (key == "rates" && g.contains("levels")) {
           compare_rates(gv, a.at(key), g.at("levels"), at, rule, t);
-        } else if (key == "residual_norms") {
-          ASSERT_TRUE(gv.is_array() && a.at(key).is_array()) << at;
-          ASSERT_EQ(a.at(key).size(), gv.size()) << at << ": Newton iterations + 1";
-          const double r0 = gv.empty() ? 0.0 : std::abs(gv[0].get<double>());
-          for (size_t i = 0; i < gv.size(); ++i)
-            close(gv[i], a.at(key)[i], std::max(1.0, r0), at + "[" + std::to_string(i) + "]", rule, t);
+        } else if (g.contains("residual_norms") &&
+                   (key == "residual_norms" || key == "newton_iterations" || key == "active_set_sizes")) {
+          // A Newton step's path (above): that the run took one is all.
+          ASSERT_TRUE(a.at(key).is_array() || a.at(key).is_number_integer()) << at;
+          if (key == "residual_norms") ++t.newton_paths;
         } else if (where.ends_with("/errors") && gv.is_number_float()) {
           compare(gv, a.at(key), at, error_scale(g, key), rule, t);
         } else {
@@ -306,10 +313,10 @@ TEST_P(GoldenCase, ResultsAsRecordedBeforeTheRefactor) {
     std::printf("%s: von Mises and |sigma| >= 0 in %d ParaView steps\n", GetParam().c_str(), files);
   }
   std::printf("%s: condition estimate %.3g, relative tolerance %.3g; %d numbers compared (%d integers exactly); "
-              "largest |diff| / tolerance: results %.3g (%s), residuals %.3g (%s), CSV files %.3g (%s)\n",
+              "largest |diff| / tolerance: results %.3g (%s), CSV files %.3g (%s); Newton paths of %d load steps "
+              "not compared\n",
               GetParam().c_str(), rule.accuracy.condition, rule.accuracy.relative(), t.numbers, t.exact, t.result.ratio,
-              t.result.at.c_str(), t.residual.ratio,
-              t.residual.at.c_str(), t.csv.ratio, t.csv.at.c_str());
+              t.result.at.c_str(), t.csv.ratio, t.csv.at.c_str(), t.newton_paths);
 }
 
 std::string case_name(const ::testing::TestParamInfo<std::string>& info) { return info.param; }

@@ -23,12 +23,20 @@
 // kappa rtol of the solution undecided: that, not round-off, is then the
 // tolerance (kappa of the direct run of the same case).
 //
-// Counts (dofs, Newton and active-set iterations, active-set sizes,
-// cut-backs) are compared exactly: each is decided by comparing a quantity
-// with a threshold (a residual with the Newton tolerance, lambda + c g with
-// 0), and in the recorded runs those quantities sit many times the bound
-// above from their thresholds (scripts/portability.sh runs the whole suite
-// under four BLAS kernels and two thread counts to show it).
+// Counts (dofs, active-set iterations and sizes of the small-deformation
+// solves, load steps, cut-backs) are compared exactly: each is decided by
+// comparing a quantity with a threshold (lambda + c g with 0, a step's
+// convergence), and in the recorded runs those quantities sit many times
+// the bound above from their thresholds (scripts/portability.sh runs the
+// whole suite under four BLAS kernels and two thread counts to show it).
+// A Newton step's path is not a count of that kind: the iterations from a
+// predicted state far from the solution amplify round-off before the
+// contraction damps it, and a decision on the way (an attempt that fails
+// and is retried from the last state, a line-search cut) can go either
+// way on another thread count (measured: oring_on_plate's first step takes
+// 6 iterations on one thread, 7 on two); its solution still agrees to the
+// bound.  So a load step's Newton iterations, residual history and
+// active-set sizes on the way are not compared, its solution is.
 #pragma once
 
 #include <algorithm>
