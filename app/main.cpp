@@ -353,9 +353,9 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // Every number of the summary went through finite_or_null: a null value
   // (not the text "null", which a case name may contain) is a non-finite result.
   const bool finite = !has_null_value(summary) && r.u.allFinite();
-  if (!finite && r.status == "converged") {
-    r.status = "failed: a result is not finite";
-    summary["status"] = r.status;
+  if (!finite && r.status.is_converged()) {
+    r.status = RunStatus::failed("failed: a result is not finite");
+    summary["status"] = r.status.text();
   }
   if (folder) {
     Progress progress(quiet, wall.seconds());
@@ -383,8 +383,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   if (!quiet && !header) print_header(model);
   if (!quiet) print_summary(model, r, folder ? folder->target() : std::string(), wall.seconds());
   // (a run stopped where --stop-after-step asked has done what it was asked)
-  const bool asked = restart.stop_after_step > 0 && r.status.starts_with("stopped after step");
-  return r.status == "converged" || asked ? 0 : 1;
+  return r.status.exit_code();
 }
 
 }  // namespace

@@ -344,7 +344,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
     while (next < corners.size() && !(t < corners[next] - 1e-12)) ++next;
     if (next == corners.size()) break;
     if (opt.max_steps > 0 && steps_done >= opt.max_steps) {
-      summary.status = fmt::format("stopped after step {} (as asked)", steps_done);
+      summary.status = RunStatus::stopped_as_asked(steps_done);
       break;
     }
     const double corner = corners[next];
@@ -419,12 +419,13 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
       fmt::print(stderr, "         {} {:.4f} failed ({}): cut back to increment {:.3g}\n", curves ? "time" : "load factor",
                  t + 2 * dt, why, dt);
     if (dt < opt.min_increment) {
-      summary.status = fmt::format("stopped at {} {:.6g}: {} even with an increment below {:.3g}",
-                                   curves ? "time" : "load factor", t, why, opt.min_increment);
+      summary.status = RunStatus::failed(fmt::format("stopped at {} {:.6g}: {} even with an increment below {:.3g}",
+                                                     curves ? "time" : "load factor", t, why, opt.min_increment));
       summary.unfinished_cut_backs = cut_backs;
       break;
     }
   }
+  if (!summary.status.is_set()) summary.status = RunStatus::converged();  // (every corner reached)
   summary.linear = solver.stats();
   if (summary.linear.setups > 0) summary.condition_estimate = solver.condition_estimate();
   summary.newton_seconds = clock.seconds();

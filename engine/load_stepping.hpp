@@ -32,6 +32,8 @@
 // holding the last converged state.
 #pragma once
 
+#include "engine/run_status.hpp"
+
 #include <Eigen/Sparse>
 #include <functional>
 #include <optional>
@@ -154,7 +156,7 @@ struct LoadStepRecord {
 };
 
 struct LoadSteppingSummary {
-  std::string status = "converged";
+  RunStatus status;  // (engine/run_status.hpp; set when the run ends)
   std::vector<LoadStepRecord> steps;
   int unfinished_cut_backs = 0;  // a failed run: the cut-backs after its last converged step
   double newton_seconds = 0;

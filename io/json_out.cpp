@@ -183,7 +183,7 @@ Json run_summary(const Model& m, const RunResult& r) {
       knots.push_back({{"patch", k.patch}, {"direction", std::string(1, "uvw"[k.direction])}, {"knots", k.count}});
     j["interface_knots_inserted"] = knots;
   }
-  j["status"] = r.status;
+  j["status"] = r.status.text();
   if (!m.warnings.empty() || !r.warnings.empty()) {  // what build_model and the solve found doubtful
     j["warnings"] = m.warnings;
     for (const auto& w : r.warnings) j["warnings"].push_back(w);

@@ -175,7 +175,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     const bool again = resumed > 0 && i == resumed - 1;  // (its record is in already)
     if (again && i + 1 < times.size()) continue;
     if (!again && m.stop_after_step > 0 && int(i) >= m.stop_after_step) {
-      steps.status = fmt::format("stopped after step {} (as asked)", i);
+      steps.status = RunStatus::stopped_as_asked(int(i));
       break;
     }
     clock.restart();
@@ -209,7 +209,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
       r.timing.factorization += c.solution.factorize_s;
       r.timing.contact += clock.seconds() - c.solution.factorize_s;
       if (!c.solution.converged || c.solution.u.size() != m.dofs->num_free()) {
-        steps.status = fmt::format("stopped at time {:.6g}: {}", t, c.solution.status);
+        steps.status = RunStatus::failed(fmt::format("stopped at time {:.6g}: {}", t, c.solution.status));
         break;
       }
       step.u = expand(c.solution.u, t);
@@ -265,6 +265,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   r.contacts = std::move(last.contacts);
   r.reactions = std::move(last.reactions);
   r.dirichlet_reactions = std::move(last.dirichlet_reactions);
+  if (!steps.status.is_set()) steps.status = RunStatus::converged();  // (every step solved)
   r.status = steps.status;
   r.load_steps = std::move(steps);
   r.applied_force = pressure_resultant(m, t_end);

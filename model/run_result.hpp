@@ -127,7 +127,7 @@ struct RunResult {
   RunResult(const RunResult&) = delete;
   RunResult& operator=(const RunResult&) = delete;
 
-  std::string status = "converged";
+  RunStatus status;  // how the run ended (engine/run_status.hpp); not_run until a solve says
   Eigen::MatrixXd u;  // n_cp x dim
   // The incompressible limit ([material] incompressible): the pressure U' =
   // lambda_A + kappa (theta_A - 1) of each pressure function, one value per

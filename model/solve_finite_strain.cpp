@@ -280,6 +280,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
     summary.steps.push_back({1.0, 0, {0.0}, {0}, 0});
     latest = {1.0, 1.0, 0.0, x, x};  // (its state file names the step's time, as a driver's step does)
     record_step(summary.steps.back(), x);
+    summary.status = RunStatus::converged();  // (u = 0 solves it)
   } else {
     summary = run_load_steps(problem, x, opt, record_step);
     summary.steps.insert(summary.steps.begin(), earlier.begin(), earlier.end());
@@ -289,13 +290,15 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;
   const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;
-  if (summary.status.starts_with("stopped at") && modes.modes.cols() == 1)
+  if (summary.status.outcome() == RunStatus::Outcome::failed && modes.modes.cols() == 1)
     if (const std::optional<double> t = pulled_off_after(m, modes, t_final, opt.corners)) {
       const char* at = curves ? "time" : "load factor";
-      const std::string why = summary.status.substr(std::min(summary.status.size(), summary.status.find(": ") + 2));
-      r.status = fmt::format("stopped at {} {:.6g}: {}", at, t_final,
-                             pulled_off_status(0, fmt::format("so at {} {:.6g}, where the failed steps were going; "
-                                                              "their last: {}", at, *t, why)));
+      const std::string& text = summary.status.text();
+      const std::string why = text.substr(std::min(text.size(), text.find(": ") + 2));
+      r.status = RunStatus::failed(fmt::format("stopped at {} {:.6g}: {}", at, t_final,
+                                               pulled_off_status(0, fmt::format("so at {} {:.6g}, where the failed "
+                                                                                "steps were going; their last: {}",
+                                                                                at, *t, why))));
     }
   // No step converged: the state is the reference one, u = 0 and no contact
   // force (not the multipliers primed for the first Newton iteration), and

@@ -338,7 +338,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     const ContactSolution s = solve_with_petsc(m, sys, none, modes, no_contact, r.linear_solver);
     r.timing.factorization = s.factorize_s;
     r.timing.linear_solve = s.iterations_s;
-    r.status = s.status;
+    r.status = s.converged ? RunStatus::converged() : RunStatus::failed(s.status);
     r.u = m.dofs->expand(s.u);
   } else if (m.contacts.empty()) {
     progress.phase(fmt::format("factorising K ({} equations)", m.dofs->num_free()));
@@ -348,6 +348,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     t0.restart();
     r.u = m.dofs->expand(chol.solve(sys.f));
     r.timing.linear_solve = t0.seconds();
+    r.status = RunStatus::converged();  // (one direct solve: nothing to fail but the factorisation, which throws)
     if (auto w = stiffness_warning(m, sys.K, {}, chol)) r.warnings.push_back(std::move(*w));
   } else {
     ContactSolve* c = &r.contact.emplace();
@@ -377,7 +378,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
                                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;
     r.timing.contact = t0.seconds() - c->solution.factorize_s;
-    r.status = c->solution.status;
+    r.status = c->solution.converged ? RunStatus::converged() : RunStatus::failed(c->solution.status);
     if (c->solution.u.size() != m.dofs->num_free())
       throw std::runtime_error(fmt::format("contact solve failed: {}", c->solution.status));
     r.u = m.dofs->expand(c->solution.u);
@@ -385,7 +386,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     t0.restart();
     // A motion the stiffness or the contact barely holds (the factor is K's
     // with the free rigid motions pinned).
-    if (!petsc && r.status == "converged") {
+    if (!petsc && r.status.is_converged()) {
       if (auto w = stiffness_warning(m, sys.K, modes.pinned, chol)) r.warnings.push_back(std::move(*w));
       if (auto w = contact_hold_warning(m, c->op, c->solution, modes)) r.warnings.push_back(std::move(*w));
     }
@@ -394,10 +395,10 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     // A unilateral partner can only push: a net pull on the body (tensile
     // multipliers) is a wrong result, never a converged one; a tie pulls.
     for (size_t i = 0; i < r.reactions.size(); ++i)
-      if (const auto& rr = r.reactions[i]; r.status == "converged" && !m.contacts[i].contact_law().get().bilateral() &&
+      if (const auto& rr = r.reactions[i]; r.status.is_converged() && !m.contacts[i].contact_law().get().bilateral() &&
                                            rr.normal_force < -1e-9 * std::max(r.applied_force, 1e-300))
-        r.status = fmt::format("failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)",
-                               rr.face, rr.normal_force);
+        r.status = RunStatus::failed(fmt::format(
+            "failed: the obstacle of face '{}' pulls on the body (contact force {:.3g} < 0)", rr.face, rr.normal_force));
     r.timing.postprocess += t0.seconds();
   }
   start();  // (a PETSc solve that ended before its first iteration's report)

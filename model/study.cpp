@@ -40,7 +40,7 @@ StudyResult solve_study(CaseSpec spec, int levels, bool quiet, const LevelObserv
     const CoarserRun previous = l > 0 ? CoarserRun{&models[l - 1], &results[l - 1]} : CoarserRun{};
     results.push_back(solve_model(models.back(), {}, previous));
     if (on_level) on_level(l, models.back(), results.back());
-    if (results.back().status != "converged")
+    if (!results.back().status.is_converged())
       throw std::runtime_error(fmt::format("level {} did not converge: {}", l, results.back().status));
   }
   auto& errors = out.errors;

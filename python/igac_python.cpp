@@ -251,7 +251,7 @@ py::dict run_table(const toml::table& root, const std::string& path, std::option
   }
   py::dict out;
   out["summary"] = py::module_::import("json").attr("loads")(run_summary(model, r).dump());
-  out["status"] = r.status;
+  out["status"] = r.status.text();
   out["control_points"] = Eigen::MatrixXd(model.body.points().leftCols(model.body.space_dim()));
   out["displacement"] = r.u;
   out["multipliers"] = r.contact ? Eigen::VectorXd(r.contact->solution.lambda) : Eigen::VectorXd();

@@ -443,7 +443,7 @@ TEST(ContactFlatBlockZeroLoad, CaseRunReportsInsteadOfCrashing) {
   EXPECT_EXIT(
       {
         const FlatBlockRun run = run_flat_block(2, 0.0, 0.0);
-        std::exit(run.result.status.empty() ? 1 : 0);
+        std::exit(run.result.status.text().empty() ? 1 : 0);
       },
       ::testing::ExitedWithCode(0), "");
 }

@@ -243,7 +243,7 @@ TEST(LoadStepping, HalvingLineSearchFailsWithAReason) {
   opt.halving_line_search = true;
   Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
   const LoadSteppingSummary s = run_load_steps(problem, x, opt, {});
-  EXPECT_NE(s.status.find("the line search found no decrease"), std::string::npos) << s.status;
+  EXPECT_NE(s.status.text().find("the line search found no decrease"), std::string::npos) << s.status;
   EXPECT_EQ(x[0], 0.0) << "x keeps the last converged state";
 }
 

@@ -188,7 +188,7 @@ TEST(FiniteStrainDriver, GivesUpWithAClearStatusAndNoNaN) {
   m.quiet = true;
   const RunResult r = solve_model(m);
   EXPECT_NE(r.status, "converged");
-  EXPECT_NE(r.status.find("stopped at load factor"), std::string::npos) << r.status;
+  EXPECT_NE(r.status.text().find("stopped at load factor"), std::string::npos) << r.status;
   EXPECT_TRUE(r.u.allFinite());
 }
 
