@@ -40,7 +40,8 @@ for kernel in Haswell SkylakeX Sandybridge Zen; do
     failed=$(sed -n 's/.*tests passed, \([0-9]*\) tests failed out of.*/\1/p' "$log" | tail -n 1)
     # "...largest |diff| / tolerance: results R (WHERE), CSV files C (..)": the largest R or C
     worst=$(grep -o 'largest |diff| / tolerance: results [^ ]* ([^)]*), CSV files [^ ]* ([^)]*)' "$log" |
-            awk '{ for (i = 1; i <= NF; ++i) if ($i == "results" || $i == "files") { v = $(i + 1); w = $(i + 2);
+            awk '{ for (i = 1; i <= NF; ++i) if ($i == "results" || $i == "files") { v = $(i + 1); w = $(i + 2); j = i + 2;
+                     while (w !~ /\)/ && j < NF) { j++; w = w " " $j }; sub(/[,;]$/, "", w);
                      if (v + 0 > best) { best = v + 0; at = w } } }
                  END { printf "%g,%s", best, at }')
     result=passed; [ $rc -ne 0 ] && { result=FAILED; status=1; }
