@@ -185,7 +185,7 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     if (several)
       fmt::print("    total force   {:.10g}\n", rep.total_force);
     else if (r.applied_force > 0 && c.resultant.size() == c.normal.size() &&
-             std::abs(std::abs(c.resultant.dot(c.normal)) - rep.total_force) > 1e-9 * std::abs(rep.total_force)) {
+             std::abs(std::abs(c.resultant.dot(c.normal)) - std::abs(rep.total_force)) > 1e-9 * std::abs(rep.total_force)) {
       // against a curved or deformed partner the pressure turns with its
       // normal: the resultant, not the integral of p, balances the load
       const double along = std::abs(c.resultant.dot(c.normal));
@@ -193,8 +193,10 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
                  "difference {:.2e})\n", rep.total_force, along, r.applied_force,
                  std::abs(along - r.applied_force) / r.applied_force);
     } else if (r.applied_force > 0)
-      fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e})\n", rep.total_force,
-                 r.applied_force, std::abs(rep.total_force - r.applied_force) / r.applied_force);
+      // (the applied force is a magnitude; a tie's contact force is negative where it pulls)
+      fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e}{})\n", rep.total_force,
+                 r.applied_force, std::abs(std::abs(rep.total_force) - r.applied_force) / r.applied_force,
+                 rep.total_force < 0 ? "; negative: the tie pulls" : "");
     else  // no pressure load nor prescribed displacement: a moving obstacle, or nothing
       fmt::print("  total force   {:.10g}  ({})\n", rep.total_force,
                  m.contacts[i].motion.size() > 0 && m.contacts[i].motion.norm() > 0

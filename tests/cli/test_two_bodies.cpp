@@ -220,3 +220,20 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadMaster>& i) { return i.param.name; });
 
 }  // namespace
+
+// A tie (`[contact] law = "tied"`) pulled: the run converges, exits 0, and
+// the console says the contact force is a pull of the applied load.
+TEST(TwoBodies, ATiePulledConvergesAndSaysItPulls) {
+  igac_test::TempDir tmp("two_blocks_tied");
+  fs::copy_file(kCases / "two_blocks.xml", tmp.path() / "two_blocks.xml");
+  std::string text = igac_test::read_file(kCases / "two_blocks.toml");
+  text.replace(text.find("value = 0.01"), 12, "value = -0.01");
+  std::ofstream(tmp.path() / "case.toml") << text << "law = \"tied\"\n";
+  const auto o = igac_test::run_igac("run case.toml --out result", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_TRUE(std::regex_search(o.output, std::regex(R"(total force   -0\.01  \(applied 0\.01, relative difference \S+; negative: the tie pulls\))")))
+      << o.output;
+  const auto summary = nlohmann::json::parse(igac_test::read_file(tmp.path() / "result" / "summary.json"));
+  EXPECT_EQ(summary["status"], "converged");
+  EXPECT_NEAR(summary["contact"]["total_force"].get<double>(), -0.01, 1e-14);
+}
