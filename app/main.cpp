@@ -188,10 +188,11 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
              std::abs(std::abs(c.resultant.dot(c.normal)) - std::abs(rep.total_force)) > 1e-9 * std::abs(rep.total_force)) {
       // against a curved or deformed partner the pressure turns with its
       // normal: the resultant, not the integral of p, balances the load
-      const double along = std::abs(c.resultant.dot(c.normal));
+      // (signed as the total force: a tie that pulls has both negative)
+      const double along = std::copysign(std::abs(c.resultant.dot(c.normal)), rep.total_force);
       fmt::print("  total force   {:.10g}, resultant along the normal {:.10g}  (applied {:.10g}, relative "
                  "difference {:.2e})\n", rep.total_force, along, r.applied_force,
-                 std::abs(along - r.applied_force) / r.applied_force);
+                 std::abs(std::abs(along) - r.applied_force) / r.applied_force);
     } else if (r.applied_force > 0)
       // (the applied force is a magnitude; a tie's contact force is negative where it pulls)
       fmt::print("  total force   {:.10g}  (applied {:.10g}, relative difference {:.2e}{})\n", rep.total_force,

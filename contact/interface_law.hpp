@@ -2,10 +2,12 @@
 // The law of a contact interface: when a multiplier is closed, and what its
 // tangential part does once it is.  A contact pair is a slave face, a
 // partner (a rigid obstacle or a face of a body) and one of these laws; the
-// solvers of both kinematics (contact/small_strain_contact.hpp,
-// small_strain_friction.hpp, model/finite_strain_problem.hpp,
-// finite_strain_friction.hpp) ask the pair's law and write no rule of
-// their own.  The rules are stated on the complementarity values the
+// solvers that may meet any law (contact/small_strain_friction.hpp,
+// model/finite_strain_problem.hpp, finite_strain_friction.hpp) ask the
+// pair's law per multiplier; the frictionless active-set loops, which only
+// unilateral pairs reach (contact/small_strain_contact.hpp and the PETSc
+// path through its next_active_set), call unilateral_closed below.  No
+// solver writes a rule of its own.  The rules are stated on the complementarity values the
 // primal-dual active set works with (Hueber, Stadler & Wohlmuth 2008):
 //   normal      v = lambda_n + c_n g      (lambda_n <= 0 pushes; g the weighted gap)
 //   tangential  xi = lambda_t + c_t s     (s the weighted slip over the step)
