@@ -26,7 +26,7 @@ struct Attempt {
   double t = 0;
   double scale = 1;  // force scale: residuals are relative to it
   BlockJacobian& J;
-  SaddleSolver& solver;
+  LinearBackend& solver;
   LoadSteppingSummary& summary;  // accumulates the time spent in callbacks
   LoadStepRecord record;
   std::vector<std::vector<char>> active_history;
@@ -295,7 +295,7 @@ bool solve_step(Attempt& a, Eigen::VectorXd& x, SUNContext ctx, const LoadSteppi
 // moved face.  Nothing (nullopt) when a state is inadmissible (false or a
 // NumericalFailure) or the matrix singular; anything else thrown propagates.
 std::optional<Eigen::VectorXd> tangent_predictor(NonlinearProblem& problem, const Eigen::VectorXd& x, double t, double dt,
-                                                 BlockJacobian& J, SaddleSolver& solver) {
+                                                 BlockJacobian& J, LinearBackend& solver) {
   try {
     Eigen::VectorXd r0, r1;
     const double eps = 1e-6 * std::max(dt, 1e-3);
@@ -319,7 +319,9 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   const ContextOwner context;  // freed also when an error propagates
   const SUNContext ctx = context.ctx;
   BlockJacobian J;
-  SaddleSolver solver;  // one for the whole run: the symbolic analysis is kept
+  // one backend for the whole run: the symbolic analysis is kept
+  SaddleSolver direct;
+  LinearBackend& solver = opt.linear_backend ? *opt.linear_backend : direct;
 
   double t = 0;
   double dt = opt.first_increment > 0 ? opt.first_increment : 1.0 / std::max(opt.steps, 1);

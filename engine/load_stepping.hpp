@@ -9,7 +9,9 @@
 //
 // KINSOL runs Newton (with its line search, without, or with the driver's
 // own halving one, LoadSteppingOptions::halving_line_search) through a custom
-// direct linear solver, SaddleSolver (engine/saddle_solver.hpp): the
+// linear solver, a LinearBackend (engine/linear_backend.hpp) the caller may
+// inject (LoadSteppingOptions::linear_backend: PETSc's, solvers/); by
+// default the direct one, SaddleSolver (engine/saddle_solver.hpp): the
 // problem hands over its Jacobian in blocks (the displacement block K, the
 // constraint rows), K's symmetric part is factorised by CHOLMOD with the
 // symbolic analysis done once for the whole run, the active multipliers are
@@ -38,6 +40,7 @@
 #include <functional>
 #include <optional>
 
+#include "engine/linear_backend.hpp"
 #include "engine/saddle_solver.hpp"
 #include <string>
 #include <vector>
@@ -144,6 +147,9 @@ struct LoadSteppingOptions {
   // Called after each converged step, before on_step, with the state to
   // continue from.
   std::function<void(const LoadSteppingState&)> on_state;
+  // The linear solver of every Newton step (not owned; it must outlive the
+  // run).  Null: the direct SaddleSolver, one for the run.
+  LinearBackend* linear_backend = nullptr;
 };
 
 struct LoadStepRecord {
@@ -161,8 +167,8 @@ struct LoadSteppingSummary {
   int unfinished_cut_backs = 0;  // a failed run: the cut-backs after its last converged step
   double newton_seconds = 0;
   double residual_seconds = 0, jacobian_seconds = 0;  // inside newton_seconds
-  SaddleSolverStats linear;                           // the linear solves, ditto
-  // kappa_1 of the last Newton matrix factorised (SaddleSolver::condition_estimate):
+  LinearSolveStats linear;                           // the linear solves, ditto
+  // kappa_1 of the last Newton matrix factorised (LinearBackend::condition_estimate):
   // how many digits of the result round-off leaves; 0 when nothing was solved.
   double condition_estimate = 0;
 };

@@ -38,8 +38,9 @@ std::optional<std::string> nearest_name(const std::string& word, const std::vect
 std::string check_case_petsc_options(const std::string& options);
 // Why a [solver] preconditioner cannot be used ("" when it can).
 std::string check_preconditioner(const SolverSpec& solver);
-// Why the PETSc solver cannot run this case ("" when it can): it runs the
-// small-deformation solve of solve_model, frictionless, without load curves
+// Why the PETSc solver cannot run this case ("" when it can): it runs every
+// large-deformation case (each Newton step's linear solve in PETSc) and the
+// small-deformation solve of solve_model frictionless, without load curves
 // (two bodies, several contacts, the mixed formulation and moving obstacles
 // included).  The one rule of [solver] type = "petsc" and of --solver petsc.
 std::string check_petsc_case(const CaseSpec& c);

@@ -8,6 +8,7 @@
 
 #include "model/model.hpp"
 #include "solvers/petsc_contact.hpp"
+#include "solvers/petsc_newton.hpp"
 #include "engine/prolongation.hpp"
 #endif
 
@@ -100,7 +101,47 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   record.peak_resident_all_ranks_gib = s.peak_resident_all_ranks_gib;
   return s;
 }
+namespace {
+// PETSc's Newton backend with its option errors said as input errors.
+class ReportingPetscNewtonSolver final : public LinearBackend {
+ public:
+  explicit ReportingPetscNewtonSolver(std::string where) : where_(std::move(where)) {}
+  bool setup(const BlockJacobian& J) override {
+    return reported([&] { return solver_.setup(J); });
+  }
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) override {
+    return reported([&] { return solver_.solve(b, x, tolerance); });
+  }
+  const std::string& why() const override { return solver_.why(); }
+  const LinearSolveStats& stats() const override { return solver_.stats(); }
+  double condition_estimate() const override { return solver_.condition_estimate(); }
+  LinearBackendReport report() const override { return solver_.report(); }
+
+ private:
+  template <class F>
+  bool reported(F&& f) {
+    try {
+      return f();
+    } catch (const PetscOptionError& e) {
+      throw InputError(fmt::format("{}: [solver] options: {}", where_, e.what()));
+    }
+  }
+  std::string where_;
+  PetscNewtonSolver solver_;
+};
+}  // namespace
+
+std::unique_ptr<LinearBackend> newton_linear_solver(const Model& m) {
+  if (!uses_petsc(m)) return nullptr;
+  if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
+  return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}));
+}
 #else
+std::unique_ptr<LinearBackend> newton_linear_solver(const Model& m) {
+  if (!uses_petsc(m)) return nullptr;
+  throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "
+                               "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));
+}
 ElementRange process_elements(const Model&) { return {}; }
 void sum_over_processes(Eigen::VectorXd&) {}
 ContactSolution solve_with_petsc(const Model& m, LinearSystem&, const WeightedGapOperator&, const RigidModes&,

@@ -45,32 +45,6 @@ bool is_option_error(PetscErrorCode e) {
 }
 
 
-// Options left unused after the first solve: misspelt, or for another solver.
-void refuse_unused_options() {
-  PetscInt count = 0;
-  char** names = nullptr;
-  char** values = nullptr;
-  check(PetscOptionsLeftGet(nullptr, &count, &names, &values), "options");
-  std::vector<std::string> unused;
-  for (PetscInt i = 0; i < count; ++i) {
-    const std::string name = names[i];
-    const bool ours = std::find(g_defaults.begin(), g_defaults.end(), name) != g_defaults.end();
-    const bool global = name.rfind("log", 0) == 0 || name.rfind("malloc", 0) == 0 || name == "options_left" ||
-                        name == "no_signal_handler" || name.rfind("info", 0) == 0 || name == "memory_view";
-    if (!ours && !global) unused.push_back("-" + name);
-  }
-  PetscOptionsLeftRestore(nullptr, &count, &names, &values);
-  if (!unused.empty())
-    throw PetscOptionError(fmt::format("PETSc option {} was not used by the solver (misspelt, or an option of "
-                                       "another solver type)", unused.front()));
-}
-
-double peak_resident_gib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return double(usage.ru_maxrss) / double(1 << 20);
-}
-
 }  // namespace
 
 namespace petsc {
@@ -102,6 +76,32 @@ std::pair<PetscInt, PetscInt> share(PetscInt n) {
   int rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   return {rank == 0 ? 0 : first, local};
+}
+
+// Options left unused after the first solve: misspelt, or for another solver.
+void refuse_unused_options() {
+  PetscInt count = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  check(PetscOptionsLeftGet(nullptr, &count, &names, &values), "options");
+  std::vector<std::string> unused;
+  for (PetscInt i = 0; i < count; ++i) {
+    const std::string name = names[i];
+    const bool ours = std::find(g_defaults.begin(), g_defaults.end(), name) != g_defaults.end();
+    const bool global = name.rfind("log", 0) == 0 || name.rfind("malloc", 0) == 0 || name == "options_left" ||
+                        name == "no_signal_handler" || name.rfind("info", 0) == 0 || name == "memory_view";
+    if (!ours && !global) unused.push_back("-" + name);
+  }
+  PetscOptionsLeftRestore(nullptr, &count, &names, &values);
+  if (!unused.empty())
+    throw PetscOptionError(fmt::format("PETSc option {} was not used by the solver (misspelt, or an option of "
+                                       "another solver type)", unused.front()));
+}
+
+double peak_resident_gib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) / double(1 << 20);
 }
 
 }  // namespace petsc

@@ -23,6 +23,13 @@ void default_option(const char* name, const char* value);
 // them (PETSC_DECIDE).  Collective.
 std::pair<PetscInt, PetscInt> share(PetscInt n);
 
+// Throws PetscOptionError naming the first option no PETSc object used
+// (misspelt, or an option of another solver type); call after the first solve.
+void refuse_unused_options();
+
+// This process's peak resident memory so far, GiB.
+double peak_resident_gib();
+
 // PETSc objects destroyed at scope exit (also when an exception leaves).
 template <class T, PetscErrorCode (*Destroy)(T*)>
 struct Owned {

@@ -31,8 +31,8 @@ std::string source_text(const std::string& relative) { return igac_test::read_fi
 
 int lines_of(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
-// The PETSc path runs solve_model's small-deformation solve, frictionless and
-// without load curves.  A case it cannot run is refused in one line, for the
+// The PETSc path runs every large-deformation case and solve_model's
+// small-deformation solve, frictionless and without load curves.  A case it cannot run is refused in one line, for the
 // same reason, whether [solver] type = "petsc" or --solver petsc asks for it
 // (run and study), and nothing is written.
 TEST(PetscRefusal, SameReasonFromTheFileAndTheCommandLine) {
@@ -41,12 +41,11 @@ TEST(PetscRefusal, SameReasonFromTheFileAndTheCommandLine) {
   };
   const std::vector<Refused> cases = {
       {"cases/cattaneo_mindlin.toml",
-       "the PETSc solver runs frictionless contact only, not the friction = 0.3 of contact face 'arc'; use the "
-       "direct solver"},
+       "the PETSc solver runs small-deformation contact frictionless only, not the friction = 0.3 of contact face "
+       "'arc'; use the direct solver"},
       {"tests/data/curve_contact.toml",
-       "the PETSc solver runs without load curves only (the case has a curve); use the direct solver"},
-      {"cases/hertz2d_neohookean_pressure.toml",
-       "the PETSc solver runs small deformation (linear_elastic) only, not the neo_hookean law; use the direct solver"},
+       "the PETSc solver runs small deformation without load curves only (the case has a curve); use the direct "
+       "solver"},
   };
   for (const Refused& r : cases) {
     TempDir tmp("petscrefused");

@@ -139,8 +139,8 @@ TEST(TiedContact, ItTakesNoCoefficientAndCoulombNeedsOne) {
 TEST(TiedContact, ThePetscSolverRefusesItInOneLine) {
   const CaseSpec spec = read_case_text(two_blocks(0.01, "law = \"tied\""), "tied.toml");
   EXPECT_EQ(check_petsc_case(spec),
-            "the PETSc solver runs frictionless contact only, not the law \"tied\" of contact face '1:south'; use the "
-            "direct solver");
+            "the PETSc solver runs small-deformation contact frictionless only, not the law \"tied\" of contact face "
+            "'1:south'; use the direct solver");
 }
 
 }  // namespace

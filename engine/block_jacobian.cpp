@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "engine/block_jacobian.hpp"
+
+namespace igac {
+namespace {
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+}  // namespace
+
+Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J) {
+  const int n = int(J.K.rows()), m = int(J.B.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(J.K.nonZeros() + 2 * J.B.nonZeros() + m);
+  for (int c = 0; c < J.K.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (int c = 0; c < J.K_coupling.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
+      t.emplace_back(it.row(), it.col(), it.value());
+  for (int k = 0; k < m; ++k) {
+    for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
+      t.emplace_back(it.col(), n + k, it.value());
+      t.emplace_back(n + k, it.col(), J.s[k] * it.value());
+    }
+    t.emplace_back(n + k, n + k, J.d[k]);
+  }
+  Eigen::SparseMatrix<double> A(n + m, n + m);
+  A.setFromTriplets(t.begin(), t.end());
+  A.makeCompressed();
+  return A;
+}
+
+Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {
+  Eigen::SparseMatrix<double> A = assemble_condensed(J);
+  const BlockJacobian::Local& L = J.local;
+  if (L.size() == 0) return A;
+  const int nr = int(A.rows()), nz = L.size();
+  // the displacement block without the condensed C^T diag(g) C, and the local rows and columns
+  const Eigen::SparseMatrix<double> CtgC =
+      Eigen::SparseMatrix<double>(L.C.transpose()) * L.g.asDiagonal() * Eigen::SparseMatrix<double>(L.C);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (int c = 0; c < CtgC.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(CtgC, c); it; ++it) t.emplace_back(it.row(), it.col(), -it.value());
+  for (int e = 0; e < nz; ++e) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(L.C, e); it; ++it) {
+      t.emplace_back(int(it.col()), nr + e, L.g[e] * it.value());
+      t.emplace_back(nr + e, int(it.col()), L.h[e] * it.value());
+    }
+    t.emplace_back(nr + e, nr + e, -L.h[e]);
+  }
+  Eigen::SparseMatrix<double> F(nr + nz, nr + nz);
+  F.setFromTriplets(t.begin(), t.end());
+  F.makeCompressed();
+  return F;
+}
+
+CondensedRhs condense_rhs(const BlockJacobian& J, const Eigen::VectorXd& b_whole) {
+  const BlockJacobian::Local& L = J.local;
+  const int nz = L.size(), nr = int(b_whole.size()) - nz;
+  CondensedRhs c{b_whole.head(nr), {}};
+  if (nz > 0) {
+    c.bz_h = b_whole.tail(nz).cwiseQuotient(L.h);
+    c.b.head(L.C.cols()).noalias() += L.C.transpose() * L.g.cwiseProduct(c.bz_h);
+  }
+  return c;
+}
+
+void recover_local(const BlockJacobian& J, const CondensedRhs& rhs, Eigen::VectorXd& x) {
+  const BlockJacobian::Local& L = J.local;
+  const int nz = L.size();
+  if (nz == 0) return;
+  const int nr = int(x.size());
+  x.conservativeResize(nr + nz);
+  x.tail(nz).noalias() = L.C * x.head(L.C.cols()) - rhs.bz_h;
+}
+
+}  // namespace igac

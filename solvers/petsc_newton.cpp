@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "solvers/petsc_newton.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <petscksp.h>
+#include <vector>
+
+#include "engine/stopwatch.hpp"
+#include "solvers/petsc_contact.hpp"
+#include "solvers/petsc_support.hpp"
+
+namespace igac {
+using namespace petsc;
+
+namespace {
+using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+// An iterative solve that was asked for "as tight as it goes" (tolerance 0:
+// the tangent predictor) stops here, relative to |b|.
+constexpr double kTight = 1e-11;
+}  // namespace
+
+struct PetscNewtonSolver::Impl {
+  const BlockJacobian* J = nullptr;
+  PetscInt N = -1, first = 0, local = 0;  // rows [first, first + local) are this process's
+  // The owned rows' pattern (row pointers from 0, global columns) and values.
+  std::vector<PetscInt> row_ptr, cols;
+  std::vector<PetscScalar> values;
+  OwnedMat A;
+  OwnedKSP ksp;
+  OwnedVec b, x, x_all;
+  OwnedScatter to_all;
+  bool solved_once = false;
+  std::vector<int> iterations;
+  std::string method;
+
+  // This process's rows of the condensed J; true when their pattern is the last one's.
+  bool take_rows(const BlockJacobian& blocks) {
+    const RowMat R = assemble_condensed(blocks);
+    const PetscInt n = PetscInt(R.rows());
+    if (n != N) {
+      N = n;
+      std::tie(first, local) = share(N);
+      row_ptr.clear();
+    }
+    const int* outer = R.outerIndexPtr();
+    const int begin = outer[first], end = outer[first + local];
+    bool same = PetscInt(row_ptr.size()) == local + 1 && PetscInt(cols.size()) == end - begin;
+    for (PetscInt r = 0; same && r <= local; ++r) same = row_ptr[r] == outer[first + r] - begin;
+    for (int k = begin; same && k < end; ++k) same = cols[k - begin] == R.innerIndexPtr()[k];
+    int mine = same ? 1 : 0, all = 0;  // a new pattern anywhere: a new matrix everywhere
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+    row_ptr.resize(local + 1);
+    for (PetscInt r = 0; r <= local; ++r) row_ptr[r] = outer[first + r] - begin;
+    cols.assign(R.innerIndexPtr() + begin, R.innerIndexPtr() + end);
+    values.assign(R.valuePtr() + begin, R.valuePtr() + end);
+    return all == 1;
+  }
+
+  void new_matrix() {
+    const MPI_Comm comm = PETSC_COMM_WORLD;
+    OwnedMat M;
+    check(MatCreate(comm, &M), "matrix");
+    check(MatSetSizes(M, local, local, N, N), "matrix");
+    check(MatSetType(M, MATAIJ), "matrix");
+    // (each call is a no-op on the other type: SEQAIJ on one process, MPIAIJ on more)
+    check(MatSeqAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
+    check(MatMPIAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
+    A = std::move(M);
+    x = {};
+    b = {};
+    x_all = {};
+    to_all = {};
+    check(MatCreateVecs(A, &x, &b), "vector");
+    check(VecScatterCreateToAll(x, &to_all, &x_all), "vector");
+  }
+
+  void refill() {
+    for (PetscInt r = 0; r < local; ++r) {
+      const PetscInt row = first + r, count = row_ptr[r + 1] - row_ptr[r];
+      check(MatSetValues(A, 1, &row, count, cols.data() + row_ptr[r], values.data() + row_ptr[r], INSERT_VALUES),
+            "matrix");
+    }
+    check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
+    check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
+  }
+
+  void create_solver() {
+    check(KSPCreate(PETSC_COMM_WORLD, &ksp), "solver");
+    default_option("-ksp_type", "preonly");
+    default_option("-pc_type", "lu");
+    default_option("-pc_factor_mat_solver_type", "mumps");
+    // room for delayed pivots: the multiplier rows have no diagonal
+    default_option("-mat_mumps_icntl_14", "100");
+    check(KSPSetTolerances(ksp, kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
+    check(KSPSetFromOptions(ksp), "options", true);
+    KSPType ksp_type = nullptr;
+    check(KSPGetType(ksp, &ksp_type), "solver");
+    if (ksp_type && std::string(ksp_type) != KSPPREONLY) check(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE), "solver");
+  }
+
+  // PETSc's reason a factorisation or a solve failed, in words ("" when it did not).
+  std::string failure() const {
+    PC pc = nullptr;
+    check(KSPGetPC(ksp, &pc), "solver");
+    PCFailedReason pc_reason = PC_NOERROR;
+    check(PCGetFailedReason(pc, &pc_reason), "solver");
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    check(KSPGetConvergedReason(ksp, &reason), "solver");
+    if (pc_reason != PC_NOERROR) return fmt::format("singular Newton matrix (PETSc: {})", PCFailedReasons[pc_reason]);
+    if (reason < 0) return fmt::format("the PETSc linear solve did not converge ({})", KSPConvergedReasons[reason]);
+    return {};
+  }
+
+  void describe() {
+    PC pc = nullptr;
+    KSPType ksp_type = nullptr;
+    PCType pc_type = nullptr;
+    check(KSPGetPC(ksp, &pc), "solver");
+    check(KSPGetType(ksp, &ksp_type), "solver");
+    check(PCGetType(pc, &pc_type), "solver");
+    method = fmt::format("{} + {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
+    if (pc_type && (std::string(pc_type) == PCLU || std::string(pc_type) == PCCHOLESKY)) {
+      MatSolverType st = nullptr;
+      if (!PCFactorGetMatSolverType(pc, &st) && st) method += fmt::format(" ({})", st);
+    }
+  }
+};
+
+PetscNewtonSolver::PetscNewtonSolver() : impl_(std::make_unique<Impl>()) {
+  if (!PetscSession::active()) throw std::logic_error("PetscNewtonSolver needs a PetscSession");
+}
+PetscNewtonSolver::~PetscNewtonSolver() = default;
+
+bool PetscNewtonSolver::setup(const BlockJacobian& J) {
+  auto& I = *impl_;
+  const Stopwatch clock;
+  ++stats_.setups;
+  why_.clear();
+  I.J = &J;
+  const bool same_pattern = I.take_rows(J) && I.A.p;
+  if (same_pattern) I.refill();
+  else I.new_matrix();
+  stats_.schur_s += clock.seconds();  // (here: the matrix handed to PETSc)
+  const Stopwatch factor_clock;
+  if (!I.ksp.p) I.create_solver();
+  check(KSPSetOperators(I.ksp, I.A, I.A), "solver");
+  check(KSPSetUp(I.ksp), "solver setup", !I.solved_once);
+  stats_.factorize_s += factor_clock.seconds();
+  why_ = I.failure();
+  return why_.empty();
+}
+
+bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x, double tolerance) {
+  auto& I = *impl_;
+  const Stopwatch clock;
+  ++stats_.solves;
+  const CondensedRhs rhs = condense_rhs(*I.J, b_whole);
+  PetscScalar* pb = nullptr;
+  check(VecGetArray(I.b, &pb), "vector");
+  std::copy(rhs.b.data() + I.first, rhs.b.data() + I.first + I.local, pb);
+  check(VecRestoreArray(I.b, &pb), "vector");
+  check(KSPSetTolerances(I.ksp, tolerance > 0 ? tolerance : kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
+  check(KSPSolve(I.ksp, I.b, I.x), "solve", !I.solved_once);
+  if (!I.solved_once) {
+    refuse_unused_options();
+    I.describe();
+    I.solved_once = true;
+  }
+  PetscInt iterations = 0;
+  check(KSPGetIterationNumber(I.ksp, &iterations), "solver");
+  stats_.krylov_iterations += int(iterations);
+  I.iterations.push_back(int(iterations));
+  why_ = I.failure();
+  check(VecScatterBegin(I.to_all, I.x, I.x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+  check(VecScatterEnd(I.to_all, I.x, I.x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
+  const PetscScalar* px = nullptr;
+  check(VecGetArrayRead(I.x_all, &px), "vector");
+  x = Eigen::Map<const Eigen::VectorXd>(px, I.N);
+  check(VecRestoreArrayRead(I.x_all, &px), "vector");
+  recover_local(*I.J, rhs, x);
+  stats_.solve_s += clock.seconds();
+  if (why_.empty() && !x.allFinite()) why_ = "singular Newton matrix (the PETSc solution is not finite)";
+  return why_.empty();
+}
+
+LinearBackendReport PetscNewtonSolver::report() const {
+  double mine = peak_resident_gib(), all = mine;
+  MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  const bool direct = impl_->method.starts_with("preonly");
+  return {.type = "petsc", .method = impl_->method, .iterations = direct ? std::vector<int>{} : impl_->iterations,
+          .ranks = PetscSession::size(), .peak_resident_all_ranks_gib = all};
+}
+
+}  // namespace igac

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The PETSc linear backend of the load-stepping Newton driver
+// (engine/linear_backend.hpp): each Newton matrix, in blocks
+// (engine/block_jacobian.hpp), is condensed (the element-local unknowns of
+// the mixed formulation eliminated, as the direct backend does) and handed
+// to PETSc as one sparse matrix of n + m rows (displacements, then every
+// multiplier: an inactive one has its row d_k dl_k, an active one s_k B_k du),
+// split in contiguous blocks of rows over the MPI processes.
+//
+// The matrix is not symmetric (the active rows are scaled by s, a follower
+// load and friction's slip rows are unsymmetric), so the default is an LU
+// factorisation by MUMPS (`-ksp_type preonly -pc_type lu
+// -pc_factor_mat_solver_type mumps`); any KSP and PC the PETSc options name
+// replace it (`-ksp_type gmres -pc_type ilu` ...), and an iterative one is
+// asked for the driver's inexact-Newton tolerance.  While the pattern of the
+// matrix stays (it does unless the active set changes which rows a curved
+// master couples), the matrix is refilled in place and the factorisation
+// keeps its symbolic analysis; a new pattern builds a new matrix.
+//
+// Every process evaluates the whole problem (the residual and the blocks
+// are the same bits on all of them) and gives PETSc the rows it owns; the
+// solution is gathered to every process, so all of them take the same
+// Newton and active-set decisions.  Needs a PetscSession
+// (solvers/petsc_contact.hpp).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "engine/linear_backend.hpp"
+
+namespace igac {
+
+class PetscNewtonSolver final : public LinearBackend {
+ public:
+  PetscNewtonSolver();
+  ~PetscNewtonSolver() override;
+  PetscNewtonSolver(const PetscNewtonSolver&) = delete;
+  PetscNewtonSolver& operator=(const PetscNewtonSolver&) = delete;
+
+  // Collective.  Throws PetscOptionError (solvers/petsc_contact.hpp) for an
+  // option PETSc refuses or that nothing used (after the first solve).
+  bool setup(const BlockJacobian& J) override;
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) override;
+  const std::string& why() const override { return why_; }
+  const LinearSolveStats& stats() const override { return stats_; }
+  double condition_estimate() const override { return 0; }  // not estimated
+  LinearBackendReport report() const override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string why_;
+  LinearSolveStats stats_;
+};
+
+}  // namespace igac

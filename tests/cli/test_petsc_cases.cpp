@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Every shipped case on both linear backends (issue 36): `--solver petsc`
+// on one process and under mpirun -n 2 (scripts/mpirun.sh) gives the
+// direct solver's results, every number of summary.json and of the CSV
+// files (pressure*.csv, load_curve.csv), by the rule of the golden records
+// (tests/support/summary_compare.hpp): a MUMPS factorisation against
+// CHOLMOD's, both backward stable, so the two agree to round-off times the
+// direct run's condition estimate.  Counts (dofs, active sets, cut-backs,
+// load steps) exactly; the Newton path of a load step (its iterations and
+// residuals) is, as in the golden records, the way to the solution and not
+// compared.  Only `solver` itself differs (its type, ranks, method).
+//
+// Large deformation runs every Newton step's linear solve in PETSc
+// (solvers/petsc_newton.hpp); small deformation its active-set solve
+// (solvers/petsc_contact.hpp).  The 3D Hertz cases run on a coarser mesh
+// (their case with `elements` replaced): their shipped meshes take a minute
+// each in PETSc.  Cases the PETSc path refuses are listed, each with the
+// one line that says why.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tests/support/igac_process.hpp"
+#include "tests/support/solve_tolerance.hpp"
+#include "tests/support/summary_compare.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace igac_test::summary_compare;
+using igac_test::quote;
+
+const fs::path kSource = IGAC_SOURCE_DIR;
+
+#ifdef IGAC_WITH_PETSC
+constexpr bool kHavePetsc = true;
+#else
+constexpr bool kHavePetsc = false;
+#endif
+
+// The 3D cases whose shipped mesh is replaced by a coarser one.
+const std::map<std::string, std::string> kCoarse = {
+    {"hertz3d", "[8, 4, 8]"}, {"hertz3d_high_load", "[8, 4, 8]"}, {"hertz3d_p3", "[8, 2, 8]"}};
+
+// Cases the PETSc path refuses, and a phrase of the one line it says.
+const std::map<std::string, std::string> kRefused = {
+    {"cattaneo_mindlin", "frictionless only"},
+    {"cattaneo_mindlin_cycle", "frictionless only"},
+    {"cattaneo_mindlin_two_bodies", "frictionless only"}};
+
+std::vector<std::string> shipped_cases() {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(kSource / "cases"))
+    if (e.path().extension() == ".toml") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// The case file to run: the shipped one, or its coarse copy in `dir`.
+fs::path case_file(const std::string& name, const fs::path& dir) {
+  const fs::path shipped = kSource / "cases" / (name + ".toml");
+  const auto coarse = kCoarse.find(name);
+  if (coarse == kCoarse.end()) return shipped;
+  std::string s = igac_test::read_file(shipped);
+  const auto at = s.find("elements = [");
+  s.replace(at, s.find(']', at) - at + 1, "elements = " + coarse->second);
+  const fs::path p = dir / (name + ".toml");
+  std::ofstream(p) << s;
+  return p;
+}
+
+// `scripts/mpirun.sh N igac ARGS` in cwd, output 2>&1.
+igac_test::Outcome run_mpi(int n, const std::string& args, const fs::path& cwd) {
+  const std::string cmd = "cd " + quote(cwd.string()) + " && IGAC_BINARY=" + quote(IGAC_BINARY) + " " +
+                          quote((kSource / "scripts" / "mpirun.sh").string()) + " " + std::to_string(n) + " " +
+                          args + " 2>&1";
+  igac_test::Outcome o;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return o;
+  char buf[4096];
+  size_t got;
+  while ((got = fread(buf, 1, sizeof buf, pipe)) > 0) o.output.append(buf, got);
+  const int status = pclose(pipe);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+// The PETSc run in `petsc` against the direct one in `direct`.
+void expect_same_results(const fs::path& direct, const fs::path& petsc, int ranks, const std::string& what) {
+  const json d = json::parse(igac_test::read_file(direct / "summary.json"));
+  const json p = json::parse(igac_test::read_file(petsc / "summary.json"));
+  EXPECT_EQ(p["solver"]["type"], "petsc") << what;
+  EXPECT_EQ(p["solver"]["ranks"], ranks) << what;
+  ASSERT_GT(igac_test::largest_condition_estimate(d), 1.0) << "the direct run reports its condition estimate";
+  Rule rule{igac_test::solve_accuracy(d, p), {}};
+  const json record = without_machine_keys(d, {"solver"});
+  collect_scales(record, "", rule.kind_scale);
+  Tally t;
+  compare(record, p, what + " summary.json", 0, rule, t);
+  for (const auto& e : fs::directory_iterator(direct)) {
+    const std::string f = e.path().filename().string();
+    if (e.path().extension() == ".csv" && (f.starts_with("pressure") || f == "load_curve.csv"))
+      compare_csv(csv_record(e.path()), petsc / f, rule, t);
+  }
+  EXPECT_GT(t.numbers, 10);
+  std::printf("%s: condition estimate %.3g, relative tolerance %.3g; %d numbers compared (%d integers exactly); "
+              "largest |diff| / tolerance %.3g (%s), CSV %.3g (%s)\n",
+              what.c_str(), rule.accuracy.condition, rule.accuracy.relative(), t.numbers, t.exact, t.result.ratio,
+              t.result.at.c_str(), t.csv.ratio, t.csv.at.c_str());
+}
+
+class PetscCase : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
+  }
+};
+
+TEST_P(PetscCase, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
+  const std::string name = GetParam();
+  igac_test::TempDir tmp("petsc_" + name);
+  const std::string c = quote(case_file(name, tmp.path()).string());
+  for (const char* dir : {"direct", "one", "two"}) fs::create_directories(tmp.path() / dir);
+  const auto refused = kRefused.find(name);
+  if (refused != kRefused.end()) {
+    const auto o = igac_test::run_igac("run " + c + " --quiet --out out --solver petsc", tmp.path() / "one");
+    EXPECT_EQ(o.exit_code, 2) << o.output;
+    EXPECT_NE(o.output.find(refused->second), std::string::npos) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << "one line: " << o.output;
+    return;
+  }
+  auto o = igac_test::run_igac("run " + c + " --quiet --out out", tmp.path() / "direct");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = igac_test::run_igac("run " + c + " --quiet --out out --solver petsc", tmp.path() / "one");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  expect_same_results(tmp.path() / "direct" / "out", tmp.path() / "one" / "out", 1, name + " on one process");
+  o = run_mpi(2, "run " + c + " --quiet --out out --solver petsc", tmp.path() / "two");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  expect_same_results(tmp.path() / "direct" / "out", tmp.path() / "two" / "out", 2, name + " on two processes");
+}
+
+std::string case_name(const ::testing::TestParamInfo<std::string>& info) { return info.param; }
+INSTANTIATE_TEST_SUITE_P(Shipped, PetscCase, ::testing::ValuesIn(shipped_cases()), case_name);
+
+}  // namespace
