@@ -32,6 +32,14 @@ struct SmallStrainFriction::Impl {
   Eigen::VectorXd alpha;  // b / |xi| where the slip direction was last taken (3D: the linearised slip law)
   Eigen::VectorXd g_start;  // the weighted gaps where the run starts: a tie holds them
 
+  // A linear backend (engine/linear_backend.hpp) instead of the Schur
+  // complement on CHOLMOD's factor: each iteration's sparse saddle system
+  // solved whole (PETSc's, on one or more processes).  K and f unpinned.
+  LinearBackend* backend = nullptr;
+  Eigen::SparseMatrix<double> K;
+  Eigen::VectorXd f;
+  Eigen::VectorXd u_last;  // the backend's last solution's displacements
+
   Impl(const RigidModes& md, SparseCholesky& c) : modes(md), chol(c) {}
   int trow(int K, int j) const { return m + K * nt + j; }
 };
@@ -80,9 +88,10 @@ SlipLinearisation linearise_slip(const Eigen::VectorXd& lambda_t, const Eigen::V
 
 SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f,
                                          const WeightedGapOperator& op, const RigidModes& modes, SparseCholesky& chol,
-                                         const ContactSolverOptions& opt)
+                                         const ContactSolverOptions& opt, LinearBackend* backend)
     : impl_(std::make_unique<Impl>(modes, chol)) {
   Impl& s = *impl_;
+  s.backend = backend;
   s.n = int(K.rows());
   s.m = int(op.weights.size());
   s.nt = s.m ? int(op.T.rows() / s.m) : 0;
@@ -109,18 +118,25 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
     for (int i = 0; i < s.n; ++i)
       if (on_face[i]) face_eqs.push_back(i);
   }
-  const Eigen::SparseMatrix<double> Kp = pin_equations(K, modes.pinned);
-  chol.analyze(Kp, opt.face_last ? face_eqs : std::vector<int>{});
-  chol.factorize(Kp);
-  s.Gsp = s.Gs;
-  for (int r = 0; r < s.Gsp.outerSize(); ++r)
-    for (RowSparse::InnerIterator it(s.Gsp, r); it; ++it)
-      if (pinned[it.col()]) it.valueRef() = 0.0;
-  s.Gsp.prune(0.0);
-  s.fp = f;
-  for (int p : modes.pinned) s.fp[p] = 0.0;
-  s.schur = std::make_unique<ActiveSchur>(chol, s.Gsp, s.fp, s.counters);
-  s.Gvf = s.schur->G_solve_f();
+  if (backend) {
+    s.K = K;
+    s.f = f;
+    s.fp = f;
+    for (int p : modes.pinned) s.fp[p] = 0.0;
+  } else {
+    const Eigen::SparseMatrix<double> Kp = pin_equations(K, modes.pinned);
+    chol.analyze(Kp, opt.face_last ? face_eqs : std::vector<int>{});
+    chol.factorize(Kp);
+    s.Gsp = s.Gs;
+    for (int r = 0; r < s.Gsp.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(s.Gsp, r); it; ++it)
+        if (pinned[it.col()]) it.valueRef() = 0.0;
+    s.Gsp.prune(0.0);
+    s.fp = f;
+    for (int p : modes.pinned) s.fp[p] = 0.0;
+    s.schur = std::make_unique<ActiveSchur>(chol, s.Gsp, s.fp, s.counters);
+    s.Gvf = s.schur->G_solve_f();
+  }
   s.GR = s.Gs * modes.modes;
   s.Rf = modes.modes.transpose() * f;
   s.tau_prev = Eigen::VectorXd::Zero(s.m * s.nt);  // u = 0, the obstacle where the first step has it
@@ -140,6 +156,11 @@ void SmallStrainFriction::set_load(const Eigen::VectorXd& f) {
   Impl& s = *impl_;
   s.fp = f;
   for (int p : s.modes.pinned) s.fp[p] = 0.0;
+  s.Rf = s.modes.modes.transpose() * f;
+  if (s.backend) {
+    s.f = f;
+    return;
+  }
   s.Gvf = s.Gsp * Eigen::VectorXd(s.chol.solve(s.fp));  // G K^-1 f (the pinned K), as ActiveSchur::G_solve_f
   s.Rf = s.modes.modes.transpose() * f;
 }
@@ -159,7 +180,7 @@ FrictionHistory SmallStrainFriction::history() const {
   for (int K = 0; K < s.m; ++K)
     for (int j = 0; j < s.nt; ++j) h.direction[K * s.nt + j] = s.dir(K, j);
   h.alpha = s.alpha;
-  h.schur_batches = s.schur->batches();
+  if (s.schur) h.schur_batches = s.schur->batches();
   return h;
 }
 
@@ -168,7 +189,7 @@ void SmallStrainFriction::restore(const FrictionHistory& h) {
   if (h.position.size() != s.m * s.nt || h.slip.size() != s.m * s.nt || int(h.state.size()) != s.m ||
       h.direction.size() != s.m * s.nt || h.alpha.size() != s.m)
     throw std::invalid_argument("SmallStrainFriction::restore: a history of another contact");
-  if (!s.schur->batches().empty()) throw std::logic_error("SmallStrainFriction::restore: after a step");
+  if (s.schur && !s.schur->batches().empty()) throw std::logic_error("SmallStrainFriction::restore: after a step");
   s.tau_prev = h.position;
   s.slip_total = h.slip;
   s.state = h.state;
@@ -178,7 +199,7 @@ void SmallStrainFriction::restore(const FrictionHistory& h) {
   for (const std::vector<int>& batch : h.schur_batches) {
     for (int K : batch)
       if (K < 0 || K >= s.m * (1 + s.nt)) throw std::invalid_argument("SmallStrainFriction::restore: a column beyond the rows");
-    s.schur->S_active(batch);
+    if (s.schur) s.schur->S_active(batch);
   }
 }
 
@@ -208,6 +229,92 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     return sol;
   }
 
+  // The unknowns of an iteration, each a combination of the stacked rows
+  // [G; T]: its force direction H_j and its constraint row C_j (below).
+  struct Unknown {
+    std::vector<std::pair<int, double>> H, C;
+    double diagonal = 0;  // + diagonal * x_j in its own constraint row
+  };
+  // The iteration's system on CHOLMOD's factor: the dense Schur complement of
+  // the unknowns' columns, bordered by the rigid amplitudes c.  Gives lam (the
+  // stacked multipliers), c and Gu = [G; T] u; false when singular.
+  const auto solve_schur = [&](const std::vector<Unknown>& unknowns, const std::vector<int>& cols,
+                               const Eigen::VectorXd& r0, Eigen::VectorXd& lam, Eigen::VectorXd& c_out,
+                               Eigen::VectorXd& Gu) -> bool {
+  const Eigen::MatrixXd S = s.schur->S_active(cols);
+  std::vector<int> loc(rows_all, -1);
+  for (size_t i = 0; i < cols.size(); ++i) loc[cols[i]] = int(i);
+  const int nc = int(unknowns.size());
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nc + k, nc + k);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nc + k);
+  for (int j = 0; j < nc; ++j) {
+    Eigen::VectorXd sc = Eigen::VectorXd::Zero(S.rows()), hr = Eigen::VectorXd::Zero(k);
+    for (const auto& [q, b] : unknowns[j].H) {
+      sc += b * S.col(loc[q]);
+      hr += b * s.GR.row(q).transpose();
+    }
+    for (int i = 0; i < nc; ++i)
+      for (const auto& [r, a] : unknowns[i].C) M(i, j) += a * sc[loc[r]];
+    M(j, j) += unknowns[j].diagonal;
+    M.block(nc, j, k, 1) = -hr;
+  }
+  for (int i = 0; i < nc; ++i)
+    for (const auto& [r, a] : unknowns[i].C) {
+      M.block(i, nc, 1, k) -= a * s.GR.row(r);
+      rhs[i] += a * (r0[r] + s.Gvf[r]);
+    }
+  rhs.tail(k) = -s.Rf;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+  if (lu.rank() < nc + k) return false;
+  const Eigen::VectorXd x = lu.solve(rhs);
+  lam.setZero();
+  for (int j = 0; j < nc; ++j)
+    for (const auto& [q, b] : unknowns[j].H) lam[q] += b * x[j];
+  c_out = x.tail(k);
+  Gu = s.Gvf + s.GR * c_out - s.schur->G_solve_Gt(cols, lam);
+  return true;
+  };
+  // The same system whole and sparse, by the linear backend:
+  //   [ K    H^T ] [u]   [ f      ]
+  //   [ C G  -D  ] [x] = [ -C r0  ]
+  // (C G: each unknown's constraint row of [G; T], D its diagonal); K is not
+  // pinned, the constraints hold the rigid motions (else it is singular).
+  const auto solve_sparse = [&](const std::vector<Unknown>& unknowns, const Eigen::VectorXd& r0, Eigen::VectorXd& lam,
+                                Eigen::VectorXd& Gu, std::string& why) -> bool {
+    const int n = s.n, nc = int(unknowns.size());
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(s.K.nonZeros() + 4 * nc * 8);
+    for (int col = 0; col < s.K.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(s.K, col); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + nc);
+    rhs.head(n) = s.f;
+    for (int j = 0; j < nc; ++j) {
+      for (const auto& [q, b] : unknowns[j].H)
+        for (RowSparse::InnerIterator it(s.Gs, q); it; ++it) t.emplace_back(int(it.col()), n + j, b * it.value());
+      for (const auto& [r, a] : unknowns[j].C) {
+        for (RowSparse::InnerIterator it(s.Gs, r); it; ++it) t.emplace_back(n + j, int(it.col()), a * it.value());
+        rhs[n + j] -= a * r0[r];
+      }
+      t.emplace_back(n + j, n + j, -unknowns[j].diagonal);
+    }
+    BlockJacobian J;
+    J.K.resize(n + nc, n + nc);
+    J.K.setFromTriplets(t.begin(), t.end());
+    J.general = true;
+    J.B.resize(0, n + nc);
+    Eigen::VectorXd x;
+    if (!s.backend->setup(J) || !s.backend->solve(rhs, x, 0)) {
+      if (!s.backend->why().empty() && s.backend->why().find("singular") == std::string::npos) why = s.backend->why();
+      return false;
+    }
+    lam.setZero();
+    for (int j = 0; j < nc; ++j)
+      for (const auto& [q, b] : unknowns[j].H) lam[q] += b * x[n + j];
+    s.u_last = x.head(n);
+    Gu = s.Gs * s.u_last;
+    return true;
+  };
+
   std::set<std::vector<char>> seen;
   // The tangential scale c_t of xi = lambda_t + c_t s (the normal one's
   // unless the iteration cycles, below).
@@ -223,10 +330,6 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     // direction, w = v rotated in the tangent plane, with the linearised
     // slip law (docs/design.md, "Friction"): w . s_K = beta_K w . lambda_t,K.
     // Schur columns: every row of an active multiplier.
-    struct Unknown {
-      std::vector<std::pair<int, double>> H, C;
-      double diagonal = 0;  // + diagonal * x_j in its own constraint row
-    };
     std::vector<Unknown> unknowns;
     std::vector<int> cols;
     for (int K = 0; K < m; ++K)
@@ -256,47 +359,20 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
           unknowns.push_back(std::move(u));
         }
     sol.active_set_sizes.push_back(int(unknowns.size()));
-    const Eigen::MatrixXd S = s.schur->S_active(cols);
-    std::vector<int> loc(rows_all, -1);
-    for (size_t i = 0; i < cols.size(); ++i) loc[cols[i]] = int(i);
-    const int nc = int(unknowns.size());
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nc + k, nc + k);
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nc + k);
-    for (int j = 0; j < nc; ++j) {
-      Eigen::VectorXd sc = Eigen::VectorXd::Zero(S.rows()), hr = Eigen::VectorXd::Zero(k);
-      for (const auto& [q, b] : unknowns[j].H) {
-        sc += b * S.col(loc[q]);
-        hr += b * s.GR.row(q).transpose();
-      }
-      for (int i = 0; i < nc; ++i)
-        for (const auto& [r, a] : unknowns[i].C) M(i, j) += a * sc[loc[r]];
-      M(j, j) += unknowns[j].diagonal;
-      M.block(nc, j, k, 1) = -hr;
-    }
-    for (int i = 0; i < nc; ++i)
-      for (const auto& [r, a] : unknowns[i].C) {
-        M.block(i, nc, 1, k) -= a * s.GR.row(r);
-        rhs[i] += a * (r0[r] + s.Gvf[r]);
-      }
-    rhs.tail(k) = -s.Rf;
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
-    if (lu.rank() < nc + k) {
+    const bool solved = s.backend ? solve_sparse(unknowns, r0, lam, Gu, sol.status)
+                                  : solve_schur(unknowns, cols, r0, lam, c, Gu);
+    if (!solved) {
       // Friction's reason only where a frictional multiplier slides: stuck
       // ones hold the motion along the obstacle.
       bool sliding = false;
       for (int K = 0; K < m; ++K) sliding = sliding || (s.state[K] == kSlip && fr[K] > 0);
-      sol.status = std::string("singular contact system: the active multipliers do not hold the body's rigid motions") +
-                   (sliding ? " (with friction: a load along the obstacle above f times the normal force slides the "
-                              "body away)"
-                            : "");
+      if (sol.status.empty())
+        sol.status = std::string("singular contact system: the active multipliers do not hold the body's rigid motions") +
+                     (sliding ? " (with friction: a load along the obstacle above f times the normal force slides the "
+                                "body away)"
+                              : "");
       break;
     }
-    const Eigen::VectorXd x = lu.solve(rhs);
-    lam.setZero();
-    for (int j = 0; j < nc; ++j)
-      for (const auto& [q, b] : unknowns[j].H) lam[q] += b * x[j];
-    c = x.tail(k);
-    Gu = s.Gvf + s.GR * c - s.schur->G_solve_Gt(cols, lam);
     gap = (op.g0 + Gu.head(m)).cwiseQuotient(op.weights);
     for (int K = 0; K < m; ++K)
       for (int l = 0; l < nt; ++l) slip[K * nt + l] = (Gu[s.trow(K, l)] + r0[s.trow(K, l)]) / op.weights[K];
@@ -372,9 +448,13 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   if (!sol.converged && sol.status.empty())
     sol.status = fmt::format("active set not settled in {} iterations", s.max_iterations);
 
-  Eigen::VectorXd u = s.chol.solve(Eigen::VectorXd(s.fp - s.Gsp.transpose() * lam));
-  if (k > 0) u += s.modes.modes * c;
-  sol.u = u;
+  if (s.backend) {
+    sol.u = s.u_last.size() == s.n ? s.u_last : Eigen::VectorXd::Zero(s.n);
+  } else {
+    Eigen::VectorXd u = s.chol.solve(Eigen::VectorXd(s.fp - s.Gsp.transpose() * lam));
+    if (k > 0) u += s.modes.modes * c;
+    sol.u = u;
+  }
   sol.lambda = lam.head(m);
   sol.lambda_t = lam.tail(m * nt);
   sol.active.assign(m, 0);

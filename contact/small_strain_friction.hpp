@@ -34,6 +34,7 @@
 
 #include "contact/friction_state.hpp"
 #include "contact/small_strain_contact.hpp"
+#include "engine/linear_backend.hpp"
 
 namespace igac {
 
@@ -76,9 +77,14 @@ Eigen::VectorXd per_multiplier_scales(double cn, double mesh_size, const Eigen::
 class SmallStrainFriction {
  public:
   // Factorises K (pinned rigid motions as the frictionless solve) for the
-  // operator's sparsity; `op` must have its tangential rows.
+  // operator's sparsity; `op` must have its tangential rows.  With a
+  // `backend` (engine/linear_backend.hpp; it must outlive this) nothing is
+  // factorised here and chol is not used: each iteration's saddle-point
+  // system is solved whole and sparse by the backend (PETSc's), the same
+  // states, rules and stopping test.
   SmallStrainFriction(const Eigen::SparseMatrix<double>& K, const Eigen::VectorXd& f, const WeightedGapOperator& op,
-                      const RigidModes& modes, SparseCholesky& chol, const ContactSolverOptions& options);
+                      const RigidModes& modes, SparseCholesky& chol, const ContactSolverOptions& options,
+                      LinearBackend* backend = nullptr);
   ~SmallStrainFriction();
   // One load step with the same K, f, G, T and the step's g0, t0 (the
   // obstacle where the step leaves it).  Updates the slip history; the

@@ -622,14 +622,14 @@ std::string check_petsc_case(const CaseSpec& c) {
                          "of the {} law; leave preconditioner at \"options\" (default MUMPS LU)", c.model);
     return {};
   }
-  for (const ContactSpec& cs : c.contacts) {
-    if (cs.friction > 0)
-      return fmt::format("the PETSc solver runs small-deformation contact frictionless only, not the friction = {:g} "
-                         "of contact face '{}'; use the direct solver", cs.friction, cs.face);
-    if (!cs.law.empty() && cs.law != "frictionless")
-      return fmt::format("the PETSc solver runs small-deformation contact frictionless only, not the law \"{}\" of "
-                         "contact face '{}'; use the direct solver", cs.law, cs.face);
-  }
+  for (const ContactSpec& cs : c.contacts)
+    if ((cs.friction > 0 || (!cs.law.empty() && cs.law != "frictionless")) &&
+        c.solver.preconditioner == "spline_multigrid")
+      return fmt::format("the spline multigrid preconditions frictionless contact only, not the {} of contact face "
+                         "'{}' (its iterations solve with the PETSc options' solver, default MUMPS LU); leave "
+                         "preconditioner at \"options\"",
+                         cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
+                         cs.face);
   if (c.has_load_curves())
     return "the PETSc solver runs small deformation without load curves only (the case has a curve); use the direct "
            "solver";

@@ -16,6 +16,16 @@ namespace igac {
 
 bool uses_petsc(const Model& m) { return m.spec.solver.type == "petsc"; }
 
+void take_report(const LinearBackend& backend, LinearSolverRecord& record) {
+  const LinearBackendReport report = backend.report();
+  record.type = report.type;
+  record.method = report.method;
+  record.iterations = report.iterations;
+  record.ranks = report.ranks;
+  record.peak_resident_all_ranks_gib = report.peak_resident_all_ranks_gib;
+  if (const double kappa = backend.condition_estimate(); kappa > 0) record.condition_estimate = kappa;
+}
+
 #ifdef IGAC_WITH_PETSC
 namespace {
 // Rigid motions of the free equations (translations, rotations about the
@@ -131,13 +141,13 @@ class ReportingPetscNewtonSolver final : public LinearBackend {
 };
 }  // namespace
 
-std::unique_ptr<LinearBackend> newton_linear_solver(const Model& m) {
+std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m) {
   if (!uses_petsc(m)) return nullptr;
   if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
   return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}));
 }
 #else
-std::unique_ptr<LinearBackend> newton_linear_solver(const Model& m) {
+std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m) {
   if (!uses_petsc(m)) return nullptr;
   throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "
                                "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));

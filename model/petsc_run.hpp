@@ -25,11 +25,16 @@ ContactSolution solve_with_petsc(const Model& model, LinearSystem& system, const
                                  const RigidModes& modes, const ContactSolverOptions& options,
                                  LinearSolverRecord& record);
 
-// The linear solver of a large-deformation run's Newton steps
-// (LoadSteppingOptions::linear_backend): PETSc's (solvers/petsc_newton.hpp)
-// when the case asks for PETSc, whose option errors it reports as
-// InputError naming [solver] options; null otherwise (the driver's direct
-// one).  Throws InputError when this igac was built without PETSc.
-std::unique_ptr<LinearBackend> newton_linear_solver(const Model& model);
+// The linear backend of a run that asks for PETSc: the large-deformation
+// Newton steps (LoadSteppingOptions::linear_backend) and the
+// small-deformation friction iterations (SmallStrainFriction) solve whole
+// sparse systems with it (solvers/petsc_newton.hpp), every process holding
+// the whole matrix and giving PETSc its rows; option errors are InputError
+// naming [solver] options.  Null when the case does not ask for PETSc (the
+// direct solvers).  Throws InputError when this igac was built without PETSc.
+std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& model);
+// What `backend` says of itself, into the run's record (summary.json
+// "solver"); the condition estimate where it has one.
+void take_report(const LinearBackend& backend, LinearSolverRecord& record);
 
 }  // namespace igac

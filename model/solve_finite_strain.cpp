@@ -207,7 +207,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.tangent_every_step = m.spec.loading.tangent_every_step;
   opt.quiet = m.quiet;
   // PETSc's linear solver when the case asks for it (else the driver's direct one)
-  const std::unique_ptr<LinearBackend> petsc_solver = newton_linear_solver(m);
+  const std::unique_ptr<LinearBackend> petsc_solver = petsc_linear_backend(m);
   opt.linear_backend = petsc_solver.get();
   const bool curves = m.spec.has_load_curves();
   if (curves) opt.corners = curve_corners(m.spec.load_curves());
@@ -291,14 +291,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   }
   r.load_steps = summary;
   r.linear_solver.condition_estimate = summary.condition_estimate;
-  if (petsc_solver && summary.linear.setups > 0) {
-    const LinearBackendReport report = petsc_solver->report();
-    r.linear_solver.type = report.type;
-    r.linear_solver.method = report.method;
-    r.linear_solver.iterations = report.iterations;
-    r.linear_solver.ranks = report.ranks;
-    r.linear_solver.peak_resident_all_ranks_gib = report.peak_resident_all_ranks_gib;
-  }
+  if (petsc_solver && summary.linear.setups > 0) take_report(*petsc_solver, r.linear_solver);
   r.status = summary.status;
   r.timing.contact = summary.newton_seconds;
   const double t_final = summary.steps.empty() ? 0.0 : summary.steps.back().load_factor;

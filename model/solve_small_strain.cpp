@@ -237,13 +237,15 @@ void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedG
 // [loading] steps increments (none: one step), each step a frictional
 // active-set solve on the same factor of K from the slip history of the last.
 ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, const WeightedGapOperator& op,
-                                    const RigidModes& modes, SparseCholesky& chol, const ContactSolverOptions& opt) {
+                                    const RigidModes& modes, SparseCholesky& chol, const ContactSolverOptions& opt,
+                                    LinearSolverRecord& record) {
+  const std::unique_ptr<LinearBackend> petsc = petsc_linear_backend(m);  // (null: CHOLMOD)
   bool moving = false;
   for (const auto& c : m.contacts) moving = moving || (c.motion.size() > 0 && c.motion.norm() > 0);
   const int steps = moving ? m.spec.loading.steps : 0;
   const WeightedGapOperator first = moving ? assemble_contact_operator(m, 0.0) : WeightedGapOperator{};
   Stopwatch clock;
-  SmallStrainFriction friction(sys.K, sys.f, moving ? first : op, modes, chol, opt);
+  SmallStrainFriction friction(sys.K, sys.f, moving ? first : op, modes, chol, opt, petsc.get());
   const double factorize_s = clock.seconds();
   ContactSolution s = friction.step(moving ? first : op);
   std::vector<int> sizes = s.active_set_sizes, per_step{int(s.active_set_sizes.size())};
@@ -256,6 +258,10 @@ ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, con
   s.active_set_sizes = std::move(sizes);
   s.step_iterations = std::move(per_step);
   s.factorize_s = factorize_s;
+  if (petsc) {
+    s.factorize_s = petsc->stats().factorize_s;
+    take_report(*petsc, record);
+  }
   return s;
 }
 }  // namespace
@@ -307,10 +313,14 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
   progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
   t0.restart();
   // One process: every element.  PETSc on several: this process's block
-  // (the element loads summed over the processes, so f is whole everywhere).
-  LinearSystem sys = assemble_linear_elasticity(body, *m.dofs, m.patch_materials(), bf, process_elements(m),
-                                                m.patch_formulations());
-  sum_over_processes(sys.f);
+  // (the element loads summed over the processes, so f is whole everywhere);
+  // friction's iterations hand PETSc the whole matrix from every process
+  // (petsc_run.hpp), which then assembles every element.
+  const bool frictional = op && op->tangential();
+  const ElementRange elements = frictional ? ElementRange{} : process_elements(m);
+  LinearSystem sys =
+      assemble_linear_elasticity(body, *m.dofs, m.patch_materials(), bf, elements, m.patch_formulations());
+  if (!frictional) sum_over_processes(sys.f);
   for (const auto& p : m.spec.pressure) add_pressure_load(body, *m.dofs, resolve_faces(m, p.faces, "pressure"), p.value, sys.f);
   add_traction_loads(m, *m.dofs, {}, sys.f);
   r.timing.assembly += t0.seconds();
@@ -371,10 +381,8 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     // "Nested iteration").
     if (m.spec.refine > 0 && (petsc || coarser.result))
       start_from_coarser_mesh(m, coarser, c->op, int(modes.modes.cols()), opt);
-    if (petsc && c->op.tangential())  // (check_petsc_case refuses such a case as input)
-      throw std::logic_error("the PETSc path runs frictionless contact only");
-    c->solution = petsc ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
-                  : c->op.tangential() ? solve_with_friction(m, sys, c->op, modes, chol, opt)
+    c->solution = c->op.tangential() ? solve_with_friction(m, sys, c->op, modes, chol, opt, r.linear_solver)
+                  : petsc              ? solve_with_petsc(m, sys, c->op, modes, opt, r.linear_solver)
                                        : solve_small_strain_contact(sys.K, sys.f, c->op, modes, chol, opt);
     r.timing.factorization = c->solution.factorize_s;
     r.timing.contact = t0.seconds() - c->solution.factorize_s;

@@ -38,10 +38,11 @@ struct PetscNewtonSolver::Impl {
   bool take_rows(const BlockJacobian& blocks) {
     const RowMat R = assemble_condensed(blocks);
     const PetscInt n = PetscInt(R.rows());
-    if (n != N) {
+    if (n != N) {  // (friction's iterations: the unknowns come and go)
       N = n;
       std::tie(first, local) = share(N);
       row_ptr.clear();
+      ksp = {};  // a KSP keeps its first operator's sizes
     }
     const int* outer = R.outerIndexPtr();
     const int begin = outer[first], end = outer[first + local];
