@@ -630,9 +630,9 @@ std::string check_petsc_case(const CaseSpec& c) {
                          "preconditioner at \"options\"",
                          cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
                          cs.face);
-  if (c.has_load_curves())
-    return "the PETSc solver runs small deformation without load curves only (the case has a curve); use the direct "
-           "solver";
+  if (c.has_load_curves() && c.solver.preconditioner == "spline_multigrid")
+    return "the spline multigrid preconditions a run without load curves only (the case has a curve); leave "
+           "preconditioner at \"options\"";
   return {};
 }
 

@@ -81,8 +81,6 @@ double LoadCurveProbe::obstacle_displacement(double t) const {
 }
 
 RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step) {
-  if (uses_petsc(m))
-    throw InputError(fmt::format("{}: [solver] type: load curves run with the direct solver only", m.spec.path));
   RunResult r;
   const Stopwatch t_start;
   const Body& body = m.body;
@@ -139,10 +137,22 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   std::optional<SmallStrainFriction> friction;
   std::vector<int> friction_steps;  // active-set iterations per step
   SparseCholesky chol;
+  // PETSc (petsc_run.hpp): K whole on every process; without contact one
+  // factorisation for every step, with friction SmallStrainFriction's
+  // iterations; frictionless contact solves each step's saddle system.
+  const bool petsc = uses_petsc(m);
+  const std::unique_ptr<LinearBackend> backend = petsc ? petsc_linear_backend(m) : nullptr;
+  BlockJacobian stiffness;  // (K alone, for the backend without contact)
   if (m.contacts.empty()) {
     progress.phase(fmt::format("factorising K ({} equations)", m.dofs->num_free()));
     clock.restart();
-    chol.factorize(sys.K);
+    if (backend) {
+      stiffness.K = sys.K;
+      stiffness.B.resize(0, sys.K.cols());
+      if (!backend->setup(stiffness)) throw std::runtime_error(fmt::format("the PETSc factorisation of K failed: {}", backend->why()));
+    } else {
+      chol.factorize(sys.K);
+    }
     r.timing.factorization = clock.seconds();
   }
   ContactSolverOptions opt;
@@ -183,7 +193,12 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     const Eigen::VectorXd f = load_at(t);
     LoadStepRecord record{t, 0, {}, {}, 0};
     if (m.contacts.empty()) {
-      step.u = expand(chol.solve(f), t);
+      Eigen::VectorXd u_free;
+      if (backend && !backend->solve(f, u_free, 0)) {
+        steps.status = RunStatus::failed(fmt::format("stopped at time {:.6g}: {}", t, backend->why()));
+        break;
+      }
+      step.u = expand(backend ? u_free : Eigen::VectorXd(chol.solve(f)), t);
       r.timing.linear_solve += clock.seconds();
     } else {
       ContactSolve& c = step.contact.emplace();
@@ -191,7 +206,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
       if (frictional) {
         if (!friction) {
           const WeightedGapOperator first_op = i == 0 || fixed_op ? c.op : assemble_contact_operator_at_time(m, times[0]);
-          friction.emplace(sys.K, i == 0 ? f : load_at(times[0]), first_op, modes, chol, opt);
+          friction.emplace(sys.K, i == 0 ? f : load_at(times[0]), first_op, modes, chol, opt, backend.get());
           friction->start_from(fixed_op ? *fixed_op : assemble_contact_operator_at_time(m, 0.0));
           if (i > 0) friction->restore(m.resume[i - 1].friction);  // the history where step i - 1 ended
           for (size_t j = 0; j < i; ++j) friction_steps.push_back(int(m.resume[j].record.active_set_sizes.size()));
@@ -202,6 +217,8 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
         c.solution = friction->step(c.op);
         friction_steps.push_back(int(c.solution.active_set_sizes.size()));
         c.solution.step_iterations = friction_steps;
+      } else if (petsc) {
+        c.solution = solve_with_petsc_from_whole(m, sys.K, f, c.op, modes, opt, r.linear_solver);
       } else {
         c.solution = solve_small_strain_contact(sys.K, f, c.op, modes, chol, opt);
       }
@@ -271,6 +288,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   r.applied_force = pressure_resultant(m, t_end);
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   if (chol.analyzed()) r.linear_solver.condition_estimate = chol.condition_estimate();
+  if (backend && backend->stats().setups > 0) take_report(*backend, r.linear_solver);
   r.timing.total = t_start.seconds();
   return r;
 }

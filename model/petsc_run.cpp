@@ -111,6 +111,17 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   record.peak_resident_all_ranks_gib = s.peak_resident_all_ranks_gib;
   return s;
 }
+ContactSolution solve_with_petsc_from_whole(const Model& m, const Eigen::SparseMatrix<double>& K,
+                                            const Eigen::VectorXd& f, const WeightedGapOperator& op,
+                                            const RigidModes& modes, const ContactSolverOptions& opt,
+                                            LinearSolverRecord& record) {
+  // the first process's share is all of it, the others' nothing (the shares sum to K)
+  LinearSystem share;
+  share.K = PetscSession::rank() == 0 ? K : Eigen::SparseMatrix<double>(K.rows(), K.cols());
+  share.f = f;
+  return solve_with_petsc(m, share, op, modes, opt, record);
+}
+
 namespace {
 // PETSc's Newton backend with its option errors said as input errors.
 class ReportingPetscNewtonSolver final : public LinearBackend {
@@ -147,6 +158,12 @@ std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m) {
   return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}));
 }
 #else
+ContactSolution solve_with_petsc_from_whole(const Model& m, const Eigen::SparseMatrix<double>&,
+                                            const Eigen::VectorXd&, const WeightedGapOperator&, const RigidModes&,
+                                            const ContactSolverOptions&, LinearSolverRecord&) {
+  throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "
+                               "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));
+}
 std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m) {
   if (!uses_petsc(m)) return nullptr;
   throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "

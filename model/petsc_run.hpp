@@ -25,6 +25,13 @@ ContactSolution solve_with_petsc(const Model& model, LinearSystem& system, const
                                  const RigidModes& modes, const ContactSolverOptions& options,
                                  LinearSolverRecord& record);
 
+// The same with the stiffness whole on every process (the load-curve path
+// assembles it once for all steps): K is not consumed.
+ContactSolution solve_with_petsc_from_whole(const Model& model, const Eigen::SparseMatrix<double>& K,
+                                            const Eigen::VectorXd& f, const WeightedGapOperator& op,
+                                            const RigidModes& modes, const ContactSolverOptions& options,
+                                            LinearSolverRecord& record);
+
 // The linear backend of a run that asks for PETSc: the large-deformation
 // Newton steps (LoadSteppingOptions::linear_backend) and the
 // small-deformation friction iterations (SmallStrainFriction) solve whole

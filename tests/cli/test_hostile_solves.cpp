@@ -31,21 +31,25 @@ std::string source_text(const std::string& relative) { return igac_test::read_fi
 
 int lines_of(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
-// The PETSc path runs every large-deformation case and solve_model's
-// small-deformation solve, frictionless and without load curves.  A case it cannot run is refused in one line, for the
-// same reason, whether [solver] type = "petsc" or --solver petsc asks for it
-// (run and study), and nothing is written.
+// The PETSc path runs every case; its spline multigrid preconditions the
+// small-deformation frictionless solve without load curves only.  A case it
+// cannot precondition is refused in one line, for the same reason, whether
+// the case file or the command line asks for it (run and study), and
+// nothing is written.
 TEST(PetscRefusal, SameReasonFromTheFileAndTheCommandLine) {
   struct Refused {
     std::string file, reason;
   };
   const std::vector<Refused> cases = {
       {"cases/cattaneo_mindlin.toml",
-       "the PETSc solver runs small-deformation contact frictionless only, not the friction = 0.3 of contact face "
-       "'arc'; use the direct solver"},
+       "the spline multigrid preconditions frictionless contact only, not the friction = 0.3 of contact face 'arc' "
+       "(its iterations solve with the PETSc options' solver, default MUMPS LU); leave preconditioner at \"options\""},
       {"tests/data/curve_contact.toml",
-       "the PETSc solver runs small deformation without load curves only (the case has a curve); use the direct "
-       "solver"},
+       "the spline multigrid preconditions a run without load curves only (the case has a curve); leave "
+       "preconditioner at \"options\""},
+      {"cases/hertz2d_neohookean_pressure.toml",
+       "the spline multigrid preconditions the small-deformation solve only, not the Newton steps of the neo_hookean "
+       "law; leave preconditioner at \"options\" (default MUMPS LU)"},
   };
   for (const Refused& r : cases) {
     TempDir tmp("petscrefused");
@@ -54,10 +58,11 @@ TEST(PetscRefusal, SameReasonFromTheFileAndTheCommandLine) {
     std::string text = source_text(r.file);
     if (const auto at = text.find("file = \""); at != std::string::npos)
       text.insert(at + 8, from.parent_path().string() + "/");
-    std::ofstream(c) << text << "\n[solver]\ntype = \"petsc\"\n";
+    std::ofstream(c) << text << "\n[solver]\ntype = \"petsc\"\npreconditioner = \"spline_multigrid\"\n";
     const int solver_line = lines_of(text) + 3;
-    for (const std::string& args : {"run " + quote(from.string()) + " --out out --solver petsc",
-                                    "study " + quote(from.string()) + " --levels 2 --out out --solver petsc",
+    const std::string asks = " --solver petsc --preconditioner spline_multigrid";
+    for (const std::string& args : {"run " + quote(from.string()) + " --out out" + asks,
+                                    "study " + quote(from.string()) + " --levels 2 --out out" + asks,
                                     "run " + quote(c.string()) + " --out out"}) {
       const Outcome o = run_igac(args, tmp.path());
       const bool in_file = args.find("--solver") == std::string::npos;
