@@ -36,7 +36,7 @@ struct RestartOptions {
 // "name=value" a line: refine, degree (the bodies' too), the solver, its
 // options, its preconditioner and the process count, as `spec` holds them
 // after the command line's overrides.  Written into every state file; a
-// restart with other values is refused.
+// restart with another refine or degree is refused (the solver's may change).
 std::string run_options(const CaseSpec& spec);
 
 // The earlier run a restart continues: the folder its state files are in,
@@ -51,7 +51,7 @@ struct EarlierRun {
 
 // Finds and checks the earlier run of o.dir (above), writing nothing: its
 // state files were written from the same case file (the hash of spec.path)
-// with the same `options` (run_options), are whole (their checksums), and
+// with the same discretisation `options` (run_options: refine, degree), are whole (their checksums), and
 // are steps of the case's schedule (their times and next increments); its
 // solution.pvd names only ParaView files of its own folder.  Throws
 // InputError in one line naming the file and what differs or is wrong.

@@ -147,3 +147,41 @@ std::string case_name(const ::testing::TestParamInfo<std::string>& info) { retur
 INSTANTIATE_TEST_SUITE_P(Shipped, PetscCase, ::testing::ValuesIn(cases()), case_name);
 
 }  // namespace
+
+namespace {
+
+// A run stopped after step 3 by the direct solver and continued on PETSc
+// (one process and two) ends where the direct run that never stopped ends:
+// the state file holds no trace of the backend, and a restart takes the
+// friction history (the slip, the stick/slip states) whichever solved it.
+// Large deformation with friction (oring_friction) and small deformation
+// with friction along a load curve (cattaneo_mindlin_cycle).
+class PetscRestart : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
+  }
+};
+
+TEST_P(PetscRestart, ADirectRunContinuedOnPetscEndsWhereTheDirectRunEnds) {
+  const std::string name = GetParam();
+  igac_test::TempDir tmp("petsc_restart_" + name);
+  const std::string c = quote((kSource / "cases" / (name + ".toml")).string());
+  auto o = igac_test::run_igac("run " + c + " --quiet --out whole", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const int processes : {1, 2}) {
+    const std::string part = "part" + std::to_string(processes);
+    o = igac_test::run_igac("run " + c + " --quiet --out " + part + " --stop-after-step 3", tmp.path());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    const std::string resume = "run " + c + " --quiet --out " + part + " --restart " + part + " --solver petsc";
+    o = processes == 1 ? igac_test::run_igac(resume, tmp.path()) : run_mpi(2, resume, tmp.path());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    expect_same_results(tmp.path() / "whole", tmp.path() / part, processes,
+                        name + " continued on " + std::to_string(processes) + " process(es)");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, PetscRestart, ::testing::Values("oring_friction", "cattaneo_mindlin_cycle"),
+                         case_name);
+
+}  // namespace

@@ -225,9 +225,9 @@ TEST(Restart, IncompressibleRunContinuesAsIfUninterrupted) {
       2, false);
 }
 
-// A restart with other command-line options than the run it continues
-// would mix two meshes (or two solvers): refused in one line naming what
-// differs; with the same ones it goes on.
+// A restart with another --refine or --degree than the run it continues
+// would mix two meshes: refused in one line naming what differs; with the
+// same ones it goes on (another solver may continue it: PetscRestart).
 TEST(Restart, OtherOptionsAreRefusedInOneLine) {
   igac_test::TempDir tmp("restart");
   const std::string c = data("curve_contact.toml");
