@@ -53,19 +53,23 @@ int process_count() { return launcher_size(); }
 // --petsc-options (added after the case's options: they win).
 void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::string& petsc_options,
                           const std::string& preconditioner) {
-  if (!solver.empty()) spec.solver.type = solver;
+  if (!solver.empty()) spec.solver.type = solver_type_named(solver).value();  // (CLI11 checked the name)
   spec.solver.processes = process_count();  // the memory estimate's process count
-  if (!preconditioner.empty()) spec.solver.preconditioner = preconditioner;
+  if (!preconditioner.empty()) {
+    const auto p = preconditioner_named(preconditioner);
+    if (!p) throw InputError(fmt::format("--preconditioner {}: {}", preconditioner, unknown_preconditioner(preconditioner)));
+    spec.solver.preconditioner = *p;
+  }
   if (const std::string why = check_preconditioner(spec.solver); !why.empty())
-    throw InputError(fmt::format("--preconditioner {}: {}", spec.solver.preconditioner, why));
+    throw InputError(fmt::format("--preconditioner {}: {}", name_of(spec.solver.preconditioner), why));
   if (!petsc_options.empty()) {
-    if (spec.solver.type != "petsc") throw InputError("--petsc-options: needs --solver petsc (or [solver] type = \"petsc\")");
+    if (!spec.solver.petsc()) throw InputError("--petsc-options: needs --solver petsc (or [solver] type = \"petsc\")");
     spec.solver.options += " " + petsc_options;
   }
-  if (spec.solver.type == "petsc")  // (a case file's [solver] type = "petsc" has passed the same check)
+  if (spec.solver.petsc())  // (a case file's [solver] type = "petsc" has passed the same check)
     if (const std::string why = check_petsc_case(spec); !why.empty())
       throw InputError(fmt::format("{}: --solver petsc: {}", spec.path, why));
-  if (process_count() > 1 && spec.solver.type != "petsc")
+  if (process_count() > 1 && !spec.solver.petsc())
     throw InputError(fmt::format("{}: {} processes (mpirun): the direct solver runs on one; use --solver petsc",
                                  spec.path, process_count()));
 }
@@ -241,7 +245,8 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
 void petsc_or_refuse([[maybe_unused]] const CaseSpec& spec, [[maybe_unused]] const std::string& solver,
                      [[maybe_unused]] char** argv) {
 #ifndef IGAC_WITH_PETSC
-  if ((solver.empty() ? spec.solver.type : solver) != "petsc") return;
+  if ((solver.empty() ? spec.solver.type : solver_type_named(solver).value_or(SolverType::direct)) != SolverType::petsc)
+    return;
   hand_over_to_petsc_build(argv);
   throw InputError(fmt::format("{}: {}: this igac has no PETSc solver (no igac-petsc beside it): "
                                "`scripts/bootstrap.sh petsc` installs PETSc and Open MPI (Debian's libpetsc-real-dev "
@@ -264,7 +269,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   }
 #ifdef IGAC_WITH_PETSC
   std::optional<PetscSession> petsc;
-  if (spec.solver.type == "petsc") petsc.emplace(spec.solver.options);
+  if (spec.solver.petsc()) petsc.emplace(spec.solver.options);
 #endif
   if (no_output) out.clear();
   else if (out.empty()) out = "out/" + spec.name;
@@ -521,12 +526,12 @@ int main(int argc, char** argv) {
     // A study writes and prints as one program: PETSc on one process (its
     // levels beyond the direct solver's memory, e.g. the 3D study's 1.8M
     // reference with the spline multigrid).
-    if (spec.solver.type == "petsc" && launcher_size() > 1)
+    if (spec.solver.petsc() && launcher_size() > 1)
       throw InputError(fmt::format("{}: igac study runs on one process (the PETSc solver too); use igac run under "
                                    "mpirun for one level", case_path));
 #ifdef IGAC_WITH_PETSC
     std::optional<PetscSession> petsc;
-    if (spec.solver.type == "petsc") petsc.emplace(spec.solver.options);
+    if (spec.solver.petsc()) petsc.emplace(spec.solver.options);
 #endif
     // Without --out a study writes beside the runs, out/<name>_study (not
     // out/<name>: that would replace the case's own run output).

@@ -24,7 +24,7 @@ std::string run_options(const CaseSpec& spec) {
   std::vector<int> degrees{spec.degree};
   for (const BodySpec& b : spec.bodies) degrees.push_back(b.degree);
   return fmt::format("refine={}\ndegree={}\nsolver={}\nsolver options={}\npreconditioner={}\nprocesses={}\n", spec.refine,
-                     fmt::join(degrees, ","), spec.solver.type, spec.solver.options, spec.solver.preconditioner,
+                     fmt::join(degrees, ","), name_of(spec.solver.type), spec.solver.options, name_of(spec.solver.preconditioner),
                      spec.solver.processes);
 }
 

@@ -44,7 +44,14 @@ int main(int argc, char** argv) {
   Stopwatch clock;
   CaseSpec spec = read_case(argv[1]);
   if (!integration.empty())
-    for (ContactSpec& c : spec.contacts) c.integration = integration;
+    for (ContactSpec& c : spec.contacts) {
+      const auto i = mortar_integration_named(integration);
+      if (!i) {
+        fmt::print(stderr, "--integration: \"{}\" is not one of \"segmented\", \"element\"\n", integration);
+        return 2;
+      }
+      c.integration = *i;
+    }
   Model m = build_model(spec);
   m.quiet = true;
   const double setup_s = clock.seconds();
@@ -73,7 +80,7 @@ int main(int argc, char** argv) {
       "setup_s,solve_s,search_s,search_share_of_solve,queries,candidates_per_query,peak_rss_mib\n";
   const std::string row = fmt::format(
       "{},{},{},{},{},{},{},{:.8g},{:.8g},{:.3f},{:.3f},{:.3f},{:.4f},{},{:.3f},{:.0f}\n", spec.name,
-      spec.contacts.empty() ? "" : spec.contacts.front().integration, master_elements, m.dofs->num_free(),
+      spec.contacts.empty() ? "" : name_of(spec.contacts.front().integration), master_elements, m.dofs->num_free(),
       r.contact ? int(r.contact->solution.lambda.size()) : 0, r.status, iterations, force, r.applied_force, setup_s,
       solve_s, search.seconds, search.seconds / solve_s, search.queries,
       search.queries ? double(search.candidates) / double(search.queries) : 0.0, peak_mib);

@@ -21,6 +21,8 @@
 // master to round-off.
 #pragma once
 
+#include "contact/mortar_integration.hpp"
+
 #include <functional>
 
 #include "contact/master_surface.hpp"
@@ -53,7 +55,6 @@ class MasterAsObstacle final : public Obstacle {
 // the Gauss rule on each piece (2D), a triangle rule on each cell's
 // triangles (3D, contact/mortar_cells.hpp): the integrand is smooth on
 // every piece and the patch test is passed to round-off.
-enum class MortarIntegration { element, segmented };
 
 // One slave quadrature point of the mortar integral: where it is on the
 // reference face (X, where the integral is taken) and now (x = X + u(X);

@@ -478,9 +478,9 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
       if (!s.has("master"))
         s.fail("integration", "is the mortar integration of a contact between two bodies (with master); against an "
                               "obstacle the face's own Gauss points integrate");
-      cs.integration = s.string("integration");
-      if (cs.integration != "segmented" && cs.integration != "element")
-        s.fail("integration", fmt::format("\"{}\" is not one of \"segmented\", \"element\"", cs.integration));
+      const std::string integration = s.string("integration");
+      if (const auto i = mortar_integration_named(integration)) cs.integration = *i;
+      else s.fail("integration", fmt::format("\"{}\" is not one of \"segmented\", \"element\"", integration));
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system
@@ -540,17 +540,20 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
   }
   if (root.contains("solver")) {
     const Section s(path, "solver", top.sub("solver"), kSolverKeys);
-    c.solver.type = s.string("type", "direct");
-    if (c.solver.type != "direct" && c.solver.type != "petsc")
+    const std::string type = s.string("type", "direct");
+    if (const auto t = solver_type_named(type)) c.solver.type = *t;
+    else
       s.fail("type", fmt::format("unknown solver '{}' (direct: CHOLMOD on one process; petsc: PETSc, also under mpirun)",
-                                 c.solver.type));
+                                 type));
     c.solver.options = s.string("options", "");
-    if (!c.solver.options.empty() && c.solver.type != "petsc")
+    if (!c.solver.options.empty() && !c.solver.petsc())
       s.fail("options", "PETSc options need type = \"petsc\"");
     if (const std::string why = check_case_petsc_options(c.solver.options); !why.empty()) s.fail("options", why);
-    c.solver.preconditioner = s.string("preconditioner", "options");
+    const std::string preconditioner = s.string("preconditioner", "options");
+    if (const auto p = preconditioner_named(preconditioner)) c.solver.preconditioner = *p;
+    else s.fail("preconditioner", unknown_preconditioner(preconditioner));
     if (const std::string why = check_preconditioner(c.solver); !why.empty()) s.fail("preconditioner", why);
-    if (c.solver.type == "petsc")
+    if (c.solver.petsc())
       if (const std::string why = check_petsc_case(c); !why.empty()) s.fail("type", why);
   }
   if (root.contains("units")) {  // labels only
@@ -617,30 +620,32 @@ std::string check_petsc_case(const CaseSpec& c) {
   // Large deformation: every Newton step's linear solve in PETSc
   // (solvers/petsc_newton.hpp), whatever the contacts, laws and curves.
   if (c.finite_strain()) {
-    if (c.solver.preconditioner == "spline_multigrid")
+    if (c.solver.spline_multigrid())
       return fmt::format("the spline multigrid preconditions the small-deformation solve only, not the Newton steps "
                          "of the {} law; leave preconditioner at \"options\" (default MUMPS LU)", c.model);
     return {};
   }
   for (const ContactSpec& cs : c.contacts)
     if ((cs.friction > 0 || (!cs.law.empty() && cs.law != "frictionless")) &&
-        c.solver.preconditioner == "spline_multigrid")
+        c.solver.spline_multigrid())
       return fmt::format("the spline multigrid preconditions frictionless contact only, not the {} of contact face "
                          "'{}' (its iterations solve with the PETSc options' solver, default MUMPS LU); leave "
                          "preconditioner at \"options\"",
                          cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
                          cs.face);
-  if (c.has_load_curves() && c.solver.preconditioner == "spline_multigrid")
+  if (c.has_load_curves() && c.solver.spline_multigrid())
     return "the spline multigrid preconditions a run without load curves only (the case has a curve); leave "
            "preconditioner at \"options\"";
   return {};
 }
 
+std::string unknown_preconditioner(const std::string& name) {
+  return fmt::format("unknown preconditioner '{}' (options: as [solver] options say, default MUMPS; "
+                     "spline_multigrid: geometric multigrid over the nested meshes)", name);
+}
+
 std::string check_preconditioner(const SolverSpec& s) {
-  if (s.preconditioner != "options" && s.preconditioner != "spline_multigrid")
-    return fmt::format("unknown preconditioner '{}' (options: as [solver] options say, default MUMPS; "
-                       "spline_multigrid: geometric multigrid over the nested meshes)", s.preconditioner);
-  if (s.preconditioner == "spline_multigrid" && s.type != "petsc")
+  if (s.spline_multigrid() && !s.petsc())
     return "spline_multigrid runs in the PETSc solver: needs type = \"petsc\"";
   return {};
 }

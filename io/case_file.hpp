@@ -36,8 +36,10 @@ std::optional<std::string> nearest_name(const std::string& word, const std::vect
 // Why a case file's [solver] options cannot be given to PETSc ("" when they
 // can): a case file may give only a few known options with checked values.
 std::string check_case_petsc_options(const std::string& options);
-// Why a [solver] preconditioner cannot be used ("" when it can).
+// Why a [solver] preconditioner cannot be used ("" when it can), and the
+// message for a name that is none.
 std::string check_preconditioner(const SolverSpec& solver);
+std::string unknown_preconditioner(const std::string& name);
 // Why the PETSc solver cannot run this case ("" when it can): it runs every
 // large-deformation case (each Newton step's linear solve in PETSc) and the
 // small-deformation solve of solve_model frictionless, without load curves

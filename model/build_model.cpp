@@ -440,7 +440,7 @@ Model build_model(const CaseSpec& spec) {
       c.master_name = cs.master;
       c.friction = cs.friction;
       if (!cs.law.empty()) c.law = &interface_law(cs.law);
-      c.integration = cs.integration == "element" ? MortarIntegration::element : MortarIntegration::segmented;
+      c.integration = cs.integration;
       // The master body moved rigidly with its supports: its motion enters
       // the gaps (assemble_contact_operator) and, after the solve, its
       // displacement (add_master_motions).

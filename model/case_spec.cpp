@@ -33,4 +33,22 @@ std::string CaseSpec::where(const BodySpec& b, const std::string& table, const s
   return where({.table = "body." + table, .key = key, .body = index});
 }
 
+std::optional<SolverType> solver_type_named(std::string_view name) {
+  if (name == "direct") return SolverType::direct;
+  if (name == "petsc") return SolverType::petsc;
+  return std::nullopt;
+}
+
+std::optional<Preconditioner> preconditioner_named(std::string_view name) {
+  if (name == "options") return Preconditioner::options;
+  if (name == "spline_multigrid") return Preconditioner::spline_multigrid;
+  return std::nullopt;
+}
+
+std::string_view name_of(SolverType type) { return type == SolverType::petsc ? "petsc" : "direct"; }
+
+std::string_view name_of(Preconditioner p) {
+  return p == Preconditioner::spline_multigrid ? "spline_multigrid" : "options";
+}
+
 }  // namespace igac

@@ -3,10 +3,14 @@
 // simulate, free of any file format.  model/build_model makes it a Model.
 #pragma once
 
+#include "contact/mortar_integration.hpp"
+
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/geometry/multipatch.hpp"
@@ -71,7 +75,7 @@ struct ContactSpec {
   double friction = 0;    // Coulomb coefficient (small and large deformation, obstacle or master); 0: frictionless
   std::string law;        // the interface law (contact/interface_law.hpp); empty: coulomb where friction > 0, else
                           // frictionless
-  std::string integration = "segmented";  // with master: "segmented" or "element" (contact/mortar_gap.hpp)
+  MortarIntegration integration = MortarIntegration::segmented;  // with master (contact/mortar_gap.hpp)
 };
 
 // Large deformation (hyperelastic models): how the load is applied.
@@ -95,11 +99,22 @@ struct LoadingSpec {
 // `preconditioner`: "options" (what `options` say; default MUMPS) or
 // "spline_multigrid" (geometric multigrid over the case's nested meshes
 // --refine r, ..., 0, solvers/petsc_multigrid; PETSc only).
+// [solver], resolved when the case (or the command line) is read.
+enum class SolverType { direct, petsc };
+enum class Preconditioner { options, spline_multigrid };
+// The names a case file and the command line give, and back.
+std::optional<SolverType> solver_type_named(std::string_view name);
+std::optional<Preconditioner> preconditioner_named(std::string_view name);
+std::string_view name_of(SolverType type);
+std::string_view name_of(Preconditioner preconditioner);
+
 struct SolverSpec {
-  std::string type = "direct";
+  SolverType type = SolverType::direct;
   std::string options;
-  std::string preconditioner = "options";
+  Preconditioner preconditioner = Preconditioner::options;
   int processes = 1;  // MPI processes of the run (set by the launcher, not by the case file)
+  bool petsc() const { return type == SolverType::petsc; }
+  bool spline_multigrid() const { return preconditioner == Preconditioner::spline_multigrid; }
 };
 
 // [units]: the names of the case's units, labels only (the console,

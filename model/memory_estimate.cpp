@@ -122,14 +122,14 @@ double estimated_peak_bytes(const CaseSpec& c) {
   const std::string& o = c.solver.options;
   const bool multigrid = o.find("gamg") != std::string::npos || o.find("hypre") != std::string::npos ||
                          o.find("-pc_type ml") != std::string::npos;
-  if (c.solver.type == "petsc" && multigrid) return kBase + kCalibration * 4 * 12 * nnz;
+  if (c.solver.petsc() && multigrid) return kBase + kCalibration * 4 * 12 * nnz;
   // The spline multigrid: K, on several processes PETSc's copy of it (one
   // process works on K's arrays), the Galerkin levels, the ICC factors and
   // on several processes the overlap of their subdomains.  The factors
   // (one process, several) are set from the peaks of hertz3d level 3
   // (225k dofs) on one and two processes (measured: docs/petsc.md,
   // "Measured").
-  if (c.solver.type == "petsc" && c.solver.preconditioner == "spline_multigrid") {
+  if (c.solver.petsc() && c.solver.spline_multigrid()) {
     const bool several = c.solver.processes > 1;
     return kBase + kCalibration * (several ? 4.9 : 2.3) * 12 * nnz;
   }

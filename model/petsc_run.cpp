@@ -14,7 +14,7 @@
 
 namespace igac {
 
-bool uses_petsc(const Model& m) { return m.spec.solver.type == "petsc"; }
+bool uses_petsc(const Model& m) { return m.spec.solver.petsc(); }
 
 void take_report(const LinearBackend& backend, LinearSolverRecord& record) {
   const LinearBackendReport report = backend.report();
@@ -94,7 +94,7 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   po.contact = opt;
   po.stiffness = m.spec.E;
   po.dim = m.body.space_dim();
-  po.spline_multigrid = m.spec.solver.preconditioner == "spline_multigrid";
+  po.spline_multigrid = m.spec.solver.spline_multigrid();
   if (po.spline_multigrid) po.prolongations = spline_hierarchy(m);
   // The load is whole on every process: PETSc gets it once.
   const Eigen::VectorXd f_part = PetscSession::rank() == 0 ? sys.f : Eigen::VectorXd::Zero(sys.f.size()).eval();

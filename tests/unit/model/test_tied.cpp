@@ -141,9 +141,9 @@ TEST(TiedContact, ItTakesNoCoefficientAndCoulombNeedsOne) {
 // frictionless solve only, is refused in one line.
 TEST(TiedContact, ThePetscSolverTakesItWithoutTheSplineMultigrid) {
   CaseSpec spec = read_case_text(two_blocks(0.01, "law = \"tied\""), "tied.toml");
-  spec.solver.type = "petsc";
+  spec.solver.type = SolverType::petsc;
   EXPECT_EQ(check_petsc_case(spec), "");
-  spec.solver.preconditioner = "spline_multigrid";
+  spec.solver.preconditioner = Preconditioner::spline_multigrid;
   EXPECT_EQ(check_petsc_case(spec),
             "the spline multigrid preconditions frictionless contact only, not the law \"tied\" of contact face "
             "'1:south' (its iterations solve with the PETSc options' solver, default MUMPS LU); leave preconditioner "
