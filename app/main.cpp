@@ -287,7 +287,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     setup->phase("building the model");
   }
   Model model = build_model(spec);
-  model.quiet = quiet;
+  RunControl control;
+  control.quiet = quiet;
   // A run in steps writes its state after each one (state_NNNN.bin, beside
   // the step's .vtu); --restart continues from there (app/restart.hpp).
   const bool stepped = spec.finite_strain() || spec.has_load_curves();
@@ -300,11 +301,11 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   EarlierRun earlier;
   if (!restart.dir.empty()) {
     earlier = read_earlier_run(model.spec, origin.options, restart);
-    model.resume = earlier.steps;
+    control.resume = earlier.steps;
   }
-  model.stop_after_step = restart.stop_after_step;
+  control.stop_after_step = restart.stop_after_step;
   bool header = false;  // printed once the solve accepts the case (bad input stays one line)
-  if (!quiet) model.on_solve_start = [&] { print_header(model), header = true; };
+  if (!quiet) control.on_solve_start = [&] { print_header(model), header = true; };
   if (!quiet)
     for (const auto& w : model.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   if (folder) folder->create_staging(earlier.stopped ? earlier.folder : std::string());
@@ -312,8 +313,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   const bool vtk = folder && spec.write_vtk;
   VtkSeries series(dir);
   if (!quiet && earlier.stopped)
-    fmt::print(stderr, "igac: continuing after step {} of the run stopped in {}\n", model.resume.size(), earlier.folder);
-  if (folder && !model.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
+    fmt::print(stderr, "igac: continuing after step {} of the run stopped in {}\n", control.resume.size(), earlier.folder);
+  if (folder && !control.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
     series.resume(adopt_earlier_steps(earlier, dir, vtk));
     if (vtk) write_pvd(dir, series.steps());
     // Our staging folder now holds the steps: it is the stopped run if this one stops too.
@@ -344,9 +345,8 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   }
   // Large deformation and load curves: one ParaView step per converged load
   // step, at its time, and the state to restart from.
-  StepObserver observer;
   if (folder && stepped)
-    observer = [&](const RunResult& step, double t) {
+    control.on_step = [&](const RunResult& step, double t) {
       if (vtk && step.u.allFinite()) series.write_step(model, step, t);
       if (step.step_state) {
         write_state_file(dir + "/" + state_file_name(step.step_state->step), origin, *step.step_state);
@@ -354,7 +354,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       }
     };
   setup.reset();  // the solve's own lines from here
-  RunResult r = solve_model(model, observer);
+  RunResult r = solve_model(model, control);
   if (!quiet)
     for (const auto& w : r.warnings) fmt::print(stderr, "igac: warning: {}\n", w);
   Json summary = run_summary(model, r);

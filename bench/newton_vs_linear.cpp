@@ -53,8 +53,7 @@ int main(int argc, char** argv) {
     CaseSpec spec = read_case(argv[1]);
     apply_overrides(spec, {}, refine);
     Model m = build_model(spec);
-    m.quiet = true;
-    const RunResult r = solve_model(m);
+    const RunResult r = solve_model(m, quiet_run());
     const LoadSteppingSummary& s = *r.load_steps;
     int iterations = 0, cut_backs = 0;
     for (const auto& st : s.steps) {

@@ -53,12 +53,11 @@ int main(int argc, char** argv) {
       c.integration = *i;
     }
   Model m = build_model(spec);
-  m.quiet = true;
   const double setup_s = clock.seconds();
   for (const auto& c : m.contacts)  // (the setup's own queries: the checks of the pair)
     if (c.master) c.master->reset_counters();
   clock.restart();
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   const double solve_s = clock.seconds();
   int master_elements = 0;
   MasterSurface::SearchCounters search;

@@ -80,7 +80,8 @@ double LoadCurveProbe::obstacle_displacement(double t) const {
   return mover ? mover->curve(t) * mover->motion.norm() : 0.0;  // (signed: a curve below 0 reverses the motion)
 }
 
-RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step) {
+RunResult solve_small_strain_history(const Model& m, const RunControl& control) {
+  const StepObserver& on_step = control.on_step;
   RunResult r;
   const Stopwatch t_start;
   const Body& body = m.body;
@@ -102,8 +103,8 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     add_traction_loads(m, *m.dofs, {}, f);
     check_body_is_held(m, modes, f);
   }
-  if (m.on_solve_start) m.on_solve_start();
-  Progress progress(m.quiet);
+  if (control.on_solve_start) control.on_solve_start();
+  Progress progress(control.quiet);
   progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
   Stopwatch clock;
   const Eigen::VectorXd no_body_force = Eigen::VectorXd::Zero(dim);
@@ -174,17 +175,17 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
   // A restart: the earlier steps are taken as they were recorded (each
   // step is solved afresh, so none depends on the one before); the last of
   // them is solved again for the run's final state when nothing follows it.
-  const size_t resumed = std::min(m.resume.size(), times.size());
+  const size_t resumed = std::min(control.resume.size(), times.size());
   for (size_t i = 0; i < resumed; ++i) {
-    steps.steps.push_back(m.resume[i].record);
-    r.load_curve.push_back(m.resume[i].point);
+    steps.steps.push_back(control.resume[i].record);
+    r.load_curve.push_back(control.resume[i].point);
   }
   RunResult last;
   for (size_t i = resumed > 0 ? resumed - 1 : 0; i < times.size(); ++i) {
     const double t = times[i];
     const bool again = resumed > 0 && i == resumed - 1;  // (its record is in already)
     if (again && i + 1 < times.size()) continue;
-    if (!again && m.stop_after_step > 0 && int(i) >= m.stop_after_step) {
+    if (!again && control.stop_after_step > 0 && int(i) >= control.stop_after_step) {
       steps.status = RunStatus::stopped_as_asked(int(i));
       break;
     }
@@ -208,8 +209,8 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
           const WeightedGapOperator first_op = i == 0 || fixed_op ? c.op : assemble_contact_operator_at_time(m, times[0]);
           friction.emplace(sys.K, i == 0 ? f : load_at(times[0]), first_op, modes, chol, opt, backend.get());
           friction->start_from(fixed_op ? *fixed_op : assemble_contact_operator_at_time(m, 0.0));
-          if (i > 0) friction->restore(m.resume[i - 1].friction);  // the history where step i - 1 ended
-          for (size_t j = 0; j < i; ++j) friction_steps.push_back(int(m.resume[j].record.active_set_sizes.size()));
+          if (i > 0) friction->restore(control.resume[i - 1].friction);  // the history where step i - 1 ended
+          for (size_t j = 0; j < i; ++j) friction_steps.push_back(int(control.resume[j].record.active_set_sizes.size()));
           r.timing.factorization += clock.seconds();
           clock.restart();
         }
@@ -265,7 +266,7 @@ RunResult solve_small_strain_history(const Model& m, const StepObserver& on_step
     if (friction) state.friction = friction->history();
     step.step_state = std::move(state);
     r.timing.postprocess += clock.seconds();
-    if (!m.quiet)
+    if (!control.quiet)
       progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s){}", steps.steps.size(), t,
                                 step.contact ? fmt::format(", {} active", std::count(step.contact->solution.active.begin(),
                                                                                      step.contact->solution.active.end(), 1))

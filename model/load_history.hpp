@@ -44,6 +44,6 @@ struct LoadCurveProbe {
 };
 
 // The small-deformation path of a case with load curves (above).
-RunResult solve_small_strain_history(const Model& model, const StepObserver& on_step);
+RunResult solve_small_strain_history(const Model& model, const RunControl& control);
 
 }  // namespace igac

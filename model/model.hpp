@@ -98,15 +98,6 @@ struct Model {
   // Knots inserted so that the two sides of every interface have the same
   // breakpoints (engine/geometry/conforming_interfaces.hpp).
   std::vector<InsertedKnots> interface_knots;
-  bool quiet = false;    // no progress lines
-  // A restart (app: igac run --restart): the steps an earlier run of the
-  // same case completed, in order; the solve continues after the last.
-  std::vector<StepState> resume;
-  int stop_after_step = 0;  // > 0: stop once this many steps are done (igac run --stop-after-step)
-  // Called by solve_model once it has checked what only a solve can (the
-  // body is held, something loads it), before the long work: the console's
-  // header, so that bad input stays one line.
-  std::function<void()> on_solve_start;
   std::vector<std::string> warnings;  // where the case contradicts itself (printed unless quiet)
   int num_multipliers() const {
     int m = 0;

@@ -25,9 +25,31 @@ struct CoarserRun {
   const Model* model = nullptr;
   const RunResult* result = nullptr;
 };
-RunResult solve_model(const Model& model, const StepObserver& on_step = {}, CoarserRun coarser = {});
+// How a solve is driven, apart from what it models (the Model): what it
+// prints, where it continues from, where it stops and whom it tells.
+struct RunControl {
+  bool quiet = false;  // no progress lines
+  // A restart (app: igac run --restart): the steps an earlier run of the
+  // same case completed, in order; the solve continues after the last.
+  std::vector<StepState> resume;
+  int stop_after_step = 0;  // > 0: stop once this many steps are done (igac run --stop-after-step)
+  // Called once the solve has checked what only a solve can (the body is
+  // held, something loads it), before the long work: the console's header,
+  // so that bad input stays one line.
+  std::function<void()> on_solve_start;
+  StepObserver on_step;  // large deformation, load curves: after each converged step
+  CoarserRun coarser;    // a study's previous level (contact at --refine >= 1)
+};
+// A run that prints nothing (tests, the Python module, nested solves), with its step observer.
+inline RunControl quiet_run(StepObserver on_step = {}) {
+  RunControl control;
+  control.quiet = true;
+  control.on_step = std::move(on_step);
+  return control;
+}
+RunResult solve_model(const Model& model, const RunControl& control = {});
 // The large-deformation path (model/solve_finite_strain.cpp).
-RunResult solve_finite_strain(const Model& model, const StepObserver& on_step);
+RunResult solve_finite_strain(const Model& model, const RunControl& control);
 // What the large-deformation problem of a model is made of: its body, dofs,
 // laws (one per body), pressures, contacts (obstacles and master faces) and
 // the complementarity scale.  Borrows from `model`.

@@ -176,7 +176,8 @@ std::optional<double> pulled_off_after(const Model& m, const RigidModes& modes, 
 }
 }  // namespace
 
-RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
+RunResult solve_finite_strain(const Model& m, const RunControl& control) {
+  const StepObserver& on_step = control.on_step;
   RunResult r;
   Stopwatch t_start;
   const Body& body = m.body;
@@ -205,7 +206,7 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   opt.halving_line_search = m.spec.loading.halving_line_search;
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.tangent_every_step = m.spec.loading.tangent_every_step;
-  opt.quiet = m.quiet;
+  opt.quiet = control.quiet;
   // PETSc's linear solver when the case asks for it (else the driver's direct one)
   const std::unique_ptr<LinearBackend> petsc_solver = petsc_linear_backend(m);
   opt.linear_backend = petsc_solver.get();
@@ -232,22 +233,22 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
   // A restart: the earlier steps' records and load-curve points, and the
   // driver continues from the state after the last of them.
   std::vector<LoadStepRecord> earlier;
-  for (const StepState& st : m.resume) {
+  for (const StepState& st : control.resume) {
     earlier.push_back(st.record);
     r.load_curve.push_back(st.point);
   }
-  if (!m.resume.empty()) {
-    const StepState& from = m.resume.back();
+  if (!control.resume.empty()) {
+    const StepState& from = control.resume.back();
     // a state whose unknowns are not this problem's is refused, not read past its end
     if (from.driver.x.size() != problem.size())
       throw InputError(fmt::format("{}: the state file holds {} unknowns, this run has {}; "
                                    "run the case again from the start",
                                    m.spec.path, from.driver.x.size(), problem.size()));
     opt.start = from.driver;
-    opt.steps_done = int(m.resume.size());
+    opt.steps_done = int(control.resume.size());
     problem.restore({from.friction, from.pressure_multipliers}, from.driver.x_old);
   }
-  opt.max_steps = m.stop_after_step;
+  opt.max_steps = control.stop_after_step;
   LoadSteppingState latest;  // the driver's state after the step record_step sees
   opt.on_state = [&latest](const LoadSteppingState& s) { latest = s; };
   const auto record_step = [&](const LoadStepRecord& rec, const Eigen::VectorXd& xs) {
@@ -273,8 +274,8 @@ RunResult solve_finite_strain(const Model& m, const StepObserver& on_step) {
                                  "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
                                  "obstacle",
                                  m.spec.where({.table = "contact.obstacle", .key = "motion"}), modes.modes.cols()));
-  if (m.on_solve_start) m.on_solve_start();
-  progress.emplace(m.quiet);
+  if (control.on_solve_start) control.on_solve_start();
+  progress.emplace(control.quiet);
   progress->now("in the first load step");
   if (loading != Loading::some) {
     r.warnings.push_back(fmt::format("{}: nothing loads the body (no pressure, prescribed displacement or body force, "

@@ -213,8 +213,7 @@ void start_from_coarser_mesh(const Model& m, CoarserRun coarser, const WeightedG
     CaseSpec spec = m.spec;
     --spec.refine;
     built.emplace(build_model(spec));
-    built->quiet = true;
-    solved.emplace(solve_model(*built));
+    solved.emplace(solve_model(*built, quiet_run()));
     coarser = {&*built, &*solved};
   }
   const RunResult& rc = *coarser.result;
@@ -266,17 +265,18 @@ ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, con
 }
 }  // namespace
 
-RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun coarser) {
-  if (m.spec.finite_strain()) return solve_finite_strain(m, on_step);
-  if (m.spec.has_load_curves()) return solve_small_strain_history(m, on_step);
+RunResult solve_model(const Model& m, const RunControl& control) {
+  if (m.spec.finite_strain()) return solve_finite_strain(m, control);
+  if (m.spec.has_load_curves()) return solve_small_strain_history(m, control);
+  const CoarserRun coarser = control.coarser;
   RunResult r;
   Stopwatch t_start;
   const Body& body = m.body;
   const int dim = body.space_dim();
   const bool petsc = uses_petsc(m);
-  Progress progress(m.quiet);
+  Progress progress(control.quiet);
   std::once_flag header_once;  // the heartbeat's thread may print it
-  const auto header = [&] { std::call_once(header_once, [&] { if (m.on_solve_start) m.on_solve_start(); }); };
+  const auto header = [&] { std::call_once(header_once, [&] { if (control.on_solve_start) control.on_solve_start(); }); };
   bool started = false;
   const auto start = [&] {
     if (started) return;
@@ -339,7 +339,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     WeightedGapOperator none;
     none.G.resize(0, m.dofs->num_free());
     ContactSolverOptions no_contact;
-    if (!m.quiet)
+    if (!control.quiet)
       no_contact.on_iteration = [&progress, &start](int, int, int, int krylov) {
         start();
         progress.line(fmt::format("solved: {} Krylov iterations ({:.1f} s)", krylov, progress.seconds()),
@@ -366,7 +366,7 @@ RunResult solve_model(const Model& m, const StepObserver& on_step, CoarserRun co
     ContactSolverOptions opt;
     opt.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
     opt.mesh_size = m.mesh_size;
-    if (!m.quiet) opt.on_iteration = report_iteration;
+    if (!control.quiet) opt.on_iteration = report_iteration;
     progress.phase(petsc ? fmt::format("the active-set iterations with PETSc ({} equations, {} multipliers)",
                                        m.dofs->num_free(), m.num_multipliers())
                          : fmt::format("factorising K ({} equations), then the active-set iterations ({} multipliers)",

@@ -35,10 +35,12 @@ StudyResult solve_study(CaseSpec spec, int levels, bool quiet, const LevelObserv
   for (int l = 0; l < levels; ++l) {
     apply_overrides(spec, {}, r0 + l);
     models.push_back(build_model(spec));
-    models.back().quiet = quiet;
     // Level l starts its contact iteration from level l - 1 (its mesh one refinement below).
     const CoarserRun previous = l > 0 ? CoarserRun{&models[l - 1], &results[l - 1]} : CoarserRun{};
-    results.push_back(solve_model(models.back(), {}, previous));
+    RunControl control;
+    control.quiet = quiet;
+    control.coarser = previous;
+    results.push_back(solve_model(models.back(), control));
     if (on_level) on_level(l, models.back(), results.back());
     if (!results.back().status.is_converged())
       throw std::runtime_error(fmt::format("level {} did not converge: {}", l, results.back().status));

@@ -243,11 +243,10 @@ py::dict run_table(const toml::table& root, const std::string& path, std::option
   CaseSpec spec = read_case_table(root, path);
   apply_overrides(spec, degree, refine);
   Model model = build_model(spec);
-  model.quiet = true;
   RunResult r;
   {
     py::gil_scoped_release free;  // the solve needs no Python
-    r = solve_model(model);
+    r = solve_model(model, quiet_run());
   }
   py::dict out;
   out["summary"] = py::module_::import("json").attr("loads")(run_summary(model, r).dump());

@@ -33,16 +33,43 @@ struct PetscNewtonSolver::Impl {
   bool solved_once = false;
   std::vector<int> iterations;
   std::string method;
+  // The symmetric form (below) of the last setup, and the one the KSP was made for.
+  bool symmetric = false, ksp_symmetric = false;
 
-  // This process's rows of the condensed J; true when their pattern is the last one's.
+  // Whether J has a symmetric form: K symmetric (no follower load, no slip
+  // rows, no coupling outside K), to round-off of its largest entry.  Then
+  // each active row s_k B_k du = b_k is divided by s_k, and each inactive
+  // multiplier's column B_k^T is moved to the right-hand side (dl_k = b_k /
+  // d_k is its row): the same solution, a symmetric (indefinite) matrix of
+  // the same pattern, which MUMPS factorises as L D L^T (about half LU's work).
+  static bool has_symmetric_form(const BlockJacobian& J) {
+    if (J.general || J.K_coupling.nonZeros() > 0 || J.K.rows() != J.K.cols()) return false;
+    const Eigen::SparseMatrix<double> D = Eigen::SparseMatrix<double>(J.K.transpose()) - J.K;
+    double largest = 0, skew = 0;
+    for (int k = 0; k < J.K.nonZeros(); ++k) largest = std::max(largest, std::abs(J.K.valuePtr()[k]));
+    for (int k = 0; k < D.nonZeros(); ++k) skew = std::max(skew, std::abs(D.valuePtr()[k]));
+    return skew <= 1e-13 * largest;
+  }
+
+  // This process's rows of the condensed J (in the symmetric form where it
+  // has one); true when their pattern is the last one's.
   bool take_rows(const BlockJacobian& blocks) {
-    const RowMat R = assemble_condensed(blocks);
+    RowMat R = assemble_condensed(blocks);
+    symmetric = has_symmetric_form(blocks);
+    if (symmetric) {
+      const int n = int(blocks.K.rows());
+      for (int r = 0; r < R.outerSize(); ++r)
+        for (RowMat::InnerIterator it(R, r); it; ++it) {
+          if (r >= n && blocks.s[r - n] != 0) it.valueRef() /= blocks.s[r - n];  // an active row
+          if (r < n && it.col() >= n && blocks.s[it.col() - n] == 0) it.valueRef() = 0;  // an inactive column
+        }
+    }
     const PetscInt n = PetscInt(R.rows());
-    if (n != N) {  // (friction's iterations: the unknowns come and go)
+    if (n != N || symmetric != ksp_symmetric) {  // (friction's iterations: the unknowns come and go)
       N = n;
       std::tie(first, local) = share(N);
       row_ptr.clear();
-      ksp = {};  // a KSP keeps its first operator's sizes
+      ksp = {};  // a KSP keeps its first operator's sizes and its factorisation's kind
     }
     const int* outer = R.outerIndexPtr();
     const int begin = outer[first], end = outer[first + local];
@@ -67,6 +94,7 @@ struct PetscNewtonSolver::Impl {
     // (each call is a no-op on the other type: SEQAIJ on one process, MPIAIJ on more)
     check(MatSeqAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
     check(MatMPIAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
+    if (symmetric) check(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
     A = std::move(M);
     x = {};
     b = {};
@@ -86,11 +114,16 @@ struct PetscNewtonSolver::Impl {
     check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
   }
 
+  // igac's choice, which the options replace: MUMPS, L D L^T on the
+  // symmetric form, else LU.
   void create_solver() {
     check(KSPCreate(PETSC_COMM_WORLD, &ksp), "solver");
-    default_option("-ksp_type", "preonly");
-    default_option("-pc_type", "lu");
-    default_option("-pc_factor_mat_solver_type", "mumps");
+    ksp_symmetric = symmetric;
+    check(KSPSetType(ksp, KSPPREONLY), "solver");
+    PC pc = nullptr;
+    check(KSPGetPC(ksp, &pc), "solver");
+    check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "solver");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "solver");
     // room for delayed pivots: the multiplier rows have no diagonal
     default_option("-mat_mumps_icntl_14", "100");
     check(KSPSetTolerances(ksp, kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
@@ -157,9 +190,22 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   const Stopwatch clock;
   ++stats_.solves;
   const CondensedRhs rhs = condense_rhs(*I.J, b_whole);
+  Eigen::VectorXd b = rhs.b;
+  if (I.symmetric) {  // the symmetric form's right-hand side (Impl::has_symmetric_form)
+    const BlockJacobian& J = *I.J;
+    const int n = int(J.K.rows());
+    for (int k = 0; k < J.B.rows(); ++k) {
+      if (J.s[k] != 0) {
+        b[n + k] /= J.s[k];
+      } else {
+        const double dl = rhs.b[n + k] / J.d[k];
+        for (RowMat::InnerIterator it(J.B, k); it; ++it) b[it.col()] -= it.value() * dl;
+      }
+    }
+  }
   PetscScalar* pb = nullptr;
   check(VecGetArray(I.b, &pb), "vector");
-  std::copy(rhs.b.data() + I.first, rhs.b.data() + I.first + I.local, pb);
+  std::copy(b.data() + I.first, b.data() + I.first + I.local, pb);
   check(VecRestoreArray(I.b, &pb), "vector");
   check(KSPSetTolerances(I.ksp, tolerance > 0 ? tolerance : kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
   check(KSPSolve(I.ksp, I.b, I.x), "solve", !I.solved_once);
@@ -179,6 +225,12 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   check(VecGetArrayRead(I.x_all, &px), "vector");
   x = Eigen::Map<const Eigen::VectorXd>(px, I.N);
   check(VecRestoreArrayRead(I.x_all, &px), "vector");
+  if (I.symmetric) {  // an inactive multiplier's row is d_k dl_k = b_k: exactly, not through MUMPS' scaling
+    const BlockJacobian& J = *I.J;
+    const int n = int(J.K.rows());
+    for (int k = 0; k < J.B.rows(); ++k)
+      if (J.s[k] == 0) x[n + k] = rhs.b[n + k] / J.d[k];
+  }
   recover_local(*I.J, rhs, x);
   stats_.solve_s += clock.seconds();
   if (why_.empty() && !x.allFinite()) why_ = "singular Newton matrix (the PETSc solution is not finite)";

@@ -7,12 +7,14 @@
 // multiplier: an inactive one has its row d_k dl_k, an active one s_k B_k du),
 // split in contiguous blocks of rows over the MPI processes.
 //
-// The matrix is not symmetric (the active rows are scaled by s, a follower
-// load and friction's slip rows are unsymmetric), so the default is an LU
-// factorisation by MUMPS (`-ksp_type preonly -pc_type lu
-// -pc_factor_mat_solver_type mumps`); any KSP and PC the PETSc options name
-// replace it (`-ksp_type gmres -pc_type ilu` ...), and an iterative one is
-// asked for the driver's inexact-Newton tolerance.  While the pattern of the
+// Where K is symmetric (no follower load, no slip rows, no coupling outside
+// K) the matrix is put in a symmetric form (active rows divided by their
+// scale, inactive multipliers' columns moved to the right-hand side: the
+// same solution) and factorised by MUMPS as L D L^T; otherwise (a follower
+// load, friction, two bodies' curvature coupling) by MUMPS LU.  Any KSP
+// and PC the PETSc options name replace these (`-ksp_type gmres -pc_type
+// ilu` ...), and an iterative one is asked for the driver's inexact-Newton
+// tolerance.  While the pattern of the
 // matrix stays (it does unless the active set changes which rows a curved
 // master couples), the matrix is refilled in place and the factorisation
 // keeps its symbolic analysis; a new pattern builds a new matrix.

@@ -32,6 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using igac_test::quote;
+using igac_test::run_mpi;
 using igac_test::run_igac;
 using igac_test::TempDir;
 const std::string kCases = std::string(IGAC_SOURCE_DIR) + "/cases/";
@@ -56,21 +57,6 @@ constexpr bool kHavePetsc = false;
 
 nlohmann::json summary_of(const fs::path& dir) { return nlohmann::json::parse(igac_test::read_file(dir / "summary.json")); }
 
-// `scripts/mpirun.sh N igac ARGS` in cwd, output 2>&1.
-igac_test::Outcome run_mpi(int n, const std::string& args, const fs::path& cwd) {
-  const std::string cmd = "cd " + quote(cwd.string()) + " && IGAC_BINARY=" + quote(IGAC_BINARY) + " " +
-                          quote(std::string(IGAC_SOURCE_DIR) + "/scripts/mpirun.sh") + " " + std::to_string(n) + " " +
-                          args + " 2>&1";
-  igac_test::Outcome o;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return o;
-  char buf[4096];
-  size_t got;
-  while ((got = fread(buf, 1, sizeof buf, pipe)) > 0) o.output.append(buf, got);
-  const int status = pclose(pipe);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
 
 // The control-point displacements of a run's ParaView output.
 std::vector<double> displacements(const fs::path& dir) {

@@ -38,6 +38,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using namespace igac_test::summary_compare;
 using igac_test::quote;
+using igac_test::run_mpi;
 
 const fs::path kSource = IGAC_SOURCE_DIR;
 
@@ -81,21 +82,6 @@ fs::path case_file(const std::string& name, const fs::path& dir) {
   return p;
 }
 
-// `scripts/mpirun.sh N igac ARGS` in cwd, output 2>&1.
-igac_test::Outcome run_mpi(int n, const std::string& args, const fs::path& cwd) {
-  const std::string cmd = "cd " + quote(cwd.string()) + " && IGAC_BINARY=" + quote(IGAC_BINARY) + " " +
-                          quote((kSource / "scripts" / "mpirun.sh").string()) + " " + std::to_string(n) + " " +
-                          args + " 2>&1";
-  igac_test::Outcome o;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return o;
-  char buf[4096];
-  size_t got;
-  while ((got = fread(buf, 1, sizeof buf, pipe)) > 0) o.output.append(buf, got);
-  const int status = pclose(pipe);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
 
 // The PETSc run in `petsc` against the direct one in `direct`.
 void expect_same_results(const fs::path& direct, const fs::path& petsc, int ranks, const std::string& what) {

@@ -76,6 +76,13 @@ inline Outcome run_igac(const std::string& args, const std::filesystem::path& cw
   return run_command(shell + " " + quote(IGAC_BINARY) + " " + args, cwd);
 }
 
+// `scripts/mpirun.sh N igac ARGS` in `cwd` (the PETSc path on N processes).
+inline Outcome run_mpi(int n, const std::string& args, const std::filesystem::path& cwd) {
+  return run_command("IGAC_BINARY=" + quote(IGAC_BINARY) + " " +
+                         quote(std::string(IGAC_SOURCE_DIR) + "/scripts/mpirun.sh") + " " + std::to_string(n) + " " + args,
+                     cwd);
+}
+
 // The whole text of a file ("" when it cannot be read).
 inline std::string read_file(const std::filesystem::path& p) {
   std::ifstream in(p);

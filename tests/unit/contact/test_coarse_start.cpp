@@ -140,7 +140,9 @@ TEST(CoarseStart, PredictsTheFineActiveSetButForItsRim) {
 TEST(CoarseStart, AStudyLevelStartsFromTheLevelBelow) {
   const Model coarse = model_at("cases/hertz2d.toml", 1, {16, 4}, 2), fine = model_at("cases/hertz2d.toml", 2, {16, 4}, 2);
   const RunResult rc = solve_model(coarse);
-  const RunResult plain = solve_model(fine), nested = solve_model(fine, {}, CoarserRun{&coarse, &rc});
+  RunControl from_coarse;
+  from_coarse.coarser = CoarserRun{&coarse, &rc};
+  const RunResult plain = solve_model(fine), nested = solve_model(fine, from_coarse);
   ASSERT_TRUE(plain.contact && nested.contact);
   ASSERT_EQ(nested.status, "converged");
   const auto& p = plain.contact->solution;

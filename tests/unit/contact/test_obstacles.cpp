@@ -81,7 +81,7 @@ TEST(MovingObstacle, PlateMovingOntoABlockGivesTheClosedFormReaction) {
   const double delta = 0.01, E = 1, nu = 0.3, H = 0.5, W = 1.0;
   const double reaction = E / (1 - nu * nu) * delta / H * W;
   Model m = build_model(block_squeezed_by_moving_plate(delta, "linear_elastic"));
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   EXPECT_NEAR(r.contacts.front().report.total_force / reaction, 1.0, 1e-10);
   // The reaction is the sum of the contact pressures: -sum_K lambda_K K_K.
@@ -97,8 +97,7 @@ TEST(MovingObstacle, LargeDeformationRampsTheMotionWithTheLoad) {
   const double delta = 1e-4, E = 1, nu = 0.3, H = 0.5, W = 1.0;
   const double reaction = E / (1 - nu * nu) * delta / H * W;
   Model m = build_model(block_squeezed_by_moving_plate(delta, "neo_hookean"));
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   EXPECT_NEAR(r.contacts.front().report.total_force / reaction, 1.0, 1e-3);
   ASSERT_FALSE(r.load_curve.empty());
@@ -110,8 +109,7 @@ TEST(MovingObstacle, LargeDeformationRampsTheMotionWithTheLoad) {
 
 TEST(MovingObstacle, ShippedORingConverges) {
   Model m = build_model(read_case(kSource + "/cases/oring.toml"));
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   EXPECT_GT(r.contacts.front().report.total_force, 0.0);
   int cut_backs = 0;
@@ -143,7 +141,7 @@ TEST(SeveralObstacles, TwoPlatesOnOneBlockBalance) {
   const double delta = 0.01, E = 1, nu = 0.3, H = 0.5, W = 1.0;
   const double closed_form = E / (1 - nu * nu) * delta / H * W;
   Model m = build_model(block_between_two_plates(delta, "linear_elastic"));
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   ASSERT_EQ(r.reactions.size(), 2u);
   EXPECT_EQ(r.reactions[0].face, "bottom");
@@ -156,8 +154,7 @@ TEST(SeveralObstacles, TwoPlatesOnOneBlockBalance) {
 TEST(SeveralObstacles, TwoPlatesBalanceInLargeDeformation) {
   const double delta = 0.02;
   Model m = build_model(block_between_two_plates(delta, "neo_hookean"));
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   ASSERT_EQ(r.reactions.size(), 2u);
   EXPECT_GT(r.reactions[0].normal_force, 0.0);

@@ -46,8 +46,7 @@ fs::path hertz_from_file(const fs::path& dir, const std::string& file, std::vect
 
 RunResult run(const std::string& path) {
   Model m = build_model(read_case(path));
-  m.quiet = true;
-  return solve_model(m);
+  return solve_model(m, quiet_run());
 }
 
 TEST(GeometryFile, HertzBodyFromAFileEqualsTheBuiltInQuarterDisc) {

@@ -32,7 +32,6 @@ Model block(const std::filesystem::path& dir, const std::string& law, const std:
                       << "\"\nE = 1.0\nnu = 0.3\n[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"x\"\n"
                       << "[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"y\"\n[body_force]\nvalue = " << b << "\n";
   Model m = build_model(read_case(file.string()));
-  m.quiet = true;
   return m;
 }
 
@@ -42,7 +41,7 @@ TEST(BodyForceLargeDeformation, TheSupportsCarryItsResultant) {
   constexpr double kNewton = 1e-8;
   igac_test::TempDir tmp("bodyforce");
   const Model m = block(tmp.path(), "neo_hookean", "[0.02, -0.1]");
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   ASSERT_TRUE(r.load_steps);
   int newton = 0;

@@ -93,16 +93,14 @@ TEST(CattaneoMindlin3D, StickRadiusAgainstTheLaw) {
          "[loading]\nsteps = 4\n";
   const CaseSpec spec = read_case((dir / "case.toml").string());
   Model m = build_model(spec);
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   // The same press without friction: its active-set iterations against the
   // frictional press step's (issue 23: at most 1.5x).
   CaseSpec frictionless = spec;
   frictionless.contacts[0].friction = 0;
   Model m0 = build_model(frictionless);
-  m0.quiet = true;
-  const RunResult r0 = solve_model(m0);
+  const RunResult r0 = solve_model(m0, quiet_run());
   ASSERT_EQ(r0.status, "converged");
   const int press_iterations = int(r0.contact->solution.active_set_sizes.size());
   const ContactSolution& s = r.contact->solution;

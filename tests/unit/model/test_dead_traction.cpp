@@ -39,7 +39,6 @@ std::string block_case(double tx, double ty) {
 
 Model block_model(double tx, double ty) {
   Model m = build_model(read_case_text(block_case(tx, ty), "dead_traction.toml"));
-  m.quiet = true;
   return m;
 }
 
@@ -69,7 +68,7 @@ Eigen::VectorXd reaction(const RunResult& r, const std::string& face) {
 TEST(DeadTraction, NeoHookeanBlockMatchesTheUniaxialClosedForm) {
   constexpr double T = 0.3;  // a stretch of 1.33 along x
   const Model m = block_model(T, 0.0);
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   const Eigen::Vector2d l = uniaxial_stretches(T);
   EXPECT_GT(l[0], 1.3);
@@ -89,7 +88,7 @@ TEST(DeadTraction, NeoHookeanBlockMatchesTheUniaxialClosedForm) {
 TEST(DeadTraction, SupportsCarryTheAppliedForceToRoundOff) {
   constexpr double tx = 0.2, ty = 0.01;  // oblique: the block stretches and shears
   const Model m = block_model(tx, ty);
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   const Eigen::VectorXd left = reaction(r, "left"), bottom = reaction(r, "bottom");
   std::printf("  reactions: x %.17g (applied %.17g), y %.17g (applied %.17g)\n", left[0], -tx, bottom[1], -ty);

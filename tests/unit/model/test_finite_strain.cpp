@@ -29,7 +29,6 @@ Model model_of(const std::string& path, int refine = 0) {
   CaseSpec spec = read_case(path);
   apply_overrides(spec, {}, refine);
   Model m = build_model(spec);
-  m.quiet = true;
   return m;
 }
 
@@ -78,7 +77,7 @@ TEST(FiniteStrainTangent, ChecksCanFail) {
 TEST(FiniteStrainNewton, ConvergesQuadraticallyOnceTheActiveSetSettles) {
   constexpr double kMinOrder = 1.8;
   Model m = model_of(kSource + "/cases/hertz2d_neohookean_pressure_study.toml", 1);
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   igac_test::expect_newton_order(r, kMinOrder);
 }
@@ -96,8 +95,7 @@ TEST(FiniteStrainHertz, NeoHookeanAtSmallLoadReproducesLinearHertz) {
   nh.loading.steps = 2;
   nh.loading.follower_pressure = false;  // the linear case's load is dead
   Model ml = build_model(lin), mn = build_model(nh);
-  mn.quiet = true;
-  const RunResult rl = solve_model(ml), rn = solve_model(mn);
+  const RunResult rl = solve_model(ml), rn = solve_model(mn, quiet_run());
   ASSERT_EQ(rn.status, "converged");
   std::printf("Neo-Hookean / linear: peak %.6f, half width %.6f; Neo-Hookean peak / Hertz %.6f\n",
               rn.contacts.front().report.max_pressure / rl.contacts.front().report.max_pressure,
@@ -130,7 +128,7 @@ TEST(FiniteStrainCases, ShippedCasesConvergeWithBalancedForces) {
   for (const Shipped& c : {Shipped{"hertz2d_neohookean_pressure", 49}, Shipped{"hertz2d_neohookean_displacement", 38}}) {
     const char* name = c.name;
     Model m = model_of(kSource + "/cases/" + name + ".toml");
-    const RunResult r = solve_model(m);
+    const RunResult r = solve_model(m, quiet_run());
     EXPECT_EQ(r.status, "converged") << name;
     ASSERT_TRUE(r.contact) << name;
     EXPECT_TRUE(r.u.allFinite()) << name;
@@ -170,7 +168,7 @@ TEST(FiniteStrainCases, ShippedCasesMatchGetFemConvergedValues) {
   for (const Converged& c : {Converged{"hertz2d_neohookean_pressure", 0.111476, 0.4959, 0.238557, 6e-4},
                              Converged{"hertz2d_neohookean_displacement", 0.366592, 0.7673, 0.570388, 6e-3}}) {
     Model m = model_of(kSource + "/cases/" + c.name + ".toml");
-    const RunResult r = solve_model(m);
+    const RunResult r = solve_model(m, quiet_run());
     ASSERT_EQ(r.status, "converged") << c.name;
     EXPECT_NEAR(r.contacts.front().report.total_force, c.force, kForce * c.force) << c.name;
     EXPECT_NEAR(r.contacts.front().half_width_deformed, c.half_width, c.half_width_tolerance * c.half_width) << c.name;
@@ -185,8 +183,7 @@ TEST(FiniteStrainDriver, GivesUpWithAClearStatusAndNoNaN) {
   spec.loading.max_newton_iterations = 1;
   spec.loading.min_increment = 0.02;
   Model m = build_model(spec);
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   EXPECT_NE(r.status, "converged");
   EXPECT_NE(r.status.text().find("stopped at load factor"), std::string::npos) << r.status;
   EXPECT_TRUE(r.u.allFinite());
@@ -199,8 +196,7 @@ TEST(FiniteStrainDriver, MaxIncrementCapsTheGrowthOfFastSteps) {
   spec.loading.steps = 20;
   spec.loading.max_increment = 0.05;
   Model m = build_model(spec);
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   EXPECT_EQ(r.load_steps->steps.size(), 20u);
   for (const auto& st : r.load_steps->steps) EXPECT_EQ(st.cut_backs, 0);
@@ -215,8 +211,7 @@ TEST(FiniteStrainDriver, TangentPredictorSavesTheFirstStepsCutBacks) {
   Model plain = build_model(spec);
   spec.loading.tangent_predictor = true;
   Model predicted = build_model(spec);
-  plain.quiet = predicted.quiet = true;
-  const RunResult rp = solve_model(plain), rt = solve_model(predicted);
+  const RunResult rp = solve_model(plain, quiet_run()), rt = solve_model(predicted, quiet_run());
   ASSERT_EQ(rp.status, "converged");
   ASSERT_EQ(rt.status, "converged");
   int cuts_plain = 0, cuts_predicted = 0;

@@ -46,7 +46,6 @@ fs::path write_case(const std::string& name, const std::string& text) {
 
 Model model_of(const std::string& name, const std::string& text) {
   Model m = build_model(read_case(write_case(name, text).string()));
-  m.quiet = true;
   return m;
 }
 
@@ -79,7 +78,7 @@ std::string box_case(const std::string& motion, int steps, const std::string& nu
          motion + "\n[loading]\nsteps = " + std::to_string(steps) + "\n";
 }
 
-RunResult run(const Model& m) { return solve_model(m); }
+RunResult run(const Model& m) { return solve_model(m, quiet_run()); }
 
 int count_state(const std::vector<char>& states, char s) { return int(std::count(states.begin(), states.end(), s)); }
 

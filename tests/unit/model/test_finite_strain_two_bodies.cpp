@@ -26,7 +26,6 @@ Model model_of(const std::string& file) {
   CaseSpec spec = read_case(kData + file);
   apply_overrides(spec, {}, 0);
   Model m = build_model(spec);
-  m.quiet = true;
   return m;
 }
 
@@ -127,8 +126,7 @@ TEST(FiniteStrainTwoBodies, SwappingSlaveAndMasterGivesTheSameForce) {
     apply_overrides(spec, {}, 0);
     if (swap) std::swap(spec.contacts.at(0).face, spec.contacts.at(0).master);
     Model m = build_model(spec);
-    m.quiet = true;
-    runs.push_back(solve_model(m));
+    runs.push_back(solve_model(m, quiet_run()));
     ASSERT_EQ(runs.back().status, "converged");
     const RunResult& r = runs.back();
     ASSERT_EQ(r.contacts.size(), 1u);
@@ -151,8 +149,7 @@ TEST(FiniteStrainTwoBodies, EachBodysReactionComesFromItsOwnLaw) {
   apply_overrides(spec, {}, 0);
   spec.loading.follower_pressure = false;
   Model m = build_model(spec);
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   const FaceReaction* roller = nullptr;
   for (const FaceReaction& f : r.dirichlet_reactions)
@@ -170,8 +167,7 @@ TEST(FiniteStrainTwoBodies, NewtonConvergesQuadraticallyOnceTheActiveSetSettles)
   CaseSpec spec = read_case(std::string(IGAC_SOURCE_DIR) + "/cases/roller_on_block_neohookean.toml");
   apply_overrides(spec, {}, 0);
   Model m = build_model(spec);
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   ASSERT_EQ(r.status, "converged");
   igac_test::expect_newton_order(r, kMinOrder, igac_test::kTwoBodyRoundOffFloor);
 }

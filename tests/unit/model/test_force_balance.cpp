@@ -148,8 +148,7 @@ Balance balance_of(const Model& m, const RunResult& r) {
 // Solves `spec` and expects its balance; returns it.
 Balance expect_balance(const CaseSpec& spec, const std::string& what) {
   Model m = build_model(spec);
-  m.quiet = true;
-  const RunResult r = solve_model(m);
+  const RunResult r = solve_model(m, quiet_run());
   EXPECT_EQ(r.status, "converged") << what;
   const Balance b = balance_of(m, r);
   const double eps = std::numeric_limits<double>::epsilon();

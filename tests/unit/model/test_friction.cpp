@@ -45,8 +45,7 @@ struct FrictionRun {
 
 FrictionRun run_spec(CaseSpec spec) {
   FrictionRun run{build_model(spec), {}};
-  run.model.quiet = true;
-  run.result = solve_model(run.model);
+  run.result = solve_model(run.model, quiet_run());
   return run;
 }
 

@@ -53,8 +53,7 @@ struct Cycle {
 
 Cycle run_cycle(const CaseSpec& spec) {
   Cycle c{build_model(spec), {}, {}};
-  c.model.quiet = true;
-  c.result = solve_model(c.model, [&](const RunResult& step, double t) {
+  c.result = solve_model(c.model, quiet_run([&](const RunResult& step, double t) {
     Frame f;
     f.t = t;
     f.moved = c.model.contacts.front().curve(t) * c.model.contacts.front().motion[0];
@@ -66,7 +65,7 @@ Cycle run_cycle(const CaseSpec& spec) {
     f.lambda_t = step.contact->solution.lambda_t;
     f.state = step.contact->solution.friction_state;
     c.frames.push_back(std::move(f));
-  });
+  }));
   return c;
 }
 
@@ -241,13 +240,12 @@ TEST(FrictionCycle, TwoBodiesMasterCurveThereAndBack) {
       "[[contact]]\nface = \"upper:bottom\"\nmaster = \"lower:top\"\nfriction = 0.3\nmaster_motion = [0.02, 0.0]\n"
       "master_curve = [[0, 0], [1, 0], [2, 1], [3, 0]]\n[loading]\nsteps = 2\n";
   Cycle c{build_model(read_case((dir / "blocks.toml").string())), {}, {}};
-  c.model.quiet = true;
   std::vector<double> Q, corner_x;
   const int corner = c.model.body.body_cps(1).front();  // a control point of the lower block
-  c.result = solve_model(c.model, [&](const RunResult& step, double) {
+  c.result = solve_model(c.model, quiet_run([&](const RunResult& step, double) {
     Q.push_back(step.reactions.at(0).tangential_force[0]);
     corner_x.push_back(step.u(corner, 0));
-  });
+  }));
   ASSERT_EQ(c.result.status, "converged");
   ASSERT_EQ(Q.size(), 6u);  // t = 0.5, 1, 1.5, 2, 2.5, 3
   const double fN = kF * 0.01, tol = 1e-11 * fN;

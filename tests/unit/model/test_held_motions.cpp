@@ -78,8 +78,7 @@ TEST(HeldMotions, WedgeHingedOnATinyFaceTurnsAboutIt) {
 TEST(HeldMotions, ShippedLinearCasesAreNotWarnedAbout) {
   for (const std::string c : {"hertz2d", "two_blocks", "lame_cylinder", "roller_on_block"}) {
     Model m = build_model(read_case(std::string(IGAC_SOURCE_DIR) + "/cases/" + c + ".toml"));
-    m.quiet = true;
-    const RunResult r = solve_model(m);
+    const RunResult r = solve_model(m, quiet_run());
     ASSERT_EQ(r.status, "converged") << c;
     for (const std::string& w : r.warnings) {
       EXPECT_EQ(w.find("nearly singular"), std::string::npos) << c << ": " << w;

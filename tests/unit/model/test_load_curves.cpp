@@ -33,16 +33,15 @@ struct History {
 };
 
 History run(Model& m) {
-  m.quiet = true;
   History h;
-  h.result = solve_model(m, [&](const RunResult& step, double t) {
+  h.result = solve_model(m, quiet_run([&](const RunResult& step, double t) {
     Frame f{t, step.u};
     if (step.contact) {
       f.active = int(std::count(step.contact->solution.active.begin(), step.contact->solution.active.end(), 1));
       f.contact_force = step.contacts.front().report.total_force;
     }
     h.frames.push_back(std::move(f));
-  });
+  }));
   return h;
 }
 

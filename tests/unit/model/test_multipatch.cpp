@@ -136,8 +136,7 @@ TEST(Body, ErrorAgainstAFinerMultiPatchMeshIsRoundOffForAnExactField) {
 
 RunResult run_case(CaseSpec spec, Model* keep = nullptr) {
   Model m = build_model(spec);
-  m.quiet = true;
-  RunResult r = solve_model(m);
+  RunResult r = solve_model(m, quiet_run());
   if (keep) *keep = std::move(m);
   return r;
 }

@@ -49,8 +49,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 RunResult solved(const std::string& text) {
   Model m = build_model(read_case_text(text, "pulled.toml"));
-  m.quiet = true;
-  return solve_model(m);
+  return solve_model(m, quiet_run());
 }
 
 // The pressure of `file` along 0 -> 1 -> -1 (pushing, then pulling as hard).

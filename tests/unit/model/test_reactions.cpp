@@ -24,8 +24,7 @@ struct Solved {
 };
 Solved solved(const std::string& name) {
   Solved s{build_model(read_case(kCases + name + ".toml")), {}};
-  s.model.quiet = true;
-  s.result = solve_model(s.model);
+  s.result = solve_model(s.model, quiet_run());
   return s;
 }
 

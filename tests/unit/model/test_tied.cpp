@@ -51,8 +51,7 @@ struct Solved {
 
 Solved solved(const std::string& text) {
   Solved s{build_model(read_case_text(text, "tied.toml")), {}};
-  s.model.quiet = true;
-  s.result = solve_model(s.model);
+  s.result = solve_model(s.model, quiet_run());
   return s;
 }
 

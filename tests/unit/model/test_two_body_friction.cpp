@@ -49,8 +49,7 @@ PairRun run_text(const std::string& name, const std::string& text) {
   fs::create_directories(dir);
   std::ofstream(dir / (name + ".toml")) << text;
   PairRun run{build_model(read_case((dir / (name + ".toml")).string())), {}};
-  run.model.quiet = true;
-  run.result = solve_model(run.model);
+  run.result = solve_model(run.model, quiet_run());
   return run;
 }
 
@@ -176,8 +175,7 @@ struct Zone {
 
 Zone cattaneo_mindlin(const CaseSpec& spec) {
   PairRun run{build_model(spec), {}};
-  run.model.quiet = true;
-  run.result = solve_model(run.model);
+  run.result = solve_model(run.model, quiet_run());
   EXPECT_EQ(run.result.status, "converged");
   const ContactSolution& s = run.result.contact->solution;
   for (size_t K = 0; K < s.friction_state.size(); ++K)

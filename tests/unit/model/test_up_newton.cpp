@@ -45,7 +45,6 @@ Model mixed_model(double friction = 0, std::vector<int> elements = {}) {
   spec.contacts.at(0).friction = friction;
   apply_overrides(spec, {}, 0);
   Model m = build_model(spec);
-  m.quiet = true;
   return m;
 }
 
@@ -80,7 +79,7 @@ TEST(UpNewton, TangentWithBlockDilatationsMatchesCentralDifferences) {
 
 TEST(UpNewton, ConvergesQuadraticallyToTheCondensedSolution) {
   const Model m = mixed_model();
-  const RunResult run = solve_model(m);
+  const RunResult run = solve_model(m, quiet_run());
   ASSERT_EQ(run.status, "converged");
   igac_test::expect_newton_order(run, 1.8);
 
@@ -110,7 +109,7 @@ TEST(UpNewton, ConvergesQuadraticallyToTheCondensedSolution) {
 
 TEST(UpNewton, ConvergesWithFriction) {
   const Model m = mixed_model(0.3);
-  const RunResult run = solve_model(m);
+  const RunResult run = solve_model(m, quiet_run());
   ASSERT_EQ(run.status, "converged");
   for (const auto& st : run.load_steps->steps) EXPECT_EQ(st.cut_backs, 0) << "step at t = " << st.load_factor;
   igac_test::expect_newton_order(run, 1.8);
@@ -123,9 +122,10 @@ TEST(UpNewton, RestartFromAStateWithoutTheDilatationsIsRefused) {
   old.step = 1;
   old.driver.t = old.driver.dt = 0.25;
   old.driver.x = old.driver.x_old = Eigen::VectorXd::Zero(problem.size() - problem.num_local());
-  m.resume = {old};
+  RunControl control = quiet_run();
+  control.resume = {old};
   try {
-    solve_model(m);
+    solve_model(m, control);
     ADD_FAILURE() << "a state of the wrong size was accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();
