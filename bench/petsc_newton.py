@@ -8,6 +8,7 @@ one after the other in the same run.
     /usr/bin/python3 bench/petsc_newton.py [--case cases/hertz3d_neohookean.toml]
                                            [--refine 0 1] [--csv FILE]
 
+Threads: the cores shared among the processes (one process: all of them).
 Per run: unknowns, load steps, Newton iterations, the Newton time and the
 time per Newton iteration (summary.json newton_seconds over the iterations),
 that time over the direct run's of the same mesh, the peak resident memory
@@ -34,7 +35,10 @@ def run(case, refine, solver, ranks, out):
     if solver == "petsc":
         args += ["--solver", "petsc"]
     cmd = ([MPIRUN, str(ranks)] if solver == "petsc" else [IGAC]) + args
-    env = dict(os.environ, IGAC_BINARY=IGAC)
+    # each run its best use of the cores: one process takes them all for its
+    # threads (assembly, BLAS), two processes one each
+    threads = str(max(1, (os.cpu_count() or 1) // ranks))
+    env = dict(os.environ, IGAC_BINARY=IGAC, OMP_NUM_THREADS=threads, OPENBLAS_NUM_THREADS=threads)
     subprocess.run(cmd, check=True, env=env, stdout=subprocess.DEVNULL)
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)

@@ -2,6 +2,7 @@
 #include "model/load_history.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <fmt/format.h>
 
 #include "contact/small_strain_friction.hpp"
@@ -103,8 +104,18 @@ RunResult solve_small_strain_history(const Model& m, const RunControl& control) 
     add_traction_loads(m, *m.dofs, {}, f);
     check_body_is_held(m, modes, f);
   }
-  if (control.on_solve_start) control.on_solve_start();
+  // The console's header once the case is accepted; on PETSc once the first
+  // step has solved (its first solve reads the options: a wrong one stays a
+  // one-line input error) or the run has gone a while without a line.
+  std::once_flag header_once;
+  const auto header = [&] {
+    std::call_once(header_once, [&] {
+      if (control.on_solve_start) control.on_solve_start();
+    });
+  };
   Progress progress(control.quiet);
+  if (uses_petsc(m)) progress.hold_until_late(header);
+  else header();
   progress.phase(fmt::format("assembling {} equations", m.dofs->num_free()));
   Stopwatch clock;
   const Eigen::VectorXd no_body_force = Eigen::VectorXd::Zero(dim);
@@ -266,6 +277,8 @@ RunResult solve_small_strain_history(const Model& m, const RunControl& control) 
     if (friction) state.friction = friction->history();
     step.step_state = std::move(state);
     r.timing.postprocess += clock.seconds();
+    header();
+    progress.hold(false);
     if (!control.quiet)
       progress.line(fmt::format("step {:3d}: time {:.4f}{} ({:.1f} s){}", steps.steps.size(), t,
                                 step.contact ? fmt::format(", {} active", std::count(step.contact->solution.active.begin(),
@@ -290,6 +303,7 @@ RunResult solve_small_strain_history(const Model& m, const RunControl& control) 
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
   if (chol.analyzed()) r.linear_solver.condition_estimate = chol.condition_estimate();
   if (backend && backend->stats().setups > 0) take_report(*backend, r.linear_solver);
+  header();  // (a run that solved no step)
   r.timing.total = t_start.seconds();
   return r;
 }

@@ -2,6 +2,7 @@
 #include "model/petsc_run.hpp"
 
 #include <fmt/format.h>
+#include <utility>
 
 #ifdef IGAC_WITH_PETSC
 #include <mpi.h>
@@ -126,12 +127,15 @@ namespace {
 // PETSc's Newton backend with its option errors said as input errors.
 class ReportingPetscNewtonSolver final : public LinearBackend {
  public:
-  explicit ReportingPetscNewtonSolver(std::string where) : where_(std::move(where)) {}
+  ReportingPetscNewtonSolver(std::string where, std::function<void()> after_first_solve)
+      : where_(std::move(where)), after_first_solve_(std::move(after_first_solve)) {}
   bool setup(const BlockJacobian& J) override {
     return reported([&] { return solver_.setup(J); });
   }
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) override {
-    return reported([&] { return solver_.solve(b, x, tolerance); });
+    const bool ok = reported([&] { return solver_.solve(b, x, tolerance); });
+    if (after_first_solve_) std::exchange(after_first_solve_, nullptr)();
+    return ok;
   }
   const std::string& why() const override { return solver_.why(); }
   const LinearSolveStats& stats() const override { return solver_.stats(); }
@@ -148,14 +152,16 @@ class ReportingPetscNewtonSolver final : public LinearBackend {
     }
   }
   std::string where_;
+  std::function<void()> after_first_solve_;
   PetscNewtonSolver solver_;
 };
 }  // namespace
 
-std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m) {
+std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m, std::function<void()> after_first_solve) {
   if (!uses_petsc(m)) return nullptr;
   if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
-  return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}));
+  return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}),
+                                                      std::move(after_first_solve));
 }
 #else
 ContactSolution solve_with_petsc_from_whole(const Model& m, const Eigen::SparseMatrix<double>&,
@@ -164,7 +170,7 @@ ContactSolution solve_with_petsc_from_whole(const Model& m, const Eigen::SparseM
   throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "
                                "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));
 }
-std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m) {
+std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m, std::function<void()>) {
   if (!uses_petsc(m)) return nullptr;
   throw InputError(fmt::format("{}: [solver] type = \"petsc\": this igac was built without PETSc "
                                "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));

@@ -6,6 +6,7 @@
 // PETSc: then a case that asks for it is a one-line input error.
 #pragma once
 
+#include <functional>
 #include <memory>
 
 #include "engine/linear_backend.hpp"
@@ -39,7 +40,10 @@ ContactSolution solve_with_petsc_from_whole(const Model& model, const Eigen::Spa
 // the whole matrix and giving PETSc its rows; option errors are InputError
 // naming [solver] options.  Null when the case does not ask for PETSc (the
 // direct solvers).  Throws InputError when this igac was built without PETSc.
-std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& model);
+// `after_first_solve` (when given) is called once, after the first solve
+// has read the PETSc options: where the console prints its header, so that
+// a wrong option stays a one-line input error.
+std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& model, std::function<void()> after_first_solve = {});
 // What `backend` says of itself, into the run's record (summary.json
 // "solver"); the condition estimate where it has one.
 void take_report(const LinearBackend& backend, LinearSolverRecord& record);

@@ -4,6 +4,7 @@
 // and the deformed configuration and a load curve per step.
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <optional>
 #include <fmt/format.h>
 
@@ -207,8 +208,21 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.tangent_every_step = m.spec.loading.tangent_every_step;
   opt.quiet = control.quiet;
-  // PETSc's linear solver when the case asks for it (else the driver's direct one)
-  const std::unique_ptr<LinearBackend> petsc_solver = petsc_linear_backend(m);
+  // PETSc's linear solver when the case asks for it (else the driver's direct
+  // one); the console's header once its first solve has read the options
+  // (or the run has gone a while without a line), so that a wrong one stays
+  // a one-line input error.
+  std::optional<Progress> progress;  // the heartbeat of a long load step (the step lines are load_stepping's)
+  std::once_flag header_once;
+  const auto header = [&] {
+    std::call_once(header_once, [&] {
+      if (control.on_solve_start) control.on_solve_start();
+    });
+  };
+  const std::unique_ptr<LinearBackend> petsc_solver = petsc_linear_backend(m, [&] {
+    header();
+    if (progress) progress->hold(false);
+  });
   opt.linear_backend = petsc_solver.get();
   const bool curves = m.spec.has_load_curves();
   if (curves) opt.corners = curve_corners(m.spec.load_curves());
@@ -229,7 +243,6 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
   };
-  std::optional<Progress> progress;  // the heartbeat of a long load step (the step lines are load_stepping's)
   // A restart: the earlier steps' records and load-curve points, and the
   // driver continues from the state after the last of them.
   std::vector<LoadStepRecord> earlier;
@@ -274,8 +287,9 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
                                  "obstacle moves away from it; add a [[dirichlet]] condition or a load toward the "
                                  "obstacle",
                                  m.spec.where({.table = "contact.obstacle", .key = "motion"}), modes.modes.cols()));
-  if (control.on_solve_start) control.on_solve_start();
   progress.emplace(control.quiet);
+  if (petsc_solver) progress->hold_until_late(header);
+  else header();
   progress->now("in the first load step");
   if (loading != Loading::some) {
     r.warnings.push_back(fmt::format("{}: nothing loads the body (no pressure, prescribed displacement or body force, "
@@ -290,6 +304,7 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
     summary = run_load_steps(problem, x, opt, record_step);
     summary.steps.insert(summary.steps.begin(), earlier.begin(), earlier.end());
   }
+  header();  // (a run that solved nothing)
   r.load_steps = summary;
   r.linear_solver.condition_estimate = summary.condition_estimate;
   if (petsc_solver && summary.linear.setups > 0) take_report(*petsc_solver, r.linear_solver);

@@ -176,3 +176,27 @@ INSTANTIATE_TEST_SUITE_P(Shipped, PetscRestart, ::testing::Values("oring_frictio
                          case_name);
 
 }  // namespace
+
+namespace {
+
+// A misspelt PETSc option on each route of the linear backend (the Newton
+// steps of large deformation, small-deformation friction, a load curve):
+// one line naming it, exit 2, nothing written; the run's header waits for
+// the first solve, which reads the options.
+TEST(PetscBackend, AMisspeltOptionIsOneLineOnEveryRoute) {
+  if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
+  for (const char* name : {"oring", "cattaneo_mindlin", "cattaneo_mindlin_cycle"}) {
+    igac_test::TempDir tmp("petsc_option");
+    const std::string c = quote((kSource / "cases" / (std::string(name) + ".toml")).string());
+    const auto o =
+        igac_test::run_igac("run " + c + " --out out --solver petsc --petsc-options '-ksp_tpye cg'", tmp.path());
+    EXPECT_EQ(o.exit_code, 2) << name << ": " << o.output;
+    EXPECT_EQ(o.output, "igac: error: " + (kSource / "cases" / (std::string(name) + ".toml")).string() +
+                            ": [solver] options: PETSc option -ksp_tpye was not used by the solver (misspelt, or an "
+                            "option of another solver type)\n")
+        << name;
+    EXPECT_FALSE(fs::exists(tmp.path() / "out")) << name;
+  }
+}
+
+}  // namespace
