@@ -8,6 +8,11 @@ using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 
 Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J) {
   const int n = int(J.K.rows()), m = int(J.B.rows());
+  if (m == 0 && J.K_coupling.nonZeros() == 0) {  // K is the whole matrix (a general J, friction's iterations)
+    Eigen::SparseMatrix<double> A = J.K;
+    A.makeCompressed();
+    return A;
+  }
   std::vector<Eigen::Triplet<double>> t;
   t.reserve(J.K.nonZeros() + 2 * J.B.nonZeros() + m);
   for (int c = 0; c < J.K.outerSize(); ++c)

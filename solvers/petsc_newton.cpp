@@ -133,8 +133,12 @@ struct PetscNewtonSolver::Impl {
     if (ksp_type && std::string(ksp_type) != KSPPREONLY) check(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE), "solver");
   }
 
-  // PETSc's reason a factorisation or a solve failed, in words ("" when it did not).
-  std::string failure() const {
+  // PETSc's reason a factorisation (after a setup) or a solve (`solved`)
+  // failed, in words ("" when it did not).  After a setup only the PC's
+  // reason counts: the KSP's is the last solve's, which a new matrix
+  // replaces (a Krylov solve that diverged once must not fail every setup
+  // after it, the step's retries included).
+  std::string failure(bool solved) const {
     PC pc = nullptr;
     check(KSPGetPC(ksp, &pc), "solver");
     PCFailedReason pc_reason = PC_NOERROR;
@@ -142,7 +146,7 @@ struct PetscNewtonSolver::Impl {
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     check(KSPGetConvergedReason(ksp, &reason), "solver");
     if (pc_reason != PC_NOERROR) return fmt::format("singular Newton matrix (PETSc: {})", PCFailedReasons[pc_reason]);
-    if (reason < 0) return fmt::format("the PETSc linear solve did not converge ({})", KSPConvergedReasons[reason]);
+    if (solved && reason < 0) return fmt::format("the PETSc linear solve did not converge ({})", KSPConvergedReasons[reason]);
     return {};
   }
 
@@ -181,7 +185,7 @@ bool PetscNewtonSolver::setup(const BlockJacobian& J) {
   check(KSPSetOperators(I.ksp, I.A, I.A), "solver");
   check(KSPSetUp(I.ksp), "solver setup", !I.solved_once);
   stats_.factorize_s += factor_clock.seconds();
-  why_ = I.failure();
+  why_ = I.failure(false);
   return why_.empty();
 }
 
@@ -218,7 +222,7 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   check(KSPGetIterationNumber(I.ksp, &iterations), "solver");
   stats_.krylov_iterations += int(iterations);
   I.iterations.push_back(int(iterations));
-  why_ = I.failure();
+  why_ = I.failure(true);
   check(VecScatterBegin(I.to_all, I.x, I.x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
   check(VecScatterEnd(I.to_all, I.x, I.x_all, INSERT_VALUES, SCATTER_FORWARD), "vector");
   const PetscScalar* px = nullptr;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// What the PETSc solvers of contact/ share (petsc_contact.cpp and
-// petsc_multigrid.cpp; not part of igac's interface): error checking with
-// PETSc's own words, PETSc objects owned by scope, and igac's default
-// options (set unless the user gave them; never reported as unused).
+// What the PETSc solvers of solvers/ share (petsc_contact.cpp,
+// petsc_multigrid.cpp, petsc_newton.cpp; not part of igac's interface):
+// error checking with PETSc's own words, PETSc objects owned by scope,
+// igac's default options (set unless the user gave them; never reported as
+// unused), the check for options nothing used, the peak memory.
 #pragma once
 
 #include <petscksp.h>
