@@ -426,7 +426,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"direct", "petsc"}));
   run->add_option("--petsc-options", petsc_options, "PETSc options, e.g. \"-ksp_type fgmres -pc_type fieldsplit\"");
   run->add_option("--preconditioner", preconditioner,
-                  "PETSc: options (as the PETSc options say; default MUMPS) or spline_multigrid");
+                  "PETSc: options (as the PETSc options say; default MUMPS), spline_multigrid or algebraic_multigrid");
   RestartOptions restart;
   run->add_option("--restart", restart.dir,
                   "continue the run whose output is in this folder (same case file) after its last step");
@@ -455,7 +455,7 @@ int main(int argc, char** argv) {
   study->add_option("--solver", solver, "linear solver: direct (CHOLMOD) or petsc (one process)")
       ->check(CLI::IsMember({"direct", "petsc"}));
   study->add_option("--petsc-options", petsc_options, "PETSc options");
-  study->add_option("--preconditioner", preconditioner, "PETSc: options or spline_multigrid");
+  study->add_option("--preconditioner", preconditioner, "PETSc: options, spline_multigrid or algebraic_multigrid");
 
   auto* geometry = app.add_subcommand("geometry", "write the case's body (before refinement) as a G+Smo XML file");
   geometry->add_option("case", case_path, "case file (TOML)")->required();

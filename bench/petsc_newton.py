@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Newton driver's two linear backends on the same large-deformation run:
 the direct one (CHOLMOD + Schur complement on the active set) against PETSc's
-(MUMPS L D L^T on the symmetric form, LU otherwise) on 1 and 2 MPI processes,
-one after the other in the same run.
+(MUMPS L D L^T on the symmetric form, LU otherwise; and FGMRES with the
+algebraic multigrid's field split, `--preconditioner algebraic_multigrid`)
+on 1 and 2 MPI processes, one after the other in the same run.
 
     /usr/bin/python3 bench/petsc_newton.py [--case cases/hertz3d_neohookean.toml]
                                            [--refine 0 1] [--csv FILE]
@@ -11,7 +12,8 @@ one after the other in the same run.
 Threads: the cores shared among the processes (one process: all of them).
 Per run: unknowns, load steps, Newton iterations, the Newton time and the
 time per Newton iteration (summary.json newton_seconds over the iterations),
-that time over the direct run's of the same mesh, the peak resident memory
+that time over the direct run's of the same mesh, the Krylov iterations per
+linear solve (mean and largest; an iterative solve), the peak resident memory
 summed over the processes, and the largest relative difference of the final
 contact force and reactions from the direct run's.  Writes
 bench/results/petsc_newton.csv.  Never run by the tests.
@@ -30,10 +32,10 @@ IGAC = os.path.join(ROOT, "build", "igac")
 MPIRUN = os.path.join(ROOT, "scripts", "mpirun.sh")
 
 
-def run(case, refine, solver, ranks, out):
+def run(case, refine, solver, ranks, preconditioner, out):
     args = ["run", case, "--refine", str(refine), "--quiet", "--out", out]
     if solver == "petsc":
-        args += ["--solver", "petsc"]
+        args += ["--solver", "petsc", "--preconditioner", preconditioner]
     cmd = ([MPIRUN, str(ranks)] if solver == "petsc" else [IGAC]) + args
     # each run its best use of the cores: one process takes them all for its
     # threads (assembly, BLAS), two processes one each
@@ -61,8 +63,10 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for refine in a.refine:
             direct = None
-            for solver, ranks in (("direct", 1), ("petsc", 1), ("petsc", 2)):
-                s = run(a.case, refine, solver, ranks, os.path.join(tmp, f"{refine}_{solver}_{ranks}"))
+            for solver, ranks, pc in (("direct", 1, ""), ("petsc", 1, "options"), ("petsc", 2, "options"),
+                                      ("petsc", 1, "algebraic_multigrid"), ("petsc", 2, "algebraic_multigrid")):
+                s = run(a.case, refine, solver, ranks, pc, os.path.join(tmp, f"{refine}_{solver}_{ranks}_{pc}"))
+                krylov = s["solver"].get("krylov_iterations", [])
                 iterations = sum(step["newton_iterations"] for step in s["load_steps"])
                 per_iteration = s["newton_seconds"] / max(iterations, 1)
                 if direct is None:
@@ -74,6 +78,8 @@ def main():
                        "steps": len(s["load_steps"]), "newton_iterations": iterations,
                        "newton_s": round(s["newton_seconds"], 3), "s_per_iteration": round(per_iteration, 4),
                        "over_direct": round(per_iteration / direct[1], 2),
+                       "krylov_mean": round(sum(krylov) / len(krylov), 1) if krylov else "",
+                       "krylov_max": max(krylov) if krylov else "",
                        "peak_gib": round(s["solver"].get("peak_resident_all_ranks_gib",
                                                          s.get("memory_gib", {}).get("peak_resident", 0)), 3),
                        "force_difference": f"{diff:.2e}"}

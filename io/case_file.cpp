@@ -617,6 +617,16 @@ std::vector<std::string> declared_case_keys() {
 }
 
 std::string check_petsc_case(const CaseSpec& c) {
+  // The algebraic multigrid's field split needs the multipliers apart from
+  // the displacements; friction and ties solve them in one block.
+  if (c.solver.algebraic_multigrid())
+    for (const ContactSpec& cs : c.contacts)
+      if (cs.friction > 0 || (!cs.law.empty() && cs.law != "frictionless"))
+        return fmt::format("the algebraic multigrid's field split needs the multipliers apart from the displacements, "
+                           "and the {} of contact face '{}' solves them in one block with the displacements; leave "
+                           "preconditioner at \"options\" (default MUMPS LU)",
+                           cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
+                           cs.face);
   // Large deformation: every Newton step's linear solve in PETSc
   // (solvers/petsc_newton.hpp), whatever the contacts, laws and curves.
   if (c.finite_strain()) {
@@ -641,12 +651,15 @@ std::string check_petsc_case(const CaseSpec& c) {
 
 std::string unknown_preconditioner(const std::string& name) {
   return fmt::format("unknown preconditioner '{}' (options: as [solver] options say, default MUMPS; "
-                     "spline_multigrid: geometric multigrid over the nested meshes)", name);
+                     "spline_multigrid: geometric multigrid over the nested meshes; algebraic_multigrid: FGMRES "
+                     "with a field split, GAMG on the displacements)", name);
 }
 
 std::string check_preconditioner(const SolverSpec& s) {
   if (s.spline_multigrid() && !s.petsc())
     return "spline_multigrid runs in the PETSc solver: needs type = \"petsc\"";
+  if (s.algebraic_multigrid() && !s.petsc())
+    return "algebraic_multigrid runs in the PETSc solver: needs type = \"petsc\"";
   return {};
 }
 

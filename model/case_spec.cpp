@@ -42,13 +42,19 @@ std::optional<SolverType> solver_type_named(std::string_view name) {
 std::optional<Preconditioner> preconditioner_named(std::string_view name) {
   if (name == "options") return Preconditioner::options;
   if (name == "spline_multigrid") return Preconditioner::spline_multigrid;
+  if (name == "algebraic_multigrid") return Preconditioner::algebraic_multigrid;
   return std::nullopt;
 }
 
 std::string_view name_of(SolverType type) { return type == SolverType::petsc ? "petsc" : "direct"; }
 
 std::string_view name_of(Preconditioner p) {
-  return p == Preconditioner::spline_multigrid ? "spline_multigrid" : "options";
+  switch (p) {
+    case Preconditioner::spline_multigrid: return "spline_multigrid";
+    case Preconditioner::algebraic_multigrid: return "algebraic_multigrid";
+    case Preconditioner::options: break;
+  }
+  return "options";
 }
 
 }  // namespace igac

@@ -96,12 +96,14 @@ struct LoadingSpec {
 // CHOLMOD on one process (engine/cholesky); "petsc": PETSc on one or more
 // MPI processes (solvers/petsc_contact), `options` passed to PETSc's
 // options database as on a PETSc command line ("-ksp_type cg -pc_type gamg").
-// `preconditioner`: "options" (what `options` say; default MUMPS) or
+// `preconditioner`: "options" (what `options` say; default MUMPS),
 // "spline_multigrid" (geometric multigrid over the case's nested meshes
-// --refine r, ..., 0, solvers/petsc_multigrid; PETSc only).
+// --refine r, ..., 0, solvers/petsc_multigrid; PETSc only) or
+// "algebraic_multigrid" (FGMRES with a Schur field split, GAMG on the
+// displacements: PETSc options that `options` may override; PETSc only).
 // [solver], resolved when the case (or the command line) is read.
 enum class SolverType { direct, petsc };
-enum class Preconditioner { options, spline_multigrid };
+enum class Preconditioner { options, spline_multigrid, algebraic_multigrid };
 // The names a case file and the command line give, and back.
 std::optional<SolverType> solver_type_named(std::string_view name);
 std::optional<Preconditioner> preconditioner_named(std::string_view name);
@@ -115,6 +117,7 @@ struct SolverSpec {
   int processes = 1;  // MPI processes of the run (set by the launcher, not by the case file)
   bool petsc() const { return type == SolverType::petsc; }
   bool spline_multigrid() const { return preconditioner == Preconditioner::spline_multigrid; }
+  bool algebraic_multigrid() const { return preconditioner == Preconditioner::algebraic_multigrid; }
 };
 
 // [units]: the names of the case's units, labels only (the console,

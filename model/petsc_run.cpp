@@ -30,26 +30,42 @@ void take_report(const LinearBackend& backend, LinearSolverRecord& record) {
 #ifdef IGAC_WITH_PETSC
 namespace {
 // Rigid motions of the free equations (translations, rotations about the
-// centroid): the near null space that algebraic multigrid builds its coarse
-// spaces from.  Exact in the NURBS space (partition of unity).
+// centroid), of each separate body apart (two bodies: 12 columns in 3D): the
+// near null space that algebraic multigrid builds its coarse spaces from.
+// Exact in the NURBS space (partition of unity).
 Eigen::MatrixXd rigid_motions(const Model& m) {
   const Body& body = m.body;
   const DofMap& dofs = *m.dofs;
   const int dim = body.space_dim(), n_modes = dim == 2 ? 3 : 6;
-  const Eigen::RowVectorXd centre = body.points().colwise().mean();
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dofs.num_free(), n_modes);
+  // the separate body of each control point, numbered 0, 1, ...
+  const std::vector<int> part_of_patch = body.parts();
+  std::vector<int> part_index(part_of_patch.size(), -1), part_of_point(body.num_control_points(), 0);
+  int parts = 0;
+  for (int k = 0; k < body.num_patches(); ++k) {
+    int& index = part_index[part_of_patch[k]];
+    if (index < 0) index = parts++;
+    for (int cp : body.body_cps(k)) part_of_point[cp] = index;
+  }
+  std::vector<Eigen::RowVectorXd> centre(parts, Eigen::RowVectorXd::Zero(dim));
+  std::vector<int> count(parts, 0);
+  for (int p = 0; p < body.num_control_points(); ++p) {
+    centre[part_of_point[p]] += body.points().row(p);
+    ++count[part_of_point[p]];
+  }
+  for (int q = 0; q < parts; ++q) centre[q] /= std::max(count[q], 1);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(dofs.num_free(), n_modes * parts);
   for (int i = 0; i < dofs.num_dofs(); ++i) {
     const int eq = dofs.equation(i);
     if (eq < 0) continue;
-    const int c = i % dim;
-    const Eigen::RowVectorXd x = body.points().row(i / dim) - centre;
-    M(eq, c) = 1.0;
+    const int c = i % dim, q = part_of_point[i / dim], o = n_modes * q;
+    const Eigen::RowVectorXd x = body.points().row(i / dim) - centre[q];
+    M(eq, o + c) = 1.0;
     if (dim == 2) {
-      M(eq, 2) = c == 0 ? -x[1] : x[0];
+      M(eq, o + 2) = c == 0 ? -x[1] : x[0];
     } else {  // rotations about x, y, z (each up to its sign)
       const int a = (c + 1) % 3, b = (c + 2) % 3;
-      M(eq, 3 + b) = x[a];
-      M(eq, 3 + a) = -x[b];
+      M(eq, o + 3 + b) = x[a];
+      M(eq, o + 3 + a) = -x[b];
     }
   }
   return M;
@@ -96,6 +112,7 @@ ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const Weight
   po.stiffness = m.spec.E;
   po.dim = m.body.space_dim();
   po.spline_multigrid = m.spec.solver.spline_multigrid();
+  if (m.spec.solver.algebraic_multigrid()) algebraic_multigrid_defaults();
   if (po.spline_multigrid) po.prolongations = spline_hierarchy(m);
   // The load is whole on every process: PETSc gets it once.
   const Eigen::VectorXd f_part = PetscSession::rank() == 0 ? sys.f : Eigen::VectorXd::Zero(sys.f.size()).eval();
@@ -127,8 +144,8 @@ namespace {
 // PETSc's Newton backend with its option errors said as input errors.
 class ReportingPetscNewtonSolver final : public LinearBackend {
  public:
-  ReportingPetscNewtonSolver(std::string where, std::function<void()> after_first_solve)
-      : where_(std::move(where)), after_first_solve_(std::move(after_first_solve)) {}
+  ReportingPetscNewtonSolver(std::string where, std::function<void()> after_first_solve, Eigen::MatrixXd near_null)
+      : where_(std::move(where)), after_first_solve_(std::move(after_first_solve)), solver_(std::move(near_null)) {}
   bool setup(const BlockJacobian& J) override {
     return reported([&] { return solver_.setup(J); });
   }
@@ -160,8 +177,9 @@ class ReportingPetscNewtonSolver final : public LinearBackend {
 std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m, std::function<void()> after_first_solve) {
   if (!uses_petsc(m)) return nullptr;
   if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
+  if (m.spec.solver.algebraic_multigrid()) algebraic_multigrid_defaults();
   return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}),
-                                                      std::move(after_first_solve));
+                                                      std::move(after_first_solve), rigid_motions(m));
 }
 #else
 ContactSolution solve_with_petsc_from_whole(const Model& m, const Eigen::SparseMatrix<double>&,

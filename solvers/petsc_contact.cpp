@@ -69,6 +69,7 @@ void default_option(const char* name, const char* value) {
   g_defaults.emplace_back(name + 1);
 }
 
+
 std::pair<PetscInt, PetscInt> share(PetscInt n) {
   PetscInt local = PETSC_DECIDE, first = 0;
   check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &n), "layout");
@@ -102,6 +103,51 @@ double peak_resident_gib() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return double(usage.ru_maxrss) / double(1 << 20);
+}
+
+void set_near_null_space(const Eigen::MatrixXd& near_null, const SaddleLayout& L, SaddleFields& f) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  const Eigen::Index columns = near_null.rows() == L.n ? near_null.cols() : 0;  // (other rows: none)
+  f.null_vecs = std::vector<OwnedVec>(columns);
+  std::vector<Vec> null_raw;
+  for (Eigen::Index j = 0; j < columns; ++j) {
+    Vec& v = f.null_vecs[j].p;
+    check(VecCreateMPI(comm, L.local_u(), L.n, &v), "vector");
+    PetscScalar* a = nullptr;
+    check(VecGetArray(v, &a), "vector");
+    for (PetscInt i = L.u0; i < L.u1; ++i) a[i - L.u0] = near_null(i, j);
+    check(VecRestoreArray(v, &a), "vector");
+    for (Vec w : null_raw) {  // Gram-Schmidt: PETSc wants them orthonormal
+      PetscScalar d = 0;
+      check(VecDot(v, w, &d), "vector");
+      check(VecAXPY(v, -d, w), "vector");
+    }
+    PetscReal norm = 0;
+    check(VecNormalize(v, &norm), "vector");
+    if (norm > 0) null_raw.push_back(v);
+  }
+  check(MatNullSpaceCreate(comm, PETSC_FALSE, PetscInt(null_raw.size()), null_raw.data(), &f.near), "null space");
+}
+
+void set_fields(PC pc, Mat A, const Eigen::MatrixXd& near_null, const SaddleLayout& L, SaddleFields& f) {
+  const MPI_Comm comm = PETSC_COMM_WORLD;
+  f = {};
+  if (L.m == 0) {  // the whole matrix is the field u
+    char u_type[64] = "gamg";
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsGetString(nullptr, nullptr, "-fieldsplit_u_pc_type", u_type, sizeof u_type, &given), "options");
+    check(PCSetType(pc, u_type), "options", true);
+    if (near_null.rows() != L.n) return;
+    set_near_null_space(near_null, L, f);
+    check(MatSetNearNullSpace(A, f.near), "null space");
+    return;
+  }
+  check(ISCreateStride(comm, L.local_u(), L.u0, 1, &f.is_u), "index set");
+  check(ISCreateStride(comm, L.local_l(), L.l0, 1, &f.is_l), "index set");
+  set_near_null_space(near_null, L, f);
+  check(PetscObjectCompose((PetscObject)(IS)f.is_u, "nearnullspace", (PetscObject)(MatNullSpace)f.near), "null space");
+  check(PCFieldSplitSetIS(pc, "u", f.is_u), "options", true);
+  check(PCFieldSplitSetIS(pc, "lambda", f.is_l), "options", true);
 }
 
 }  // namespace petsc
@@ -143,6 +189,20 @@ int PetscSession::size() {
   int s = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &s);
   return s;
+}
+
+void algebraic_multigrid_defaults() {
+  petsc::default_option("-ksp_type", "fgmres");
+  petsc::default_option("-pc_type", "fieldsplit");
+  petsc::default_option("-pc_fieldsplit_type", "schur");
+  petsc::default_option("-pc_fieldsplit_schur_fact_type", "full");
+  petsc::default_option("-pc_fieldsplit_schur_precondition", "selfp");
+  petsc::default_option("-fieldsplit_u_ksp_type", "preonly");
+  petsc::default_option("-fieldsplit_u_pc_type", "gamg");
+  petsc::default_option("-fieldsplit_u_mg_levels_ksp_max_it", "4");
+  petsc::default_option("-fieldsplit_lambda_ksp_type", "preonly");
+  petsc::default_option("-fieldsplit_lambda_pc_type", "lu");
+  petsc::default_option("-fieldsplit_lambda_pc_factor_mat_solver_type", "mumps");
 }
 
 std::pair<int, int> process_share(int n) {
@@ -302,37 +362,6 @@ void set_contact_rows(Mat A, const RowMat& G, const RowMat& Gt, const std::vecto
   check(MatAssemblyEnd(A, MAT_FLUSH_ASSEMBLY), "matrix");
 }
 
-// The field split's two fields, the displacement field with its near null
-// space (rigid motions, orthonormalised), for algebraic multigrid.
-void set_fields(PC pc, const Eigen::MatrixXd& near_null, const SaddleLayout& L, OwnedIS& is_u, OwnedIS& is_l,
-                std::vector<OwnedVec>& null_vecs, OwnedNullSpace& near) {
-  const MPI_Comm comm = PETSC_COMM_WORLD;
-  check(ISCreateStride(comm, L.local_u(), L.u0, 1, &is_u), "index set");
-  check(ISCreateStride(comm, L.local_l(), L.l0, 1, &is_l), "index set");
-  null_vecs = std::vector<OwnedVec>(near_null.cols());
-  std::vector<Vec> null_raw;
-  for (Eigen::Index j = 0; j < near_null.cols(); ++j) {
-    Vec& v = null_vecs[j].p;
-    check(VecCreateMPI(comm, L.local_u(), L.n, &v), "vector");
-    PetscScalar* a = nullptr;
-    check(VecGetArray(v, &a), "vector");
-    for (PetscInt i = L.u0; i < L.u1; ++i) a[i - L.u0] = near_null(i, j);
-    check(VecRestoreArray(v, &a), "vector");
-    for (Vec w : null_raw) {  // Gram-Schmidt: PETSc wants them orthonormal
-      PetscScalar d = 0;
-      check(VecDot(v, w, &d), "vector");
-      check(VecAXPY(v, -d, w), "vector");
-    }
-    PetscReal norm = 0;
-    check(VecNormalize(v, &norm), "vector");
-    if (norm > 0) null_raw.push_back(v);
-  }
-  check(MatNullSpaceCreate(comm, PETSC_FALSE, PetscInt(null_raw.size()), null_raw.data(), &near), "null space");
-  check(PetscObjectCompose((PetscObject)(IS)is_u, "nearnullspace", (PetscObject)(MatNullSpace)near), "null space");
-  check(PCFieldSplitSetIS(pc, "u", is_u), "options", true);
-  check(PCFieldSplitSetIS(pc, "lambda", is_l), "options", true);
-}
-
 }  // namespace
 
 ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen::VectorXd& f_part,
@@ -409,10 +438,8 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   PCType pc_type = nullptr;
   check(KSPGetType(ksp, &ksp_type), "solver");
   check(PCGetType(pc, &pc_type), "solver");
-  OwnedIS is_u, is_l;
-  std::vector<OwnedVec> null_vecs;
-  OwnedNullSpace near;
-  if (pc_type && std::string(pc_type) == PCFIELDSPLIT) set_fields(pc, near_null, L, is_u, is_l, null_vecs, near);
+  SaddleFields fields;
+  if (pc_type && std::string(pc_type) == PCFIELDSPLIT) set_fields(pc, A, near_null, L, fields);
   const bool preonly = ksp_type && std::string(ksp_type) == KSPPREONLY;
   if (!preonly) check(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE), "solver");
   const Mat op_mat = multigrid ? mg->shell() : Mat(A);

@@ -67,6 +67,14 @@ class PetscSession {
   static int size();
 };
 
+// `preconditioner = "algebraic_multigrid"`: FGMRES with a Schur field split
+// (full factorisation, the Schur complement approximated by
+// B diag(A)^-1 B^T and factorised by MUMPS), one GAMG V-cycle on the
+// displacements (with the rigid motions as near null space), as default
+// options (the user's override any of them).  A matrix without multipliers
+// is all displacements: GAMG on the whole of it.  Call before the solver.
+void algebraic_multigrid_defaults();
+
 // This process's contiguous share [begin, end) of n items (elements).
 std::pair<int, int> process_share(int n);
 

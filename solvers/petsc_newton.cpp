@@ -23,6 +23,8 @@ constexpr double kTight = 1e-11;
 struct PetscNewtonSolver::Impl {
   const BlockJacobian* J = nullptr;
   PetscInt N = -1, first = 0, local = 0;  // rows [first, first + local) are this process's
+  PetscInt m = 0;                         // of which the last m are multipliers
+  bool general = false;                   // (BlockJacobian::general)
   // The owned rows' pattern (row pointers from 0, global columns) and values.
   std::vector<PetscInt> row_ptr, cols;
   std::vector<PetscScalar> values;
@@ -35,6 +37,13 @@ struct PetscNewtonSolver::Impl {
   std::string method;
   // The symmetric form (below) of the last setup, and the one the KSP was made for.
   bool symmetric = false, ksp_symmetric = false;
+  // An iterative solve (the options name a PC that is not a factorisation):
+  // the active rows are added to the displacement block as an augmented
+  // Lagrangian (below), the field split gets its fields.
+  bool augmented = false;
+  Eigen::VectorXd W;            // the augmentation's weights of the last setup (0: inactive)
+  Eigen::MatrixXd near_null;    // rigid motions of the displacements (n rows; none: n x 0)
+  SaddleFields fields;
 
   // Whether J has a symmetric form: K symmetric (no follower load, no slip
   // rows, no coupling outside K), to round-off of its largest entry.  Then
@@ -51,6 +60,35 @@ struct PetscNewtonSolver::Impl {
     return skew <= 1e-13 * largest;
   }
 
+  // The augmented Lagrangian of the active rows: B_A du = c_A (an active row
+  // s_k B_k du = b_k divided by s_k) added to the displacement rows as
+  // B_A^T W (B_A du - c_A) = 0, which leaves the solution unchanged and
+  // makes the displacement block definite where only contact holds the body
+  // (Hertz: K alone has the free vertical translation in its kernel), which
+  // algebraic multigrid needs.  W_k puts W_k B_k^T B_k at the size of K's
+  // diagonal on B_k's support.  Every constraint's product is in the pattern
+  // (zero while inactive), so that the pattern stays as the set changes.
+  RowMat augmentation(const BlockJacobian& J) {
+    const int n = int(J.K.rows()), m = int(J.B.rows());
+    W = Eigen::VectorXd::Zero(m);
+    const Eigen::VectorXd diagonal = J.K.diagonal();
+    std::vector<Eigen::Triplet<double>> t;
+    for (int k = 0; k < m; ++k) {
+      double diag_sum = 0, largest = 0;
+      int count = 0;
+      for (RowMat::InnerIterator it(J.B, k); it; ++it, ++count) {
+        diag_sum += std::abs(diagonal[it.col()]);
+        largest = std::max(largest, it.value() * it.value());
+      }
+      if (J.s[k] != 0 && largest > 0) W[k] = diag_sum / count / largest;
+      for (RowMat::InnerIterator i(J.B, k); i; ++i)
+        for (RowMat::InnerIterator j(J.B, k); j; ++j) t.emplace_back(i.col(), j.col(), W[k] * i.value() * j.value());
+    }
+    RowMat A(n + m, n + m);
+    A.setFromTriplets(t.begin(), t.end());
+    return A;
+  }
+
   // This process's rows of the condensed J (in the symmetric form where it
   // has one); true when their pattern is the last one's.
   bool take_rows(const BlockJacobian& blocks) {
@@ -64,7 +102,10 @@ struct PetscNewtonSolver::Impl {
           if (r < n && it.col() >= n && blocks.s[it.col() - n] == 0) it.valueRef() = 0;  // an inactive column
         }
     }
+    if (augmented && blocks.B.rows() > 0) R = RowMat(R + augmentation(blocks));
     const PetscInt n = PetscInt(R.rows());
+    m = PetscInt(blocks.B.rows());
+    general = blocks.general;
     if (n != N || symmetric != ksp_symmetric) {  // (friction's iterations: the unknowns come and go)
       N = n;
       std::tie(first, local) = share(N);
@@ -131,6 +172,21 @@ struct PetscNewtonSolver::Impl {
     KSPType ksp_type = nullptr;
     check(KSPGetType(ksp, &ksp_type), "solver");
     if (ksp_type && std::string(ksp_type) != KSPPREONLY) check(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE), "solver");
+    PCType pc_type = nullptr;
+    check(PCGetType(pc, &pc_type), "solver");
+    if (pc_type && std::string(pc_type) == PCFIELDSPLIT) {
+      if (general)
+        throw PetscOptionError(
+            "-pc_type fieldsplit: this matrix has no multipliers apart from the displacements (friction and ties "
+            "solve them in one block); use a direct solver or a preconditioner of the whole matrix");
+      SaddleLayout L;
+      L.n = N - m;
+      L.m = m;
+      L.r0 = first;
+      L.r1 = first + local;
+      L.u0 = std::min(L.r0, L.n), L.u1 = std::min(L.r1, L.n), L.l0 = std::max(L.r0, L.n), L.l1 = std::max(L.r1, L.n);
+      set_fields(pc, A, near_null, L, fields);
+    }
   }
 
   // PETSc's reason a factorisation (after a setup) or a solve (`solved`)
@@ -165,8 +221,13 @@ struct PetscNewtonSolver::Impl {
   }
 };
 
-PetscNewtonSolver::PetscNewtonSolver() : impl_(std::make_unique<Impl>()) {
+PetscNewtonSolver::PetscNewtonSolver(Eigen::MatrixXd near_null) : impl_(std::make_unique<Impl>()) {
   if (!PetscSession::active()) throw std::logic_error("PetscNewtonSolver needs a PetscSession");
+  impl_->near_null = std::move(near_null);
+  char pc_type[64] = "";
+  PetscBool given = PETSC_FALSE;
+  check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof pc_type, &given), "options", true);
+  impl_->augmented = given && std::string(pc_type) != PCLU && std::string(pc_type) != PCCHOLESKY;
 }
 PetscNewtonSolver::~PetscNewtonSolver() = default;
 
@@ -205,6 +266,15 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
         const double dl = rhs.b[n + k] / J.d[k];
         for (RowMat::InnerIterator it(J.B, k); it; ++it) b[it.col()] -= it.value() * dl;
       }
+    }
+  }
+  if (I.augmented && I.W.size() > 0) {  // the augmentation's right-hand side: B_A^T W c_A (Impl::augmentation)
+    const BlockJacobian& J = *I.J;
+    const int n = int(J.K.rows());
+    for (int k = 0; k < J.B.rows(); ++k) {
+      if (I.W[k] == 0) continue;
+      const double c = rhs.b[n + k] / J.s[k];
+      for (RowMat::InnerIterator it(J.B, k); it; ++it) b[it.col()] += I.W[k] * c * it.value();
     }
   }
   PetscScalar* pb = nullptr;

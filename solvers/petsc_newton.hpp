@@ -35,7 +35,10 @@ namespace igac {
 
 class PetscNewtonSolver final : public LinearBackend {
  public:
-  PetscNewtonSolver();
+  // near_null: the displacements' rigid motions (n x 3 or 6 per body),
+  // for algebraic multigrid in a field split (-fieldsplit_u_pc_type gamg);
+  // may be empty.
+  explicit PetscNewtonSolver(Eigen::MatrixXd near_null = {});
   ~PetscNewtonSolver() override;
   PetscNewtonSolver(const PetscNewtonSolver&) = delete;
   PetscNewtonSolver& operator=(const PetscNewtonSolver&) = delete;

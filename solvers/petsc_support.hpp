@@ -6,9 +6,11 @@
 // unused), the check for options nothing used, the peak memory.
 #pragma once
 
+#include <Eigen/Dense>
 #include <petscksp.h>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace igac::petsc {
 
@@ -69,5 +71,22 @@ struct SaddleLayout {
   PetscInt local_u() const { return u1 - u0; }
   PetscInt local_l() const { return l1 - l0; }
 };
+
+// The two fields of a field split over a SaddleLayout, named `u` and
+// `lambda` for the options (-fieldsplit_u_pc_type gamg), and the
+// displacement field's near null space: the columns of near_null (n rows,
+// whole on every process: rigid motions; other rows: none), orthonormalised,
+// for algebraic multigrid.  Without multipliers (L.m = 0) the whole matrix A
+// is the field u: the PC becomes the one the options give u (default gamg)
+// and A gets the near null space.  The objects live in SaddleFields as long
+// as the PC uses them.
+struct SaddleFields {
+  OwnedIS is_u, is_l;
+  std::vector<OwnedVec> null_vecs;
+  OwnedNullSpace near;
+};
+void set_fields(PC pc, Mat A, const Eigen::MatrixXd& near_null, const SaddleLayout& L, SaddleFields& fields);
+// The near null space alone (fields.near, fields.null_vecs), over L's displacements.
+void set_near_null_space(const Eigen::MatrixXd& near_null, const SaddleLayout& L, SaddleFields& fields);
 
 }  // namespace igac::petsc

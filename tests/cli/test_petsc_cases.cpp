@@ -88,14 +88,17 @@ fs::path case_file(const std::string& name, const fs::path& dir) {
 }
 
 
-// The PETSc run in `petsc` against the direct one in `direct`.
-void expect_same_results(const fs::path& direct, const fs::path& petsc, int ranks, const std::string& what) {
+// The PETSc run in `petsc` against the direct one in `direct`; an iterative
+// solve leaves `iterative_tolerance` (relative) of the solution undecided
+// (tests/support/solve_tolerance.hpp).
+void expect_same_results(const fs::path& direct, const fs::path& petsc, int ranks, const std::string& what,
+                         double iterative_tolerance = 0) {
   const json d = json::parse(igac_test::read_file(direct / "summary.json"));
   const json p = json::parse(igac_test::read_file(petsc / "summary.json"));
   EXPECT_EQ(p["solver"]["type"], "petsc") << what;
   EXPECT_EQ(p["solver"]["ranks"], ranks) << what;
   ASSERT_GT(igac_test::largest_condition_estimate(d), 1.0) << "the direct run reports its condition estimate";
-  Rule rule{igac_test::solve_accuracy(d, p), {}};
+  Rule rule{igac_test::solve_accuracy(d, p, iterative_tolerance), {}};
   const json record = without_machine_keys(d, {"solver"});
   collect_scales(record, "", rule.kind_scale);
   Tally t;
@@ -195,6 +198,85 @@ TEST(PetscBackend, AMisspeltOptionIsOneLineOnEveryRoute) {
                             ": [solver] options: PETSc option -ksp_tpye was not used by the solver (misspelt, or an "
                             "option of another solver type)\n")
         << name;
+    EXPECT_FALSE(fs::exists(tmp.path() / "out")) << name;
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// The largest |R|/F at the end of any load step of a run (0: none, a
+// small-deformation run without steps).
+double largest_final_residual(const fs::path& run) {
+  const json s = json::parse(igac_test::read_file(run / "summary.json"));
+  double largest = 0;
+  if (s.contains("load_steps"))
+    for (const json& step : s["load_steps"])
+      if (!step["residual_norms"].empty()) largest = std::max(largest, step["residual_norms"].back().get<double>());
+  return largest;
+}
+
+// `preconditioner = "algebraic_multigrid"` (FGMRES, a Schur field split,
+// GAMG on the displacements) on every route it serves: the Newton steps of
+// large deformation with a body held by contact alone and a follower load
+// (hertz3d_neohookean: the augmented Lagrangian makes the displacement
+// block definite), in the symmetric form (oring), between two bodies
+// (roller_on_block_neohookean), the small-deformation active set
+// (hertz2d) and a solve without multipliers (lame_cylinder: the whole
+// matrix is the displacement field).  The same results as the direct solver on one
+// process and two, to what the iterative solves leave undecided: the final
+// Newton residual (the larger of the two runs) times the condition
+// estimate, or the active-set solve's Krylov tolerance 1e-11.
+class PetscAlgebraicMultigrid : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
+  }
+};
+
+TEST_P(PetscAlgebraicMultigrid, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
+  const std::string name = GetParam();
+  igac_test::TempDir tmp("petsc_amg_" + name);
+  const std::string c = quote((kSource / "cases" / (name + ".toml")).string());
+  auto o = igac_test::run_igac("run " + c + " --quiet --out direct", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const int ranks : {1, 2}) {
+    const std::string out = "amg" + std::to_string(ranks);
+    const std::string args = "run " + c + " --quiet --out " + out + " --solver petsc --preconditioner algebraic_multigrid";
+    o = ranks == 1 ? igac_test::run_igac(args, tmp.path()) : run_mpi(2, args, tmp.path());
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    const json p = json::parse(igac_test::read_file(tmp.path() / out / "summary.json"));
+    EXPECT_TRUE(p["solver"]["method"].get<std::string>().starts_with("fgmres + ")) << p["solver"]["method"];
+    EXPECT_FALSE(p["solver"]["krylov_iterations"].empty());
+    const double newton = std::max(largest_final_residual(tmp.path() / "direct"), largest_final_residual(tmp.path() / out));
+    expect_same_results(tmp.path() / "direct", tmp.path() / out, ranks,
+                        name + " with algebraic multigrid on " + std::to_string(ranks) + " process(es)",
+                        newton > 0 ? newton : 1e-11);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, PetscAlgebraicMultigrid,
+                         ::testing::Values("hertz3d_neohookean", "oring", "roller_on_block_neohookean", "hertz2d",
+                                           "lame_cylinder"),
+                         case_name);
+
+// Friction and ties solve their multipliers in one block with the
+// displacements: the field split has no fields there, and says so in one
+// line (either kinematics), nothing written.
+TEST(PetscAlgebraicMultigrid, FrictionIsRefusedInOneLine) {
+  if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
+  for (const char* name : {"oring_friction", "cattaneo_mindlin"}) {
+    igac_test::TempDir tmp("petsc_amg_friction");
+    const std::string path = (kSource / "cases" / (std::string(name) + ".toml")).string();
+    const auto o = igac_test::run_igac(
+        "run " + quote(path) + " --out out --solver petsc --preconditioner algebraic_multigrid", tmp.path());
+    EXPECT_EQ(o.exit_code, 2) << name << ": " << o.output;
+    EXPECT_TRUE(o.output.starts_with("igac: error: --preconditioner algebraic_multigrid") ||
+                o.output.starts_with("igac: error: " + path))
+        << o.output;
+    EXPECT_NE(o.output.find("needs the multipliers apart from the displacements"), std::string::npos) << o.output;
+    EXPECT_EQ(std::count(o.output.begin(), o.output.end(), '\n'), 1) << o.output;
     EXPECT_FALSE(fs::exists(tmp.path() / "out")) << name;
   }
 }
