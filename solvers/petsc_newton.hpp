@@ -14,7 +14,15 @@
 // load, friction, two bodies' curvature coupling) by MUMPS LU.  Any KSP
 // and PC the PETSc options name replace these (`-ksp_type gmres -pc_type
 // ilu` ...), and an iterative one is asked for the driver's inexact-Newton
-// tolerance.  While the pattern of the
+// tolerance.  With an iterative PC (any but lu and cholesky) the active
+// rows are also added to the displacement block as an augmented Lagrangian,
+// B_A^T W (B_A du - c_A) = 0, the same solution with a definite block where
+// only contact holds a body (algebraic multigrid needs it); a field split
+// (`-pc_type fieldsplit`, or `preconditioner = "algebraic_multigrid"`) gets
+// the fields `u` and `lambda` and the rigid motions of each body as u's
+// near null space, and a matrix without multipliers is all field u.
+// Friction's and ties' matrices (BlockJacobian::general) have no fields
+// apart: a field split is refused there.  While the pattern of the
 // matrix stays (it does unless the active set changes which rows a curved
 // master couples), the matrix is refilled in place and the factorisation
 // keeps its symbolic analysis; a new pattern builds a new matrix.

@@ -115,12 +115,15 @@ void expect_same_results(const fs::path& direct, const fs::path& petsc, int rank
               t.result.at.c_str(), t.csv.ratio, t.csv.at.c_str());
 }
 
-class PetscCase : public ::testing::TestWithParam<std::string> {
+// A test over cases, skipped where igac was built without PETSc.
+class WithPetsc : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
     if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
   }
 };
+
+class PetscCase : public WithPetsc {};
 
 TEST_P(PetscCase, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
   const std::string name = GetParam();
@@ -150,12 +153,7 @@ namespace {
 // friction history (the slip, the stick/slip states) whichever solved it.
 // Large deformation with friction (oring_friction) and small deformation
 // with friction along a load curve (cattaneo_mindlin_cycle).
-class PetscRestart : public ::testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
-  }
-};
+class PetscRestart : public WithPetsc {};
 
 TEST_P(PetscRestart, ADirectRunContinuedOnPetscEndsWhereTheDirectRunEnds) {
   const std::string name = GetParam();
@@ -228,12 +226,7 @@ double largest_final_residual(const fs::path& run) {
 // process and two, to what the iterative solves leave undecided: the final
 // Newton residual (the larger of the two runs) times the condition
 // estimate, or the active-set solve's Krylov tolerance 1e-11.
-class PetscAlgebraicMultigrid : public ::testing::TestWithParam<std::string> {
- protected:
-  void SetUp() override {
-    if (!kHavePetsc) GTEST_SKIP() << "igac built without PETSc";
-  }
-};
+class PetscAlgebraicMultigrid : public WithPetsc {};
 
 TEST_P(PetscAlgebraicMultigrid, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
   const std::string name = GetParam();
