@@ -2,12 +2,17 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The Newton driver's two linear backends on the same large-deformation run:
 the direct one (CHOLMOD + Schur complement on the active set) against PETSc's
-(MUMPS L D L^T on the symmetric form, LU otherwise; and FGMRES with the
-algebraic multigrid's field split, `--preconditioner algebraic_multigrid`)
-on 1 and 2 MPI processes, one after the other in the same run.
+(MUMPS L D L^T on the symmetric form, LU otherwise; FGMRES with the
+algebraic multigrid's field split, `--preconditioner algebraic_multigrid`;
+FGMRES with the spline multigrid, `--preconditioner spline_multigrid`) on 1
+and 2 MPI processes, one after the other in the same run.
 
     /usr/bin/python3 bench/petsc_newton.py [--case cases/hertz3d_neohookean.toml]
-                                           [--refine 0 1] [--csv FILE]
+                                           [--refine 0 1] [--runs direct mumps1 ...] [--csv FILE]
+
+--runs picks among direct, mumps1, mumps2, amg1, amg2, smg1, smg2 (the
+backend and the number of processes; default all; the first is the
+reference of the ratios and differences).
 
 Threads: the cores shared among the processes (one process: all of them).
 Per run: unknowns, load steps, Newton iterations, the Newton time and the
@@ -46,6 +51,11 @@ def run(case, refine, solver, ranks, preconditioner, out):
         return json.load(f)
 
 
+RUNS = {"direct": ("direct", 1, ""), "mumps1": ("petsc", 1, "options"), "mumps2": ("petsc", 2, "options"),
+        "amg1": ("petsc", 1, "algebraic_multigrid"), "amg2": ("petsc", 2, "algebraic_multigrid"),
+        "smg1": ("petsc", 1, "spline_multigrid"), "smg2": ("petsc", 2, "spline_multigrid")}
+
+
 def forces(summary):
     values = [summary.get("contact", {}).get("total_force", 0.0)]
     for r in summary.get("dirichlet_reactions", []):
@@ -57,14 +67,14 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--case", default=os.path.join(ROOT, "cases", "hertz3d_neohookean.toml"))
     ap.add_argument("--refine", type=int, nargs="+", default=[0, 1])
+    ap.add_argument("--runs", nargs="+", choices=list(RUNS), default=list(RUNS))
     ap.add_argument("--csv", default=os.path.join(HERE, "results", "petsc_newton.csv"))
     a = ap.parse_args()
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for refine in a.refine:
             direct = None
-            for solver, ranks, pc in (("direct", 1, ""), ("petsc", 1, "options"), ("petsc", 2, "options"),
-                                      ("petsc", 1, "algebraic_multigrid"), ("petsc", 2, "algebraic_multigrid")):
+            for solver, ranks, pc in (RUNS[name] for name in a.runs):
                 s = run(a.case, refine, solver, ranks, pc, os.path.join(tmp, f"{refine}_{solver}_{ranks}_{pc}"))
                 krylov = s["solver"].get("krylov_iterations", [])
                 iterations = sum(step["newton_iterations"] for step in s["load_steps"])

@@ -617,35 +617,24 @@ std::vector<std::string> declared_case_keys() {
 }
 
 std::string check_petsc_case(const CaseSpec& c) {
-  // The algebraic multigrid's field split needs the multipliers apart from
-  // the displacements; friction and ties solve them in one block.
-  if (c.solver.algebraic_multigrid())
+  // Both multigrids need the multipliers apart from the displacements
+  // (the field split's fields, the spline multigrid's block triangular
+  // preconditioner); friction and ties solve them in one block.
+  if (c.solver.algebraic_multigrid() || c.solver.spline_multigrid())
     for (const ContactSpec& cs : c.contacts)
       if (cs.friction > 0 || (!cs.law.empty() && cs.law != "frictionless"))
-        return fmt::format("the algebraic multigrid's field split needs the multipliers apart from the displacements, "
-                           "and the {} of contact face '{}' solves them in one block with the displacements; leave "
-                           "preconditioner at \"options\" (default MUMPS LU)",
+        return fmt::format("the {} needs the multipliers apart from the displacements, and the {} of contact face "
+                           "'{}' solves them in one block with the displacements; leave preconditioner at "
+                           "\"options\" (default MUMPS LU)",
+                           c.solver.spline_multigrid() ? "spline multigrid" : "algebraic multigrid's field split",
                            cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
                            cs.face);
   // Large deformation: every Newton step's linear solve in PETSc
   // (solvers/petsc_newton.hpp), whatever the contacts, laws and curves.
-  if (c.finite_strain()) {
-    if (c.solver.spline_multigrid())
-      return fmt::format("the spline multigrid preconditions the small-deformation solve only, not the Newton steps "
-                         "of the {} law; leave preconditioner at \"options\" (default MUMPS LU)", c.model);
-    return {};
-  }
-  for (const ContactSpec& cs : c.contacts)
-    if ((cs.friction > 0 || (!cs.law.empty() && cs.law != "frictionless")) &&
-        c.solver.spline_multigrid())
-      return fmt::format("the spline multigrid preconditions frictionless contact only, not the {} of contact face "
-                         "'{}' (its iterations solve with the PETSc options' solver, default MUMPS LU); leave "
-                         "preconditioner at \"options\"",
-                         cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
-                         cs.face);
+  if (c.finite_strain()) return {};
   if (c.has_load_curves() && c.solver.spline_multigrid())
-    return "the spline multigrid preconditions a run without load curves only (the case has a curve); leave "
-           "preconditioner at \"options\"";
+    return "the spline multigrid preconditions a small-deformation run without load curves only (the case has a "
+           "curve); leave preconditioner at \"options\"";
   return {};
 }
 

@@ -144,8 +144,11 @@ namespace {
 // PETSc's Newton backend with its option errors said as input errors.
 class ReportingPetscNewtonSolver final : public LinearBackend {
  public:
-  ReportingPetscNewtonSolver(std::string where, std::function<void()> after_first_solve, Eigen::MatrixXd near_null)
-      : where_(std::move(where)), after_first_solve_(std::move(after_first_solve)), solver_(std::move(near_null)) {}
+  ReportingPetscNewtonSolver(std::string where, std::function<void()> after_first_solve, Eigen::MatrixXd near_null,
+                             std::optional<std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>>> hierarchy)
+      : where_(std::move(where)),
+        after_first_solve_(std::move(after_first_solve)),
+        solver_(std::move(near_null), std::move(hierarchy)) {}
   bool setup(const BlockJacobian& J) override {
     return reported([&] { return solver_.setup(J); });
   }
@@ -178,8 +181,11 @@ std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m, std::functio
   if (!uses_petsc(m)) return nullptr;
   if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
   if (m.spec.solver.algebraic_multigrid()) algebraic_multigrid_defaults();
+  std::optional<std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>>> hierarchy;
+  if (m.spec.solver.spline_multigrid()) hierarchy = spline_hierarchy(m);
   return std::make_unique<ReportingPetscNewtonSolver>(m.spec.where({.table = "solver", .key = "options"}),
-                                                      std::move(after_first_solve), rigid_motions(m));
+                                                      std::move(after_first_solve), rigid_motions(m),
+                                                      std::move(hierarchy));
 }
 #else
 ContactSolution solve_with_petsc_from_whole(const Model& m, const Eigen::SparseMatrix<double>&,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "solvers/petsc_multigrid.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 #include <mpi.h>
 
@@ -147,11 +148,26 @@ void SplineMultigrid::set_active_set(const std::vector<char>& active) {
   check(MatAssemblyEnd(B_, MAT_FINAL_ASSEMBLY), "matrix");
 }
 
+bool SplineMultigrid::set_constraints(const RowSparse& G, const Eigen::VectorXd& W,
+                                      const Eigen::VectorXd& inactive_diagonal) {
+  const bool same = G.rows() == G_.rows() && G.cols() == G_.cols() && G.nonZeros() == G_.nonZeros() &&
+                    std::equal(G.outerIndexPtr(), G.outerIndexPtr() + G.rows() + 1, G_.outerIndexPtr()) &&
+                    std::equal(G.innerIndexPtr(), G.innerIndexPtr() + G.nonZeros(), G_.innerIndexPtr());
+  if (!same) return false;
+  G_ = G;
+  W_ = W;
+  inactive_ = inactive_diagonal;
+  return true;
+}
+
 void SplineMultigrid::attach(KSP ksp) {
   const PetscInt local = layout_.r1 - layout_.r0, N = layout_.n + layout_.m;
   check(MatCreateShell(PETSC_COMM_WORLD, local, local, N, N, this, &S_), "matrix");
   check(MatShellSetOperation(S_, MATOP_MULT, (void (*)(void))mult), "matrix");
-  check(MatSetOption(S_, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
+  // symmetric as A is (a follower load's Newton matrix is not)
+  PetscBool known = PETSC_FALSE, symmetric = PETSC_FALSE;
+  check(MatIsSymmetricKnown(A_, &known, &symmetric), "matrix");
+  if (known && symmetric) check(MatSetOption(S_, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
   check(KSPSetOperators(ksp, S_, S_), "solver");
   PC pc = nullptr;
   check(KSPGetPC(ksp, &pc), "solver");
@@ -168,6 +184,15 @@ void SplineMultigrid::setup(bool rebuild) {
   check(KSPSetReusePreconditioner(mg_, rebuild ? PETSC_FALSE : PETSC_TRUE), "solver");
   check(KSPSetOperators(mg_, A_, A_), "solver");
   check(KSPSetUp(mg_), "solver setup", true);
+}
+
+std::string SplineMultigrid::setup_failure() const {
+  PC pc = nullptr;
+  check(KSPGetPC(mg_, &pc), "solver");
+  PCFailedReason reason = PC_NOERROR;
+  check(PCGetFailedReason(pc, &reason), "solver");
+  return reason == PC_NOERROR ? std::string()
+                              : fmt::format("singular Newton matrix (PETSc's spline multigrid: {})", PCFailedReasons[reason]);
 }
 
 // x and y as the work vectors xu_, xl_, yu_, yl_ (their u and lambda parts,

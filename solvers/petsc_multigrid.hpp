@@ -57,11 +57,18 @@ class SplineMultigrid {
 
   // The contact rows G_A, D_I and S~^-1 of this active set.
   void set_active_set(const std::vector<char>& active);
+  // New values of G, W and D_I's (a Newton step's gap derivatives), G of
+  // the pattern it was made with; false (nothing changed) if the pattern
+  // differs.  Takes effect with the next set_active_set.
+  bool set_constraints(const RowSparse& G, const Eigen::VectorXd& W, const Eigen::VectorXd& inactive_diagonal);
   // Gives `ksp` the shell operator and the shell preconditioner (once).
   void attach(KSP ksp);
   // Rebuilds the hierarchy (Galerkin products, smoother estimates, coarse
   // factor) after A changed.
   void setup(bool rebuild = true);
+  // PETSc's reason the last setup failed (a singular coarsest level), in
+  // words; "" when it did not.
+  std::string setup_failure() const;
   int levels() const { return int(P_.size()) + 1; }
   Mat shell() const;  // the saddle-point operator (after attach)
 

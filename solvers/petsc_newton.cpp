@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <optional>
 #include <petscksp.h>
 #include <vector>
 
 #include "engine/stopwatch.hpp"
 #include "solvers/petsc_contact.hpp"
+#include "solvers/petsc_multigrid.hpp"
 #include "solvers/petsc_support.hpp"
 
 namespace igac {
@@ -37,6 +39,10 @@ struct PetscNewtonSolver::Impl {
   std::string method;
   // The symmetric form (below) of the last setup, and the one the KSP was made for.
   bool symmetric = false, ksp_symmetric = false;
+  // The active rows divided by their scale and the inactive multipliers'
+  // columns moved to the right-hand side (the symmetric form's constraint
+  // rows; the spline multigrid's shell has that form whatever K is).
+  bool constraint_form = false;
   // An iterative solve (the options name a PC that is not a factorisation):
   // the active rows are added to the displacement block as an augmented
   // Lagrangian (below), the field split gets its fields.
@@ -44,6 +50,14 @@ struct PetscNewtonSolver::Impl {
   Eigen::VectorXd W;            // the augmentation's weights of the last setup (0: inactive)
   Eigen::MatrixXd near_null;    // rigid motions of the displacements (n rows; none: n x 0)
   SaddleFields fields;
+  // The spline multigrid (given a hierarchy): A is the displacement block
+  // K + B_A^T W B_A alone, the rest applied by the multigrid's shell.
+  std::optional<std::vector<RowMat>> hierarchy;
+  std::optional<SplineMultigrid> mg;
+  SaddleLayout layout;
+  // A Krylov solve stops on the residual of J itself (stop_test).
+  double stop_at = 0;       // |b| (J's condensed right-hand side) times the tolerance
+  OwnedVec work_t, work_r;  // KSPBuildResidual's
 
   // Whether J has a symmetric form: K symmetric (no follower load, no slip
   // rows, no coupling outside K), to round-off of its largest entry.  Then
@@ -94,6 +108,7 @@ struct PetscNewtonSolver::Impl {
   bool take_rows(const BlockJacobian& blocks) {
     RowMat R = assemble_condensed(blocks);
     symmetric = has_symmetric_form(blocks);
+    constraint_form = symmetric;
     if (symmetric) {
       const int n = int(blocks.K.rows());
       for (int r = 0; r < R.outerSize(); ++r)
@@ -103,56 +118,207 @@ struct PetscNewtonSolver::Impl {
         }
     }
     if (augmented && blocks.B.rows() > 0) R = RowMat(R + augmentation(blocks));
-    const PetscInt n = PetscInt(R.rows());
     m = PetscInt(blocks.B.rows());
     general = blocks.general;
-    if (n != N || symmetric != ksp_symmetric) {  // (friction's iterations: the unknowns come and go)
-      N = n;
-      std::tie(first, local) = share(N);
+    if (new_size(PetscInt(R.rows())) || symmetric != ksp_symmetric) {
       row_ptr.clear();
       ksp = {};  // a KSP keeps its first operator's sizes and its factorisation's kind
     }
+    return keep_rows(R, first, local);
+  }
+
+  // A new number of unknowns N (friction's iterations: they come and go):
+  // the rows shared anew, the vectors dropped.
+  bool new_size(PetscInt rows) {
+    if (rows == N) return false;
+    N = rows;
+    std::tie(first, local) = share(N);
+    x = {};
+    b = {};
+    work_t = {};
+    work_r = {};
+    x_all = {};
+    to_all = {};
+    return true;
+  }
+
+  // Rows [begin_row, begin_row + count) of R as this process's part of the
+  // matrix; true when every process's pattern is the last one's.
+  bool keep_rows(const RowMat& R, PetscInt begin_row, PetscInt count) {
     const int* outer = R.outerIndexPtr();
-    const int begin = outer[first], end = outer[first + local];
-    bool same = PetscInt(row_ptr.size()) == local + 1 && PetscInt(cols.size()) == end - begin;
-    for (PetscInt r = 0; same && r <= local; ++r) same = row_ptr[r] == outer[first + r] - begin;
+    const int begin = outer[begin_row], end = outer[begin_row + count];
+    bool same = PetscInt(row_ptr.size()) == count + 1 && PetscInt(cols.size()) == end - begin;
+    for (PetscInt r = 0; same && r <= count; ++r) same = row_ptr[r] == outer[begin_row + r] - begin;
     for (int k = begin; same && k < end; ++k) same = cols[k - begin] == R.innerIndexPtr()[k];
     int mine = same ? 1 : 0, all = 0;  // a new pattern anywhere: a new matrix everywhere
     MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-    row_ptr.resize(local + 1);
-    for (PetscInt r = 0; r <= local; ++r) row_ptr[r] = outer[first + r] - begin;
+    row_ptr.resize(count + 1);
+    for (PetscInt r = 0; r <= count; ++r) row_ptr[r] = outer[begin_row + r] - begin;
     cols.assign(R.innerIndexPtr() + begin, R.innerIndexPtr() + end);
     values.assign(R.valuePtr() + begin, R.valuePtr() + end);
     return all == 1;
   }
 
-  void new_matrix() {
-    const MPI_Comm comm = PETSC_COMM_WORLD;
+  // A matrix of the kept rows: `rows` of `size` (square) on this process.
+  void new_matrix(PetscInt rows, PetscInt size) {
     OwnedMat M;
-    check(MatCreate(comm, &M), "matrix");
-    check(MatSetSizes(M, local, local, N, N), "matrix");
+    check(MatCreate(PETSC_COMM_WORLD, &M), "matrix");
+    check(MatSetSizes(M, rows, rows, size, size), "matrix");
     check(MatSetType(M, MATAIJ), "matrix");
     // (each call is a no-op on the other type: SEQAIJ on one process, MPIAIJ on more)
     check(MatSeqAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
     check(MatMPIAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
     if (symmetric) check(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
     A = std::move(M);
-    x = {};
-    b = {};
-    x_all = {};
-    to_all = {};
-    check(MatCreateVecs(A, &x, &b), "vector");
+  }
+
+  void new_vectors(Mat op) {
+    if (x.p) return;
+    check(MatCreateVecs(op, &x, &b), "vector");
     check(VecScatterCreateToAll(x, &to_all, &x_all), "vector");
   }
 
-  void refill() {
-    for (PetscInt r = 0; r < local; ++r) {
-      const PetscInt row = first + r, count = row_ptr[r + 1] - row_ptr[r];
+  void refill(PetscInt first_row) {
+    for (PetscInt r = 0; r + 1 < PetscInt(row_ptr.size()); ++r) {
+      const PetscInt row = first_row + r, count = row_ptr[r + 1] - row_ptr[r];
       check(MatSetValues(A, 1, &row, count, cols.data() + row_ptr[r], values.data() + row_ptr[r], INSERT_VALUES),
             "matrix");
     }
     check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
     check(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY), "matrix");
+  }
+
+  // The spline multigrid's setup: the displacement block K + B_A^T W B_A
+  // assembled (K + K_coupling, the local unknowns condensed), the
+  // constraint rows B, their weights and the active set given to
+  // SplineMultigrid, whose shell applies the saddle-point matrix in the
+  // constraint form and whose hierarchy is rebuilt on the new block.
+  void setup_spline_multigrid(const BlockJacobian& blocks) {
+    if (blocks.general)
+      throw PetscOptionError(
+          "the spline multigrid needs the multipliers apart from the displacements, and this Newton matrix solves "
+          "them in one block (friction, ties); leave preconditioner at \"options\"");
+    const int n = int(blocks.K.rows());
+    m = PetscInt(blocks.B.rows());
+    if (!hierarchy->empty() && (*hierarchy)[0].rows() != n)
+      throw PetscOptionError(fmt::format("the spline multigrid's finest mesh has {} unknowns, the Newton matrix's "
+                                         "displacement block {}: leave preconditioner at \"options\"",
+                                         (*hierarchy)[0].rows(), n));
+    symmetric = has_symmetric_form(blocks);
+    constraint_form = true;
+    general = false;
+    RowMat R = RowMat(assemble_condensed(blocks)).topLeftCorner(n, n);
+    W = Eigen::VectorXd::Zero(m);
+    if (m > 0) R = RowMat(R + RowMat(augmentation(blocks).topLeftCorner(n, n)));
+    if (new_size(PetscInt(n + m))) {
+      mg.reset();  // (it borrows A)
+      ksp = {};
+      row_ptr.clear();
+      layout = {.n = n, .m = m, .r0 = first, .r1 = first + local};
+      layout.u0 = std::min(layout.r0, layout.n), layout.u1 = std::min(layout.r1, layout.n);
+      layout.l0 = std::max(layout.r0, layout.n), layout.l1 = std::max(layout.r1, layout.n);
+    }
+    if (keep_rows(R, layout.u0, layout.local_u()) && A.p && symmetric == ksp_symmetric) {
+      refill(layout.u0);
+    } else {
+      mg.reset();
+      ksp = {};
+      new_matrix(layout.local_u(), n);
+    }
+    ksp_symmetric = symmetric;
+    if (!mg || !mg->set_constraints(blocks.B, W, blocks.d)) {
+      ksp = {};
+      mg.reset();
+      // ICC(0) in the natural order: in reverse Cuthill-McKee order (the
+      // small-deformation route's choice, docs/petsc.md) the smoother broke
+      // down on the O-ring's Newton matrices (2D, 17k unknowns: 2000 Krylov
+      // iterations); in the natural order 4 to 7, and on the 3D Hertz sphere
+      // the same iterations as RCM (177 and 178 over 26 solves).
+      default_option("-u_mg_levels_sub_pc_factor_mat_ordering_type", "natural");
+      mg.emplace(A, blocks.B, W, blocks.d, layout, *hierarchy);
+    }
+    std::vector<char> active(m);
+    for (int k = 0; k < m; ++k) active[k] = blocks.s[k] != 0;
+    mg->set_active_set(active);
+    if (!ksp.p) create_multigrid_solver();
+    mg->setup();
+    new_vectors(mg->shell());
+  }
+
+  // FGMRES (multigrid with a Chebyshev smoother is a fixed operator, a
+  // user's inner Krylov -u_ksp_type cg would not be) preconditioned by the
+  // spline multigrid's shell.
+  void create_multigrid_solver() {
+    PetscBool has = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, "-pc_type", &has), "options");
+    if (has)
+      throw PetscOptionError("PETSc option -pc_type: the spline multigrid is the preconditioner (its own options "
+                             "start with -u_, e.g. -u_mg_levels_pc_type sor)");
+    check(KSPCreate(PETSC_COMM_WORLD, &ksp), "solver");
+    mg->attach(ksp);
+    default_option("-ksp_type", "fgmres");
+    check(KSPSetTolerances(ksp, kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
+    check(KSPSetFromOptions(ksp), "options", true);
+    check(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE), "solver");
+    check(KSPSetConvergenceTest(ksp, stop_test, this, nullptr), "solver");
+  }
+
+  // A Krylov solver's stopping test, on the residual of J itself (its
+  // condensed rows as the driver gave them) rather than of the matrix
+  // PETSc solves, whose rows differ: the constraint form divides the active
+  // rows by s_k, and the augmentation adds B_A^T W (c_A - B_A du) to the
+  // displacement rows' residual, W of the size of K.  On the nearly
+  // incompressible O-ring (W of the bulk modulus' size) a PETSc residual
+  // 1e-6 of its right-hand side left J's 10 to 100 times |b|: the Newton
+  // step failed its line search at every increment.
+  static PetscErrorCode stop_test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* self) {
+    PetscFunctionBeginUser;
+    Impl& I = *static_cast<Impl*>(self);
+    *reason = KSP_CONVERGED_ITERATING;
+    if (PetscIsInfOrNanReal(rnorm)) {
+      *reason = KSP_DIVERGED_NANORINF;
+      PetscFunctionReturn(0);
+    }
+    if (!I.work_t.p) {
+      PetscCall(VecDuplicate(I.x, &I.work_t.p));
+      PetscCall(VecDuplicate(I.x, &I.work_r.p));
+    }
+    Vec r = nullptr;
+    PetscCall(KSPBuildResidual(ksp, I.work_t, I.work_r, &r));
+    PetscCall(VecScatterBegin(I.to_all, r, I.x_all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(I.to_all, r, I.x_all, INSERT_VALUES, SCATTER_FORWARD));
+    const PetscScalar* pr = nullptr;
+    PetscCall(VecGetArrayRead(I.x_all, &pr));
+    const double norm = I.residual_of_J(pr);
+    PetscCall(VecRestoreArrayRead(I.x_all, &pr));
+    PetscInt max_it = 0;
+    PetscCall(KSPGetTolerances(ksp, nullptr, nullptr, nullptr, &max_it));
+    if (norm <= I.stop_at) *reason = KSP_CONVERGED_RTOL;
+    else if (it >= max_it) *reason = KSP_DIVERGED_ITS;
+    PetscFunctionReturn(0);
+  }
+
+  // |J dx - b| from r, the residual of the matrix PETSc solves (whole):
+  // an active row's normalised residual q_k = c_k - B_k du is r_k (the
+  // constraint form) or r_k / s_k, J's row residual s_k q_k; an inactive
+  // row's is r_k (0 in the constraint form: set exactly after the solve);
+  // the displacement rows' is r_u - sum over active k of B_k^T W_k q_k.
+  double residual_of_J(const double* r) const {
+    const int n = int(J->K.rows());
+    Eigen::VectorXd ru = Eigen::Map<const Eigen::VectorXd>(r, n);
+    double constraints = 0;
+    for (int k = 0; k < J->B.rows(); ++k) {
+      const double rk = r[n + k];
+      if (J->s[k] != 0) {
+        const double q = constraint_form ? rk : rk / J->s[k];
+        constraints += std::pow(J->s[k] * q, 2);
+        if (augmented && W.size() > 0 && W[k] != 0)
+          for (RowMat::InnerIterator e(J->B, k); e; ++e) ru[e.col()] -= W[k] * q * e.value();
+      } else if (!constraint_form) {
+        constraints += rk * rk;
+      }
+    }
+    return std::sqrt(ru.squaredNorm() + constraints);
   }
 
   // igac's choice, which the options replace: MUMPS, L D L^T on the
@@ -171,7 +337,10 @@ struct PetscNewtonSolver::Impl {
     check(KSPSetFromOptions(ksp), "options", true);
     KSPType ksp_type = nullptr;
     check(KSPGetType(ksp, &ksp_type), "solver");
-    if (ksp_type && std::string(ksp_type) != KSPPREONLY) check(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE), "solver");
+    if (ksp_type && std::string(ksp_type) != KSPPREONLY) {
+      check(KSPSetInitialGuessNonzero(ksp, PETSC_FALSE), "solver");
+      check(KSPSetConvergenceTest(ksp, stop_test, this, nullptr), "solver");
+    }
     PCType pc_type = nullptr;
     check(PCGetType(pc, &pc_type), "solver");
     if (pc_type && std::string(pc_type) == PCFIELDSPLIT) {
@@ -213,7 +382,8 @@ struct PetscNewtonSolver::Impl {
     check(KSPGetPC(ksp, &pc), "solver");
     check(KSPGetType(ksp, &ksp_type), "solver");
     check(PCGetType(pc, &pc_type), "solver");
-    method = fmt::format("{} + {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
+    method = fmt::format("{} + {}", ksp_type ? ksp_type : "?",
+                         mg ? fmt::format("spline multigrid ({} levels)", mg->levels()) : pc_type ? pc_type : "?");
     if (pc_type && (std::string(pc_type) == PCLU || std::string(pc_type) == PCCHOLESKY)) {
       MatSolverType st = nullptr;
       if (!PCFactorGetMatSolverType(pc, &st) && st) method += fmt::format(" ({})", st);
@@ -221,13 +391,15 @@ struct PetscNewtonSolver::Impl {
   }
 };
 
-PetscNewtonSolver::PetscNewtonSolver(Eigen::MatrixXd near_null) : impl_(std::make_unique<Impl>()) {
+PetscNewtonSolver::PetscNewtonSolver(Eigen::MatrixXd near_null, std::optional<std::vector<RowSparse>> spline_hierarchy)
+    : impl_(std::make_unique<Impl>()) {
   if (!PetscSession::active()) throw std::logic_error("PetscNewtonSolver needs a PetscSession");
   impl_->near_null = std::move(near_null);
+  impl_->hierarchy = std::move(spline_hierarchy);
   char pc_type[64] = "";
   PetscBool given = PETSC_FALSE;
   check(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc_type, sizeof pc_type, &given), "options", true);
-  impl_->augmented = given && std::string(pc_type) != PCLU && std::string(pc_type) != PCCHOLESKY;
+  impl_->augmented = impl_->hierarchy || (given && std::string(pc_type) != PCLU && std::string(pc_type) != PCCHOLESKY);
 }
 PetscNewtonSolver::~PetscNewtonSolver() = default;
 
@@ -237,9 +409,18 @@ bool PetscNewtonSolver::setup(const BlockJacobian& J) {
   ++stats_.setups;
   why_.clear();
   I.J = &J;
-  const bool same_pattern = I.take_rows(J) && I.A.p;
-  if (same_pattern) I.refill();
-  else I.new_matrix();
+  if (I.hierarchy) {
+    I.setup_spline_multigrid(J);  // (the hierarchy's setup counted as the matrix's)
+    stats_.schur_s += clock.seconds();
+    why_ = I.mg->setup_failure();
+    return why_.empty();
+  }
+  if (I.take_rows(J) && I.A.p) {
+    I.refill(I.first);
+  } else {
+    I.new_matrix(I.local, I.N);
+    I.new_vectors(I.A);
+  }
   stats_.schur_s += clock.seconds();  // (here: the matrix handed to PETSc)
   const Stopwatch factor_clock;
   if (!I.ksp.p) I.create_solver();
@@ -256,15 +437,19 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   ++stats_.solves;
   const CondensedRhs rhs = condense_rhs(*I.J, b_whole);
   Eigen::VectorXd b = rhs.b;
-  if (I.symmetric) {  // the symmetric form's right-hand side (Impl::has_symmetric_form)
+  if (I.constraint_form) {  // the symmetric form's right-hand side (Impl::has_symmetric_form)
     const BlockJacobian& J = *I.J;
     const int n = int(J.K.rows());
     for (int k = 0; k < J.B.rows(); ++k) {
       if (J.s[k] != 0) {
         b[n + k] /= J.s[k];
       } else {
+        // dl_k = b_k / d_k exactly (set after the solve): its row asks
+        // nothing of the solver, whose stopping test (|b - A x| / |b| for
+        // a Krylov solver) it would otherwise dominate
         const double dl = rhs.b[n + k] / J.d[k];
         for (RowMat::InnerIterator it(J.B, k); it; ++it) b[it.col()] -= it.value() * dl;
+        b[n + k] = 0;
       }
     }
   }
@@ -282,6 +467,7 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   std::copy(b.data() + I.first, b.data() + I.first + I.local, pb);
   check(VecRestoreArray(I.b, &pb), "vector");
   check(KSPSetTolerances(I.ksp, tolerance > 0 ? tolerance : kTight, 1e-50, PETSC_DEFAULT, 2000), "solver");
+  I.stop_at = (tolerance > 0 ? tolerance : kTight) * rhs.b.norm();
   check(KSPSolve(I.ksp, I.b, I.x), "solve", !I.solved_once);
   if (!I.solved_once) {
     refuse_unused_options();
@@ -299,7 +485,7 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   check(VecGetArrayRead(I.x_all, &px), "vector");
   x = Eigen::Map<const Eigen::VectorXd>(px, I.N);
   check(VecRestoreArrayRead(I.x_all, &px), "vector");
-  if (I.symmetric) {  // an inactive multiplier's row is d_k dl_k = b_k: exactly, not through MUMPS' scaling
+  if (I.constraint_form) {  // an inactive multiplier's row is d_k dl_k = b_k: exactly, not through MUMPS' scaling
     const BlockJacobian& J = *I.J;
     const int n = int(J.K.rows());
     for (int k = 0; k < J.B.rows(); ++k)

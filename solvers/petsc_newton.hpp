@@ -34,8 +34,11 @@
 // (solvers/petsc_contact.hpp).
 #pragma once
 
+#include <Eigen/SparseCore>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/linear_backend.hpp"
 
@@ -45,8 +48,12 @@ class PetscNewtonSolver final : public LinearBackend {
  public:
   // near_null: the displacements' rigid motions (n x 3 or 6 per body),
   // for algebraic multigrid in a field split (-fieldsplit_u_pc_type gamg);
-  // may be empty.
-  explicit PetscNewtonSolver(Eigen::MatrixXd near_null = {});
+  // may be empty.  spline_hierarchy: the prolongations of the spline
+  // multigrid (solvers/petsc_multigrid.hpp), finest first; given, every
+  // Newton matrix is solved by FGMRES with it (frictionless only).
+  explicit PetscNewtonSolver(Eigen::MatrixXd near_null = {},
+                             std::optional<std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>>>
+                                 spline_hierarchy = std::nullopt);
   ~PetscNewtonSolver() override;
   PetscNewtonSolver(const PetscNewtonSolver&) = delete;
   PetscNewtonSolver& operator=(const PetscNewtonSolver&) = delete;

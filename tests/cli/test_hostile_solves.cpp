@@ -32,7 +32,8 @@ std::string source_text(const std::string& relative) { return igac_test::read_fi
 int lines_of(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
 
 // The PETSc path runs every case; its spline multigrid preconditions the
-// small-deformation frictionless solve without load curves only.  A case it
+// frictionless solves: the Newton steps of large deformation and the
+// small-deformation active set without load curves.  A case it
 // cannot precondition is refused in one line, for the same reason, whether
 // the case file or the command line asks for it (run and study), and
 // nothing is written.
@@ -42,14 +43,16 @@ TEST(PetscRefusal, SameReasonFromTheFileAndTheCommandLine) {
   };
   const std::vector<Refused> cases = {
       {"cases/cattaneo_mindlin.toml",
-       "the spline multigrid preconditions frictionless contact only, not the friction = 0.3 of contact face 'arc' "
-       "(its iterations solve with the PETSc options' solver, default MUMPS LU); leave preconditioner at \"options\""},
+       "the spline multigrid needs the multipliers apart from the displacements, and the friction = 0.3 of contact "
+       "face 'arc' solves them in one block with the displacements; leave preconditioner at \"options\" (default "
+       "MUMPS LU)"},
       {"tests/data/curve_contact.toml",
-       "the spline multigrid preconditions a run without load curves only (the case has a curve); leave "
-       "preconditioner at \"options\""},
-      {"cases/hertz2d_neohookean_pressure.toml",
-       "the spline multigrid preconditions the small-deformation solve only, not the Newton steps of the neo_hookean "
-       "law; leave preconditioner at \"options\" (default MUMPS LU)"},
+       "the spline multigrid preconditions a small-deformation run without load curves only (the case has a curve); "
+       "leave preconditioner at \"options\""},
+      {"cases/oring_friction.toml",
+       "the spline multigrid needs the multipliers apart from the displacements, and the friction = 0.3 of contact "
+       "face 'outside' solves them in one block with the displacements; leave preconditioner at \"options\" (default "
+       "MUMPS LU)"},
   };
   for (const Refused& r : cases) {
     TempDir tmp("petscrefused");

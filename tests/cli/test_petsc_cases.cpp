@@ -215,28 +215,20 @@ double largest_final_residual(const fs::path& run) {
   return largest;
 }
 
-// `preconditioner = "algebraic_multigrid"` (FGMRES, a Schur field split,
-// GAMG on the displacements) on every route it serves: the Newton steps of
-// large deformation with a body held by contact alone and a follower load
-// (hertz3d_neohookean: the augmented Lagrangian makes the displacement
-// block definite), in the symmetric form (oring), between two bodies
-// (roller_on_block_neohookean), the small-deformation active set
-// (hertz2d) and a solve without multipliers (lame_cylinder: the whole
-// matrix is the displacement field).  The same results as the direct solver on one
-// process and two, to what the iterative solves leave undecided: the final
-// Newton residual (the larger of the two runs) times the condition
-// estimate, or the active-set solve's Krylov tolerance 1e-11.
-class PetscAlgebraicMultigrid : public WithPetsc {};
-
-TEST_P(PetscAlgebraicMultigrid, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
-  const std::string name = GetParam();
-  igac_test::TempDir tmp("petsc_amg_" + name);
-  const std::string c = quote((kSource / "cases" / (name + ".toml")).string());
+// A multigrid's runs (`preconditioner`, with `extra` arguments) against the
+// direct solver's, on one process and two: the same results to what the
+// iterative solves leave undecided: the final Newton residual (the larger of
+// the two runs) times the condition estimate, or the active-set solve's
+// Krylov tolerance (small deformation).
+void expect_multigrid_matches_direct(const std::string& name, const fs::path& case_path, const std::string& extra,
+                                     const std::string& preconditioner, double active_set_tolerance) {
+  igac_test::TempDir tmp("petsc_" + preconditioner + "_" + name);
+  const std::string c = quote(case_path.string()) + extra;
   auto o = igac_test::run_igac("run " + c + " --quiet --out direct", tmp.path());
   ASSERT_EQ(o.exit_code, 0) << o.output;
   for (const int ranks : {1, 2}) {
-    const std::string out = "amg" + std::to_string(ranks);
-    const std::string args = "run " + c + " --quiet --out " + out + " --solver petsc --preconditioner algebraic_multigrid";
+    const std::string out = "mg" + std::to_string(ranks);
+    const std::string args = "run " + c + " --quiet --out " + out + " --solver petsc --preconditioner " + preconditioner;
     o = ranks == 1 ? igac_test::run_igac(args, tmp.path()) : run_mpi(2, args, tmp.path());
     ASSERT_EQ(o.exit_code, 0) << o.output;
     const json p = json::parse(igac_test::read_file(tmp.path() / out / "summary.json"));
@@ -244,14 +236,56 @@ TEST_P(PetscAlgebraicMultigrid, SameResultsAsTheDirectSolverOnOneAndTwoProcesses
     EXPECT_FALSE(p["solver"]["krylov_iterations"].empty());
     const double newton = std::max(largest_final_residual(tmp.path() / "direct"), largest_final_residual(tmp.path() / out));
     expect_same_results(tmp.path() / "direct", tmp.path() / out, ranks,
-                        name + " with algebraic multigrid on " + std::to_string(ranks) + " process(es)",
-                        newton > 0 ? newton : 1e-11);
+                        name + " with " + preconditioner + " on " + std::to_string(ranks) + " process(es)",
+                        newton > 0 ? newton : active_set_tolerance);
   }
+}
+
+// `preconditioner = "algebraic_multigrid"` (FGMRES, a Schur field split,
+// GAMG on the displacements) on every route it serves: the Newton steps of
+// large deformation with a body held by contact alone and a follower load
+// (hertz3d_neohookean: the augmented Lagrangian makes the displacement
+// block definite), in the symmetric form (oring), between two bodies
+// (roller_on_block_neohookean), the small-deformation active set
+// (hertz2d, Krylov tolerance 1e-11) and a solve without multipliers
+// (lame_cylinder: the whole matrix is the displacement field).
+class PetscAlgebraicMultigrid : public WithPetsc {};
+
+TEST_P(PetscAlgebraicMultigrid, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
+  const std::string name = GetParam();
+  expect_multigrid_matches_direct(name, kSource / "cases" / (name + ".toml"), "", "algebraic_multigrid", 1e-11);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, PetscAlgebraicMultigrid,
                          ::testing::Values("hertz3d_neohookean", "oring", "roller_on_block_neohookean", "hertz2d",
                                            "lame_cylinder"),
+                         case_name);
+
+// `preconditioner = "spline_multigrid"` on the Newton steps of large
+// deformation (the active set's own route is tested in test_petsc.cpp), one
+// refinement above the shipped mesh so that the hierarchy has two levels:
+// a follower load on a body held by contact alone (hertz3d_neohookean, on
+// a coarser mesh: [6, 2, 6] refined once), the symmetric form (oring), two
+// bodies with the curvature coupling outside K (roller_on_block_neohookean)
+// and the mixed formulation's condensed matrix (oring_rubber).
+class PetscSplineMultigridNewton : public WithPetsc {};
+
+TEST_P(PetscSplineMultigridNewton, SameResultsAsTheDirectSolverOnOneAndTwoProcesses) {
+  const std::string name = GetParam();
+  igac_test::TempDir tmp("coarse_" + name);
+  fs::path path = kSource / "cases" / (name + ".toml");
+  if (name == "hertz3d_neohookean") {
+    std::string s = igac_test::read_file(path);
+    const auto at = s.find("elements = [");
+    s.replace(at, s.find(']', at) - at + 1, "elements = [6, 2, 6]");
+    path = tmp.path() / (name + ".toml");
+    std::ofstream(path) << s;
+  }
+  expect_multigrid_matches_direct(name, path, " --refine 1", "spline_multigrid", 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, PetscSplineMultigridNewton,
+                         ::testing::Values("hertz3d_neohookean", "oring", "roller_on_block_neohookean", "oring_rubber"),
                          case_name);
 
 // Friction and ties solve their multipliers in one block with the

@@ -144,9 +144,9 @@ TEST(TiedContact, ThePetscSolverTakesItWithoutTheSplineMultigrid) {
   EXPECT_EQ(check_petsc_case(spec), "");
   spec.solver.preconditioner = Preconditioner::spline_multigrid;
   EXPECT_EQ(check_petsc_case(spec),
-            "the spline multigrid preconditions frictionless contact only, not the law \"tied\" of contact face "
-            "'1:south' (its iterations solve with the PETSc options' solver, default MUMPS LU); leave preconditioner "
-            "at \"options\"");
+            "the spline multigrid needs the multipliers apart from the displacements, and the law \"tied\" of contact "
+            "face '1:south' solves them in one block with the displacements; leave preconditioner at \"options\" "
+            "(default MUMPS LU)");
 }
 
 }  // namespace
