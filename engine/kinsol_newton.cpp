@@ -130,7 +130,7 @@ int jacobian_body(Attempt& a, N_Vector u, N_Vector fu) {
   if (a.halving) a.x_jacobian = x;
   a.record.residual_norms.push_back(a.relative(view(fu)));
   const auto set = a.problem.active_set(a.t, x);
-  a.record.active_set_sizes.push_back(int(std::count(set.begin(), set.end(), 1)));
+  a.record.active_set_sizes.push_back(a.problem.active_set_size(a.t, x));
   // Active-set cycling: the same set seen again after a different one, with
   // no progress in between, is a loop Newton will not leave.
   if (!set.empty()) {

@@ -280,7 +280,8 @@ bool FiniteStrainProblem::jacobian(double t, const Eigen::VectorXd& x, Eigen::Sp
 }
 
 int FiniteStrainProblem::active_set_size(double t, const Eigen::VectorXd& x) const {
-  const auto a = active_set(t, x);
+  if (m_ == 0) return 0;
+  const std::vector<char> a = decide_active(gaps_at(t, x), normal_multipliers(x));
   return int(std::count(a.begin(), a.end(), 1));
 }
 
@@ -294,8 +295,10 @@ Eigen::VectorXd FiniteStrainProblem::gaps_at(double t, const Eigen::VectorXd& x)
 std::vector<char> FiniteStrainProblem::active_set(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
   std::vector<char> set = decide_active(gaps_at(t, x), normal_multipliers(x));
-  if (friction_)  // and each multiplier's stick or slip (coded apart from the active 1s that are counted)
-    for (char st : friction_states(t, x)) set.push_back(char(10 + st));
+  if (friction_) {  // then each multiplier's FrictionState (open, stick, slip)
+    const std::vector<char> states = friction_states(t, x);
+    set.insert(set.end(), states.begin(), states.end());
+  }
   return set;
 }
 

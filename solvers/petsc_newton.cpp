@@ -82,8 +82,10 @@ struct PetscNewtonSolver::Impl {
   // algebraic multigrid needs.  W_k puts W_k B_k^T B_k at the size of K's
   // diagonal on B_k's support.  Every constraint's product is in the pattern
   // (zero while inactive), so that the pattern stays as the set changes.
-  RowMat augmentation(const BlockJacobian& J) {
-    const int n = int(J.K.rows()), m = int(J.B.rows());
+  // `size`: the rows and columns of the matrix it is added to (n + m, or
+  // the displacement block's n).
+  RowMat augmentation(const BlockJacobian& J, int size) {
+    const int m = int(J.B.rows());
     W = Eigen::VectorXd::Zero(m);
     const Eigen::VectorXd diagonal = J.K.diagonal();
     std::vector<Eigen::Triplet<double>> t;
@@ -98,7 +100,7 @@ struct PetscNewtonSolver::Impl {
       for (RowMat::InnerIterator i(J.B, k); i; ++i)
         for (RowMat::InnerIterator j(J.B, k); j; ++j) t.emplace_back(i.col(), j.col(), W[k] * i.value() * j.value());
     }
-    RowMat A(n + m, n + m);
+    RowMat A(size, size);
     A.setFromTriplets(t.begin(), t.end());
     return A;
   }
@@ -117,7 +119,7 @@ struct PetscNewtonSolver::Impl {
           if (r < n && it.col() >= n && blocks.s[it.col() - n] == 0) it.valueRef() = 0;  // an inactive column
         }
     }
-    if (augmented && blocks.B.rows() > 0) R = RowMat(R + augmentation(blocks));
+    if (augmented && blocks.B.rows() > 0) R = RowMat(R + augmentation(blocks, int(R.rows())));
     m = PetscInt(blocks.B.rows());
     general = blocks.general;
     if (new_size(PetscInt(R.rows())) || symmetric != ksp_symmetric) {
@@ -207,9 +209,11 @@ struct PetscNewtonSolver::Impl {
     symmetric = has_symmetric_form(blocks);
     constraint_form = true;
     general = false;
-    RowMat R = RowMat(assemble_condensed(blocks)).topLeftCorner(n, n);
+    // the displacement block of assemble_condensed, without its copy of the whole
+    RowMat R = blocks.K;
+    if (blocks.K_coupling.nonZeros() > 0) R = RowMat(R + RowMat(blocks.K_coupling));
     W = Eigen::VectorXd::Zero(m);
-    if (m > 0) R = RowMat(R + RowMat(augmentation(blocks).topLeftCorner(n, n)));
+    if (m > 0) R = RowMat(R + augmentation(blocks, n));
     if (new_size(PetscInt(n + m))) {
       mg.reset();  // (it borrows A)
       ksp = {};
