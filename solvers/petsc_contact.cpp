@@ -69,7 +69,6 @@ void default_option(const char* name, const char* value) {
   g_defaults.emplace_back(name + 1);
 }
 
-
 std::pair<PetscInt, PetscInt> share(PetscInt n) {
   PetscInt local = PETSC_DECIDE, first = 0;
   check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &n), "layout");
@@ -388,12 +387,8 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   const RowMat Gt = RowMat(G.transpose());
   const RowMat GtG = RowMat(Gt * G);  // pattern of the augmentation (all multipliers)
 
-  SaddleLayout L;
-  L.n = n;
-  L.m = m;
-  std::tie(L.r0, L.r1) = share(N);
-  L.r1 += L.r0;
-  L.u0 = std::min(L.r0, n), L.u1 = std::min(L.r1, n), L.l0 = std::max(L.r0, n), L.l1 = std::max(L.r1, n);
+  const auto [r0, rows] = share(N);
+  const SaddleLayout L = SaddleLayout::of(n, m, r0, r0 + rows);
   // The assembled matrix: the whole saddle-point matrix, or (multigrid) its
   // displacement block, the rest applied by SplineMultigrid's shell.
   OwnedMat A;

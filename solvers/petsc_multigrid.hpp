@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Geometric multigrid from the spline hierarchy for the PETSc contact solve
-// (solvers/petsc_contact; `[solver] preconditioner = "spline_multigrid"`).
+// Geometric multigrid from the spline hierarchy for the PETSc solves of
+// frictionless contact: the small-deformation active set
+// (solvers/petsc_contact) and the Newton steps of large deformation
+// (solvers/petsc_newton, which hands it each Newton matrix's displacement
+// block and constraint rows); `[solver] preconditioner = "spline_multigrid"`.
 //
 // The saddle-point system of one active set,
 //

@@ -218,9 +218,7 @@ struct PetscNewtonSolver::Impl {
       mg.reset();  // (it borrows A)
       ksp = {};
       row_ptr.clear();
-      layout = {.n = n, .m = m, .r0 = first, .r1 = first + local};
-      layout.u0 = std::min(layout.r0, layout.n), layout.u1 = std::min(layout.r1, layout.n);
-      layout.l0 = std::max(layout.r0, layout.n), layout.l1 = std::max(layout.r1, layout.n);
+      layout = SaddleLayout::of(n, m, first, first + local);
     }
     if (keep_rows(R, layout.u0, layout.local_u()) && A.p && symmetric == ksp_symmetric) {
       refill(layout.u0);
@@ -234,10 +232,10 @@ struct PetscNewtonSolver::Impl {
       ksp = {};
       mg.reset();
       // ICC(0) in the natural order: in reverse Cuthill-McKee order (the
-      // small-deformation route's choice, docs/petsc.md) the smoother broke
-      // down on the O-ring's Newton matrices (2D, 17k unknowns: 2000 Krylov
-      // iterations); in the natural order 4 to 7, and on the 3D Hertz sphere
-      // the same iterations as RCM (177 and 178 over 26 solves).
+      // small-deformation route's choice) the smoother broke down on the
+      // O-ring's Newton matrices, and on the 3D Hertz sphere both orders take
+      // the same iterations (measured: docs/petsc.md, "Krylov: the spline
+      // multigrid on the Newton steps").
       default_option("-u_mg_levels_sub_pc_factor_mat_ordering_type", "natural");
       mg.emplace(A, blocks.B, W, blocks.d, layout, *hierarchy);
     }
@@ -272,9 +270,9 @@ struct PetscNewtonSolver::Impl {
   // PETSc solves, whose rows differ: the constraint form divides the active
   // rows by s_k, and the augmentation adds B_A^T W (c_A - B_A du) to the
   // displacement rows' residual, W of the size of K.  On the nearly
-  // incompressible O-ring (W of the bulk modulus' size) a PETSc residual
-  // 1e-6 of its right-hand side left J's 10 to 100 times |b|: the Newton
-  // step failed its line search at every increment.
+  // incompressible O-ring (W of the bulk modulus' size) PETSc's own test
+  // stopped with J's residual larger than |b|, and every Newton step failed
+  // its line search (docs/petsc.md, "The linear backend").
   static PetscErrorCode stop_test(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* self) {
     PetscFunctionBeginUser;
     Impl& I = *static_cast<Impl*>(self);
@@ -352,13 +350,7 @@ struct PetscNewtonSolver::Impl {
         throw PetscOptionError(
             "-pc_type fieldsplit: this matrix has no multipliers apart from the displacements (friction and ties "
             "solve them in one block); use a direct solver or a preconditioner of the whole matrix");
-      SaddleLayout L;
-      L.n = N - m;
-      L.m = m;
-      L.r0 = first;
-      L.r1 = first + local;
-      L.u0 = std::min(L.r0, L.n), L.u1 = std::min(L.r1, L.n), L.l0 = std::max(L.r0, L.n), L.l1 = std::max(L.r1, L.n);
-      set_fields(pc, A, near_null, L, fields);
+      set_fields(pc, A, near_null, SaddleLayout::of(N - m, m, first, first + local), fields);
     }
   }
 

@@ -22,7 +22,11 @@
 // the fields `u` and `lambda` and the rigid motions of each body as u's
 // near null space, and a matrix without multipliers is all field u.
 // Friction's and ties' matrices (BlockJacobian::general) have no fields
-// apart: a field split is refused there.  While the pattern of the
+// apart: a field split is refused there.  Given a spline hierarchy, the
+// displacement block K + B_A^T W B_A alone is assembled and FGMRES runs
+// with SplineMultigrid (solvers/petsc_multigrid.hpp) on the constraint form.
+// Any Krylov solve stops on the residual of J itself, not of the modified
+// matrix PETSc iterates on.  While the pattern of the
 // matrix stays (it does unless the active set changes which rows a curved
 // master couples), the matrix is refilled in place and the factorisation
 // keeps its symbolic analysis; a new pattern builds a new matrix.

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <petscksp.h>
 #include <string>
 #include <utility>
@@ -70,6 +71,11 @@ struct SaddleLayout {
   PetscInt n = 0, m = 0, r0 = 0, r1 = 0, u0 = 0, u1 = 0, l0 = 0, l1 = 0;
   PetscInt local_u() const { return u1 - u0; }
   PetscInt local_l() const { return l1 - l0; }
+  // n displacements and m multipliers of which this process owns rows [r0, r1).
+  static SaddleLayout of(PetscInt n, PetscInt m, PetscInt r0, PetscInt r1) {
+    return {.n = n, .m = m, .r0 = r0, .r1 = r1, .u0 = std::min(r0, n), .u1 = std::min(r1, n),
+            .l0 = std::max(r0, n), .l1 = std::max(r1, n)};
+  }
 };
 
 // The two fields of a field split over a SaddleLayout, named `u` and
