@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/block_jacobian.hpp"
 
+#include <algorithm>
+#include <utility>
+#include <vector>
+
 namespace igac {
 namespace {
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
@@ -31,6 +35,67 @@ Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J) {
   A.setFromTriplets(t.begin(), t.end());
   A.makeCompressed();
   return A;
+}
+
+RowSparse condensed_rows(const BlockJacobian& J, int begin, int end, int columns, const RowSparse* extra) {
+  const int n = int(J.K.rows()), m = int(J.B.rows()), rows = end - begin;
+  if (columns < 0) columns = n + m;
+  const auto mine = [&](int row) { return row >= begin && row < end; };
+  // every entry (row, col, value) of the condensed J (and `extra`) in the rows and columns asked for
+  const auto for_each_entry = [&](auto&& take) {
+    for (const Eigen::SparseMatrix<double>* A : {&J.K, &J.K_coupling})
+      for (int c = 0; c < std::min(int(A->outerSize()), columns); ++c)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(*A, c); it; ++it)
+          if (mine(int(it.row()))) take(int(it.row()), c, it.value());
+    for (int k = 0; k < m; ++k) {
+      const int row = n + k;
+      for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
+        if (mine(int(it.col())) && row < columns) take(int(it.col()), row, it.value());
+        if (mine(row)) take(row, int(it.col()), J.s[k] * it.value());
+      }
+      if (mine(row) && row < columns) take(row, row, J.d[k]);
+    }
+    if (extra)
+      for (int r = std::max(begin, 0); r < std::min(end, int(extra->rows())); ++r)
+        for (RowSparse::InnerIterator it(*extra, r); it; ++it)
+          if (it.col() < columns) take(r, int(it.col()), it.value());
+  };
+  // two passes into the result's own arrays (counted, then placed), then
+  // each row sorted and its repeated columns summed in place
+  std::vector<int> start(size_t(rows) + 1, 0);
+  for_each_entry([&](int row, int, double) { ++start[size_t(row - begin) + 1]; });
+  for (int r = 0; r < rows; ++r) start[size_t(r) + 1] += start[size_t(r)];
+  RowSparse R(rows, columns);
+  R.resizeNonZeros(start.back());
+  std::vector<int> next(start.begin(), start.end() - 1);
+  int* col = R.innerIndexPtr();
+  double* val = R.valuePtr();
+  for_each_entry([&](int row, int c, double v) {
+    const int at = next[size_t(row - begin)]++;
+    col[at] = c;
+    val[at] = v;
+  });
+  std::vector<std::pair<int, double>> row_entries;
+  int kept = 0;
+  int* outer = R.outerIndexPtr();
+  for (int r = 0; r < rows; ++r) {
+    row_entries.clear();
+    for (int k = start[size_t(r)]; k < start[size_t(r) + 1]; ++k) row_entries.emplace_back(col[k], val[k]);
+    std::stable_sort(row_entries.begin(), row_entries.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    outer[r] = kept;
+    for (size_t k = 0; k < row_entries.size(); ++k) {
+      if (k > 0 && row_entries[k].first == row_entries[k - 1].first) {
+        val[kept - 1] += row_entries[k].second;
+      } else {
+        col[kept] = row_entries[k].first;
+        val[kept++] = row_entries[k].second;
+      }
+    }
+  }
+  outer[rows] = kept;
+  R.resizeNonZeros(kept);
+  return R;
 }
 
 Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {

@@ -21,13 +21,11 @@
 namespace igac {
 
 struct BlockJacobian {
-  Eigen::SparseMatrix<double> K;
-  // Optional: the symmetric matrix to factorise in K's place (K's pattern);
-  // empty: (K + K^T) / 2.
-  Eigen::SparseMatrix<double> K_factor;
-  // Optional: a part of the displacement block outside K's pattern, so
-  // that J's K is K + K_coupling (empty: none).  The factor leaves it out
-  // and GMRES applies it, as it does the follower load's skew part: the
+  Eigen::SparseMatrix<double> K;  // a factorisation uses (K + K^T) / 2
+  // Optional: a part of the displacement block beside K, so that J's is
+  // K + K_coupling (empty: none).  A factorisation leaves it out and GMRES
+  // applies it: the follower pressures' load stiffness (unsymmetric, on the
+  // loaded faces' pattern; engine/follower_pressure.hpp) and the
   // large-deformation mortar contact's curvature terms that couple two
   // bodies' control points (contact/finite_strain_mortar.hpp), which no
   // element of either body joins.  Its pattern may change every call.
@@ -66,6 +64,17 @@ Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J);
 // J without the local unknowns (Local condensed): n + m rows, K + K_coupling
 // in the displacement block, the constraint rows and columns.
 Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J);
+
+// Rows [begin, end) of assemble_condensed(J) + `extra` (when given: a
+// matrix of the condensed J's size, e.g. an augmented Lagrangian's
+// B^T W B), in its first `columns` columns (-1: all), as a matrix of
+// end - begin rows: what one process hands to a distributed solver, built
+// without a copy of the whole (K is read in place).  Entries of the pattern
+// whose value is zero are kept (the pattern stays as the values change);
+// the columns of each row increase.
+Eigen::SparseMatrix<double, Eigen::RowMajor> condensed_rows(
+    const BlockJacobian& J, int begin, int end, int columns = -1,
+    const Eigen::SparseMatrix<double, Eigen::RowMajor>* extra = nullptr);
 
 // A right-hand side b of the whole J (local unknowns last) condensed to
 // assemble_condensed's rows: b_u += C^T diag(g) b_z / h; and the local part

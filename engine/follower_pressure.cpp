@@ -98,6 +98,23 @@ void check_shapes(const Body& body, const DofMap& dofs, const Eigen::VectorXd& f
 
 }  // namespace
 
+Eigen::SparseMatrix<double> follower_pressure_pattern(const Body& body, const DofMap& dofs,
+                                                      const std::vector<PatchSide>& faces) {
+  const FaceQuadrature quad(body, faces, 1);  // (the elements' functions only)
+  std::vector<int> eq;
+  std::vector<Eigen::Triplet<double>> t;
+  quad.for_each_element([&](int, const auto& v) {
+    dofs.element_equations(v.cps, eq);
+    for (const int a : eq)
+      for (const int b : eq)
+        if (a >= 0 && b >= 0) t.emplace_back(a, b, 0.0);
+  });
+  Eigen::SparseMatrix<double> K(dofs.num_free(), dofs.num_free());
+  K.setFromTriplets(t.begin(), t.end());
+  K.makeCompressed();
+  return K;
+}
+
 void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                            const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K) {
   check_shapes(body, dofs, f_ext);

@@ -52,6 +52,13 @@ namespace igac {
 void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                            const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K);
 
+// The pattern of the load stiffness of add_follower_pressure on `faces`
+// (free x free, every coupling of two equations of one face element, values
+// zero): a matrix of the faces' size to receive it apart from the volume's
+// tangent.
+Eigen::SparseMatrix<double> follower_pressure_pattern(const Body& body, const DofMap& dofs,
+                                                      const std::vector<PatchSide>& faces);
+
 // Adds the external force of a dead pressure p (acting on the reference face
 // with its reference normal, independent of u: no load stiffness).
 void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,

@@ -229,9 +229,7 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   // K_s values, rigid motions pinned
   const double* kv = J.K.valuePtr();
   double* sv = I.Ks.valuePtr();
-  if (J.K_factor.nonZeros() == J.K.nonZeros()) std::copy(J.K_factor.valuePtr(), J.K_factor.valuePtr() + J.K.nonZeros(), sv);
-  else
-    for (int p = 0; p < int(I.Ks.nonZeros()); ++p) sv[p] = 0.5 * (kv[p] + kv[I.transpose_of[p]]);
+  for (int p = 0; p < int(I.Ks.nonZeros()); ++p) sv[p] = 0.5 * (kv[p] + kv[I.transpose_of[p]]);
   I.pinned.assign(I.n, 0);
   for (int p : J.pinned) I.pinned[p] = 1;
   if (!J.pinned.empty())

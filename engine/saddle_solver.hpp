@@ -15,14 +15,13 @@
 //      [ S_AA       -B_A R ] [l_A]   [ B_A K_s^-1 f - b_A / s_A ]
 //      [ -R^T B_A^T    0   ] [ c ] = [ -R^T f                   ],
 //    then du = K_s^-1 (f - B_A^T l_A) + R c (one forward, one backward solve);
-//  - K itself is not symmetric when a follower pressure acts (its load
-//    stiffness): the solve of that symmetric-part system preconditions GMRES
-//    on J (right preconditioning; the skew part is of the order of the
-//    pressure over the stiffness), and GMRES also absorbs what makes
-//    K_s R != 0 (the curvature of a curved obstacle) and K_coupling.  A problem may hand
-//    over the symmetric matrix to factorise (K_factor; the large-deformation
-//    problem gives K without the follower load stiffness, which keeps
-//    K_s R = 0).  For a symmetric K one application is exact.
+//  - J is not symmetric when a follower pressure acts (its load stiffness,
+//    handed over beside K as K_coupling, which keeps K_s R = 0): the solve
+//    of the symmetric-part system preconditions GMRES on J (right
+//    preconditioning; the skew part is of the order of the pressure over
+//    the stiffness), and GMRES also absorbs what makes K_s R != 0 (the
+//    curvature of a curved obstacle) and the rest of K_coupling.  For a
+//    symmetric K and no K_coupling one application is exact.
 // When K_s is not positive definite (a buckling state, a law without
 // convexity) or GMRES stalls, that Newton iteration falls back to UMFPACK
 // on the whole J: never a wrong step, only a slower one.

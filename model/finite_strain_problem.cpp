@@ -23,6 +23,11 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (s_.patch_laws.empty()) s_.patch_laws.assign(1, s_.law);
   if (s_.patch_formulations.empty()) s_.patch_formulations.assign(1, s_.formulation);
   tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, s_.patch_laws, s_.patch_formulations);
+  if (s_.follower_pressure && !s_.pressures.empty()) {
+    std::vector<PatchSide> loaded;
+    for (const auto& p : s_.pressures) loaded.insert(loaded.end(), p.faces.begin(), p.faces.end());
+    load_stiffness_ = follower_pressure_pattern(*s_.body, *s_.dofs, loaded);
+  }
   if (s_.incompressibility_tolerance > 0) tl_->make_incompressible(s_.incompressibility_tolerance);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   if (s_.body_force.size() > 0 && s_.body_force.norm() > 0)
@@ -218,6 +223,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   J.rigid_modes = modes_.modes;
   J.pinned = modes_.pinned;
   J.general = false;
+  J.K_coupling.resize(n_, n_);  // (empty)
   std::vector<char> active;
   Eigen::VectorXd gamma;
   if (m_ > 0) {
@@ -229,23 +235,23 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     active = decide_active(ce.gamma, lambda);
     gamma = ce.gamma;
     J.B.setFromTriplets(ce.G.begin(), ce.G.end());
-    J.K_coupling.resize(n_, n_);
     J.K_coupling.setFromTriplets(coupling.begin(), coupling.end());
     for (int K = 0; K < m_; ++K) {
       if (active[K]) J.s[K] = s_.complementarity_scale;
       else J.d[K] = weights_[K];
     }
   }
-  // The follower load stiffness is the only unsymmetric part: the solver
-  // factorises K without it (symmetric, and K R = 0 for the translations
-  // that contact holds) and lets GMRES add it.
-  const bool follower = s_.follower_pressure && !s_.pressures.empty();
-  if (follower) {
-    if (J.K_factor.nonZeros() != J.K.nonZeros()) J.K_factor = J.K;
-    else std::copy(J.K.valuePtr(), J.K.valuePtr() + J.K.nonZeros(), J.K_factor.valuePtr());
-    for (const auto& p : s_.pressures) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, &J.K);
-  } else {
-    J.K_factor.resize(0, 0);
+  // The follower load stiffness is the only unsymmetric part: it goes
+  // beside K (K_coupling), which a solver factorises without it (symmetric,
+  // and K R = 0 for the translations that contact holds), and GMRES adds it.
+  const bool loaded = std::any_of(s_.pressures.begin(), s_.pressures.end(),
+                                  [&](const PressureLoad& p) { return p.curve(t) * p.value != 0; });
+  if (load_stiffness_.size() > 0 && loaded) {
+    std::fill(load_stiffness_.valuePtr(), load_stiffness_.valuePtr() + load_stiffness_.nonZeros(), 0.0);
+    for (const auto& p : s_.pressures)
+      add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, &load_stiffness_);
+    if (J.K_coupling.nonZeros() > 0) J.K_coupling = Eigen::SparseMatrix<double>(J.K_coupling + load_stiffness_);
+    else J.K_coupling = load_stiffness_;
   }
   if (friction_) {  // the whole matrix: the slip rows tie lambda_t to lambda_n and gamma
     const Eigen::SparseMatrix<double> normal = assemble_full(J);
@@ -258,7 +264,6 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     J.K.resize(n_ + m_ + mt_, n_ + m_ + mt_);  // the dilatations condensed (J.local, below)
     J.K.setFromTriplets(trip.begin(), trip.end());
     J.K.makeCompressed();
-    J.K_factor.resize(0, 0);
     J.K_coupling.resize(0, 0);
     J.B.resize(0, n_ + m_ + mt_);
     J.s.resize(0);

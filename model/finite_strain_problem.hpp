@@ -216,6 +216,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd weights_;          // K_K
   RigidModes modes_;                 // of the free displacements
   BlockJacobian blocks_;             // jacobian()'s, reused across calls
+  // The follower pressures' load stiffness, of the loaded faces' pattern
+  // (follower_pressure_pattern; empty: no follower load): handed over as
+  // BlockJacobian::K_coupling, so that K stays the symmetric tangent a
+  // factorisation uses, without a copy of it.
+  Eigen::SparseMatrix<double> load_stiffness_;
   std::vector<ContactQuadrature> contact_quadratures_;  // per contact: tabulated once
   mutable std::vector<MortarPointCache> mortar_points_;  // per contact: its last state's mortar points
   std::vector<int> offsets_;         // first multiplier of each contact

@@ -27,9 +27,8 @@ struct PetscNewtonSolver::Impl {
   PetscInt N = -1, first = 0, local = 0;  // rows [first, first + local) are this process's
   PetscInt m = 0;                         // of which the last m are multipliers
   bool general = false;                   // (BlockJacobian::general)
-  // The owned rows' pattern (row pointers from 0, global columns) and values.
+  // The owned rows' pattern (row pointers from 0, global columns).
   std::vector<PetscInt> row_ptr, cols;
-  std::vector<PetscScalar> values;
   OwnedMat A;
   OwnedKSP ksp;
   OwnedVec b, x, x_all;
@@ -67,10 +66,22 @@ struct PetscNewtonSolver::Impl {
   // the same pattern, which MUMPS factorises as L D L^T (about half LU's work).
   static bool has_symmetric_form(const BlockJacobian& J) {
     if (J.general || J.K_coupling.nonZeros() > 0 || J.K.rows() != J.K.cols()) return false;
-    const Eigen::SparseMatrix<double> D = Eigen::SparseMatrix<double>(J.K.transpose()) - J.K;
+    // K(r, c) against K(c, r), found in column r (compressed, rows
+    // increasing): no transpose of the whole
+    const Eigen::SparseMatrix<double>& K = J.K;
+    if (!K.isCompressed()) return false;
+    const int* outer = K.outerIndexPtr();
+    const int* inner = K.innerIndexPtr();
+    const double* value = K.valuePtr();
     double largest = 0, skew = 0;
-    for (int k = 0; k < J.K.nonZeros(); ++k) largest = std::max(largest, std::abs(J.K.valuePtr()[k]));
-    for (int k = 0; k < D.nonZeros(); ++k) skew = std::max(skew, std::abs(D.valuePtr()[k]));
+    for (int c = 0; c < K.outerSize(); ++c)
+      for (int k = outer[c]; k < outer[c + 1]; ++k) {
+        const int r = inner[k];
+        largest = std::max(largest, std::abs(value[k]));
+        const int* at = std::lower_bound(inner + outer[r], inner + outer[r + 1], c);
+        const double mirror = at != inner + outer[r + 1] && *at == c ? value[at - inner] : 0.0;
+        skew = std::max(skew, std::abs(value[k] - mirror));
+      }
     return skew <= 1e-13 * largest;
   }
 
@@ -107,26 +118,30 @@ struct PetscNewtonSolver::Impl {
 
   // This process's rows of the condensed J (in the symmetric form where it
   // has one); true when their pattern is the last one's.
-  bool take_rows(const BlockJacobian& blocks) {
-    RowMat R = assemble_condensed(blocks);
+  bool take_rows(const BlockJacobian& blocks, RowMat& R) {
     symmetric = has_symmetric_form(blocks);
     constraint_form = symmetric;
-    if (symmetric) {
-      const int n = int(blocks.K.rows());
-      for (int r = 0; r < R.outerSize(); ++r)
-        for (RowMat::InnerIterator it(R, r); it; ++it) {
-          if (r >= n && blocks.s[r - n] != 0) it.valueRef() /= blocks.s[r - n];  // an active row
-          if (r < n && it.col() >= n && blocks.s[it.col() - n] == 0) it.valueRef() = 0;  // an inactive column
-        }
-    }
-    if (augmented && blocks.B.rows() > 0) R = RowMat(R + augmentation(blocks, int(R.rows())));
     m = PetscInt(blocks.B.rows());
     general = blocks.general;
-    if (new_size(PetscInt(R.rows())) || symmetric != ksp_symmetric) {
+    const int n = int(blocks.K.rows()), size = n + int(m);
+    if (new_size(PetscInt(size)) || symmetric != ksp_symmetric) {
       row_ptr.clear();
       ksp = {};  // a KSP keeps its first operator's sizes and its factorisation's kind
     }
-    return keep_rows(R, first, local);
+    // this process's rows of the condensed J (every process holds J: no copy of the whole)
+    std::optional<RowMat> extra;
+    if (augmented && m > 0) extra = augmentation(blocks, size);
+    R = condensed_rows(blocks, int(first), int(first + local), -1, extra ? &*extra : nullptr);
+    if (symmetric)
+      for (int r = 0; r < R.outerSize(); ++r) {
+        const int row = int(first) + r;
+        for (RowMat::InnerIterator it(R, r); it; ++it) {
+          if (row >= n && blocks.s[row - n] != 0) it.valueRef() /= blocks.s[row - n];  // an active row
+          // an inactive column (moved to the right-hand side; the augmentation is zero there)
+          if (row < n && it.col() >= n && blocks.s[it.col() - n] == 0) it.valueRef() = 0;
+        }
+      }
+    return keep_rows(R);
   }
 
   // A new number of unknowns N (friction's iterations: they come and go):
@@ -144,32 +159,33 @@ struct PetscNewtonSolver::Impl {
     return true;
   }
 
-  // Rows [begin_row, begin_row + count) of R as this process's part of the
-  // matrix; true when every process's pattern is the last one's.
-  bool keep_rows(const RowMat& R, PetscInt begin_row, PetscInt count) {
+  // R (this process's rows, all columns) as its part of the matrix: its
+  // pattern kept to compare with the next; true when every process's
+  // pattern is the last one's.
+  bool keep_rows(const RowMat& R) {
     const int* outer = R.outerIndexPtr();
-    const int begin = outer[begin_row], end = outer[begin_row + count];
-    bool same = PetscInt(row_ptr.size()) == count + 1 && PetscInt(cols.size()) == end - begin;
-    for (PetscInt r = 0; same && r <= count; ++r) same = row_ptr[r] == outer[begin_row + r] - begin;
-    for (int k = begin; same && k < end; ++k) same = cols[k - begin] == R.innerIndexPtr()[k];
+    const PetscInt count = R.rows();
+    const int nnz = outer[count];
+    bool same = PetscInt(row_ptr.size()) == count + 1 && PetscInt(cols.size()) == nnz;
+    for (PetscInt r = 0; same && r <= count; ++r) same = row_ptr[r] == outer[r];
+    for (int k = 0; same && k < nnz; ++k) same = cols[k] == R.innerIndexPtr()[k];
     int mine = same ? 1 : 0, all = 0;  // a new pattern anywhere: a new matrix everywhere
     MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
-    row_ptr.resize(count + 1);
-    for (PetscInt r = 0; r <= count; ++r) row_ptr[r] = outer[begin_row + r] - begin;
-    cols.assign(R.innerIndexPtr() + begin, R.innerIndexPtr() + end);
-    values.assign(R.valuePtr() + begin, R.valuePtr() + end);
+    row_ptr.assign(outer, outer + count + 1);
+    cols.assign(R.innerIndexPtr(), R.innerIndexPtr() + nnz);
     return all == 1;
   }
 
-  // A matrix of the kept rows: `rows` of `size` (square) on this process.
-  void new_matrix(PetscInt rows, PetscInt size) {
+  // A matrix of the kept rows of values R's: `rows` of `size` (square) on this process.
+  void new_matrix(const RowMat& R, PetscInt rows, PetscInt size) {
+    const PetscScalar* values = R.valuePtr();
     OwnedMat M;
     check(MatCreate(PETSC_COMM_WORLD, &M), "matrix");
     check(MatSetSizes(M, rows, rows, size, size), "matrix");
     check(MatSetType(M, MATAIJ), "matrix");
     // (each call is a no-op on the other type: SEQAIJ on one process, MPIAIJ on more)
-    check(MatSeqAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
-    check(MatMPIAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values.data()), "matrix");
+    check(MatSeqAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values), "matrix");
+    check(MatMPIAIJSetPreallocationCSR(M, row_ptr.data(), cols.data(), values), "matrix");
     if (symmetric) check(MatSetOption(M, MAT_SYMMETRIC, PETSC_TRUE), "matrix");
     A = std::move(M);
   }
@@ -180,10 +196,12 @@ struct PetscNewtonSolver::Impl {
     check(VecScatterCreateToAll(x, &to_all, &x_all), "vector");
   }
 
-  void refill(PetscInt first_row) {
+  // The kept pattern's values from R (this process's rows), the first of them row first_row.
+  void refill(const RowMat& R, PetscInt first_row) {
+    const PetscScalar* values = R.valuePtr();
     for (PetscInt r = 0; r + 1 < PetscInt(row_ptr.size()); ++r) {
       const PetscInt row = first_row + r, count = row_ptr[r + 1] - row_ptr[r];
-      check(MatSetValues(A, 1, &row, count, cols.data() + row_ptr[r], values.data() + row_ptr[r], INSERT_VALUES),
+      check(MatSetValues(A, 1, &row, count, cols.data() + row_ptr[r], values + row_ptr[r], INSERT_VALUES),
             "matrix");
     }
     check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "matrix");
@@ -209,23 +227,24 @@ struct PetscNewtonSolver::Impl {
     symmetric = has_symmetric_form(blocks);
     constraint_form = true;
     general = false;
-    // the displacement block of assemble_condensed, without its copy of the whole
-    RowMat R = blocks.K;
-    if (blocks.K_coupling.nonZeros() > 0) R = RowMat(R + RowMat(blocks.K_coupling));
-    W = Eigen::VectorXd::Zero(m);
-    if (m > 0) R = RowMat(R + augmentation(blocks, n));
     if (new_size(PetscInt(n + m))) {
       mg.reset();  // (it borrows A)
       ksp = {};
       row_ptr.clear();
       layout = SaddleLayout::of(n, m, first, first + local);
     }
-    if (keep_rows(R, layout.u0, layout.local_u()) && A.p && symmetric == ksp_symmetric) {
-      refill(layout.u0);
+    // this process's rows of the condensed J's displacement block
+    W = Eigen::VectorXd::Zero(m);
+    std::optional<RowMat> extra;
+    if (m > 0) extra = augmentation(blocks, n);
+    const RowMat R = condensed_rows(blocks, int(layout.u0), int(layout.u0 + layout.local_u()), n,
+                                    extra ? &*extra : nullptr);
+    if (keep_rows(R) && A.p && symmetric == ksp_symmetric) {
+      refill(R, layout.u0);
     } else {
       mg.reset();
       ksp = {};
-      new_matrix(layout.local_u(), n);
+      new_matrix(R, layout.local_u(), n);
     }
     ksp_symmetric = symmetric;
     if (!mg || !mg->set_constraints(blocks.B, W, blocks.d)) {
@@ -411,10 +430,11 @@ bool PetscNewtonSolver::setup(const BlockJacobian& J) {
     why_ = I.mg->setup_failure();
     return why_.empty();
   }
-  if (I.take_rows(J) && I.A.p) {
-    I.refill(I.first);
+  RowMat R;
+  if (I.take_rows(J, R) && I.A.p) {
+    I.refill(R, I.first);
   } else {
-    I.new_matrix(I.local, I.N);
+    I.new_matrix(R, I.local, I.N);
     I.new_vectors(I.A);
   }
   stats_.schur_s += clock.seconds();  // (here: the matrix handed to PETSc)

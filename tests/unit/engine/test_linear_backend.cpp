@@ -9,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "engine/block_jacobian.hpp"
 #include "engine/load_stepping.hpp"
@@ -50,7 +52,6 @@ class SpringsOnAStop final : public NonlinearProblem {
     C.insert(0, 1) = 1;
     const Eigen::MatrixXd CtgC = Eigen::MatrixXd(Eigen::SparseMatrix<double>(C.transpose()) * C) * gz;
     J.K = (K + CtgC).sparseView();
-    J.K_factor.resize(0, 0);
     J.B.resize(1, 2);
     J.B.insert(0, 0) = 1;
     J.s.resize(1);
@@ -126,4 +127,48 @@ TEST(LinearBackend, TheInjectedBackendSolvesEveryStepAndGivesTheDirectRun) {
   ASSERT_EQ(a.steps.size(), b.steps.size());
   for (size_t i = 0; i < a.steps.size(); ++i) EXPECT_EQ(a.steps[i].newton_iterations, b.steps[i].newton_iterations);
   EXPECT_LE((direct - dense).cwiseAbs().maxCoeff(), 1e-13);
+}
+
+TEST(BlockJacobianRows, AnyRangeOfRowsIsThoseOfTheWholeCondensedMatrix) {
+  // What a process hands to a distributed solver: its rows of
+  // assemble_condensed(J) + extra, built without the whole; K_coupling
+  // overlapping K's pattern (a follower load) and beside it (two bodies).
+  const int n = 7, m = 3;
+  BlockJacobian J;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n), Kc = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = std::max(0, i - 2); j <= std::min(n - 1, i + 2); ++j) K(i, j) = 1.0 + 0.1 * i + 0.01 * j;
+  Kc(1, 2) = 0.5;   // inside K's pattern
+  Kc(0, 6) = -0.25;  // beside it
+  J.K = K.sparseView();
+  J.K.coeffRef(3, 3) = 0.0;  // an explicit zero of the pattern stays
+  J.K_coupling = Kc.sparseView();
+  J.B.resize(m, n);
+  J.B.insert(0, 0) = 1.0;
+  J.B.insert(0, 4) = 2.0;
+  J.B.insert(1, 5) = -1.0;
+  J.B.insert(2, 6) = 3.0;
+  J.s = Eigen::Vector3d(10.0, 0.0, 5.0);
+  J.d = Eigen::Vector3d(0.0, 2.0, 0.0);
+  Eigen::SparseMatrix<double, Eigen::RowMajor> extra(n + m, n + m);
+  extra.insert(4, 0) = 0.125;
+  extra.insert(9, 9) = 4.0;
+  const Eigen::MatrixXd whole = Eigen::MatrixXd(assemble_condensed(J)) + Eigen::MatrixXd(extra);
+  for (const auto& [begin, end, columns] : {std::tuple{0, n + m, -1}, {0, 4, -1}, {4, 9, -1}, {6, n + m, -1},
+                                            {2, n, n}, {0, 0, -1}}) {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> R = condensed_rows(J, begin, end, columns, &extra);
+    const int cols = columns < 0 ? n + m : columns;
+    ASSERT_EQ(R.rows(), end - begin);
+    ASSERT_EQ(R.cols(), cols);
+    EXPECT_EQ((Eigen::MatrixXd(R) - whole.block(begin, 0, end - begin, cols)).cwiseAbs().sum(), 0.0)
+        << begin << ", " << end;
+    for (int r = 0; r < R.outerSize(); ++r) {
+      int last = -1;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(R, r); it; ++it) {
+        EXPECT_GT(it.col(), last);  // increasing, each column once
+        last = int(it.col());
+      }
+    }
+    if (begin <= 3 && 3 < end) EXPECT_EQ(R.innerVector(3 - begin).nonZeros(), 5);  // K(3, 3) = 0 kept
+  }
 }
