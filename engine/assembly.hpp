@@ -17,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Sparse>
+#include <functional>
 #include <vector>
 
 #include "engine/body.hpp"
@@ -75,6 +76,17 @@ struct LinearSystem {
 // the cuts lie.
 struct ElementRange {
   int begin = 0, end = -1;
+};
+
+// A process's share of sums over processes (engine/ knows no MPI: the caller
+// gives the sums): its block of elements, the sum in place of an array over
+// every process, and whether a condition holds on every process.  Empty (no
+// `sum`): one process, the whole.
+struct ProcessShare {
+  ElementRange elements;
+  std::function<void(double* values, int count)> sum;
+  std::function<bool(bool)> everywhere;
+  bool distributed() const { return bool(sum); }
 };
 
 // Throws std::runtime_error when the geometry map folds (det J <= 0 at a

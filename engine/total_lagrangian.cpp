@@ -540,6 +540,21 @@ bool TotalLagrangianAssembler::assemble(const Eigen::MatrixXd& u, Eigen::VectorX
                   : assemble_dim<3>(in, colours_, function_colours_, pattern_, u, f_int, K, dilatation, local);
 }
 
+void TotalLagrangianAssembler::set_element_range(ElementRange elements) {
+  if (has_mixed())
+    throw std::invalid_argument(
+        "set_element_range: a mixed patch's pressure terms are not sums over elements; assemble it whole");
+  elements_ = elements;
+  colours_ = colour_elements(quad_, dofs_);
+  keep_range_in_colours();
+}
+
+void TotalLagrangianAssembler::keep_range_in_colours() {
+  const int begin = elements_.begin, end = elements_.end < 0 ? quad_.num_elements() : elements_.end;
+  if (begin <= 0 && end >= quad_.num_elements()) return;
+  for (std::vector<int>& colour : colours_) std::erase_if(colour, [&](int e) { return e < begin || e >= end; });
+}
+
 void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
   if (incompressibility_)
     throw std::invalid_argument(
@@ -551,6 +566,7 @@ void TotalLagrangianAssembler::set_pressure_space(PressureSpace space) {
   // the pattern (the element pattern for constants per element), the colourings
   if (tangent_) pattern_ = coupling_pattern(quad_, dofs_, space_);
   colours_ = colour_elements(quad_, dofs_);
+  keep_range_in_colours();
   // a body without a mixed patch pays for no function colours nor volumes
   const bool mixed_body = has_mixed();
   function_colours_ = mixed_body ? colour_functions(quad_, dofs_, space_) : std::vector<std::vector<int>>{};

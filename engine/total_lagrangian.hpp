@@ -134,6 +134,12 @@ class TotalLagrangianAssembler {
   int num_elements() const { return quad_.num_elements(); }
   // Whether any patch is in the mixed formulation.
   bool has_mixed() const;
+  // This process's share of a distributed run: assemble() evaluates the
+  // elements [begin, end) only, so that f_int and K are this share of sums
+  // over processes (the caller sums them).  Not with a mixed patch, whose
+  // pressure functions' terms are not sums over elements:
+  // std::invalid_argument.
+  void set_element_range(ElementRange elements);
 
   // Zero-valued matrix with the tangent's pattern (compressed, column major,
   // sorted; contains every coupling of control points that share an element,
@@ -204,6 +210,8 @@ class TotalLagrangianAssembler {
   bool tangent_ = true;
   Eigen::SparseMatrix<double> pattern_;   // with the functions' supports (constants per element: the element pattern)
   std::vector<std::vector<int>> colours_, function_colours_;  // by colour: one colour shares no equation
+  ElementRange elements_;                 // the elements assemble() evaluates (set_element_range)
+  void keep_range_in_colours();
   double min_det_J_ = 0;
   std::optional<Incompressibility> incompressibility_;
 };

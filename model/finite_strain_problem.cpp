@@ -12,6 +12,7 @@
 
 #include "contact/small_strain_friction.hpp"
 #include "engine/follower_pressure.hpp"
+#include "engine/numerical_failure.hpp"
 #include "engine/sparsity.hpp"
 
 namespace igac {
@@ -23,6 +24,10 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (s_.patch_laws.empty()) s_.patch_laws.assign(1, s_.law);
   if (s_.patch_formulations.empty()) s_.patch_formulations.assign(1, s_.formulation);
   tl_ = std::make_unique<TotalLagrangianAssembler>(*s_.body, *s_.dofs, s_.patch_laws, s_.patch_formulations);
+  if (s_.share.distributed()) {
+    if (tl_->has_mixed()) s_.share = {};  // (its pressure terms: whole on every process)
+    else tl_->set_element_range(s_.share.elements);
+  }
   if (s_.follower_pressure && !s_.pressures.empty()) {
     std::vector<PatchSide> loaded;
     for (const auto& p : s_.pressures) loaded.insert(loaded.end(), p.faces.begin(), p.faces.end());
@@ -171,6 +176,21 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
   if (gamma_start_.size()) out.gamma -= gamma_start_;  // a tie's gap counts from where it started
 }
 
+bool FiniteStrainProblem::elasticity(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
+                                     const Eigen::VectorXd* z, TotalLagrangianAssembler::LocalDilatation* local) const {
+  if (!s_.share.distributed()) return tl_->assemble(u, f_int, K, z, local);
+  bool ok = false;
+  try {
+    ok = tl_->assemble(u, f_int, K, z, local);
+  } catch (const NumericalFailure&) {
+    ok = false;  // (inadmissible: as false, and said to every process)
+  }
+  if (!s_.share.everywhere(ok)) return false;
+  s_.share.sum(f_int.data(), int(f_int.size()));
+  if (K) s_.share.sum(K->valuePtr(), int(K->nonZeros()));
+  return true;
+}
+
 std::vector<char> FiniteStrainProblem::decide_active(const Eigen::VectorXd& gamma, const Eigen::VectorXd& lambda) const {
   std::vector<char> active(m_);
   for (int K = 0; K < m_; ++K)
@@ -183,7 +203,7 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   Eigen::VectorXd f_int;
   TotalLagrangianAssembler::LocalDilatation local;
   const Eigen::VectorXd z = x.tail(nz_);
-  if (!tl_->assemble(u, f_int, nullptr, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
+  if (!elasticity(u, f_int, nullptr, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(n_);
   for (const auto& p : s_.pressures) {
     if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
@@ -215,7 +235,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   if (J.K.rows() != n_ || J.K.nonZeros() != tl_->pattern().nonZeros()) J.K = tl_->pattern();  // then filled in place
   TotalLagrangianAssembler::LocalDilatation local;
   const Eigen::VectorXd z = x.tail(nz_);
-  if (!tl_->assemble(u, f_int, &J.K, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
+  if (!elasticity(u, f_int, &J.K, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
   J.local = {};  // set last: the friction's whole matrix below is the condensed one
   J.B.resize(m_, n_);
   J.s = Eigen::VectorXd::Zero(m_);
@@ -339,7 +359,7 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   const Eigen::MatrixXd u = displacement(t, x);
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
   double scale = 0;
-  if (tl_->assemble(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
+  if (elasticity(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
   for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
   add_dead_loads(t, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());

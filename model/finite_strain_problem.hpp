@@ -103,6 +103,12 @@ struct FiniteStrainSetup {
     ContactLaw law;
   };
   std::vector<Contact> contacts;
+  // A distributed run's share (engine/assembly.hpp; empty: the whole
+  // problem here): each process evaluates the elasticity of its elements
+  // and the sums make every process's residual and tangent the whole ones;
+  // loads and contact are evaluated whole on every process.  Ignored with
+  // a mixed patch (evaluated whole on every process).
+  ProcessShare share;
   double complementarity_scale = 1;           // c, stress per length
   double mesh_size = 0;                       // h of c = E / h: friction's c_t,K (finite_strain_tangential_scales; 0: c)
   // > 0: the mixed patches are incompressible (K = infinity), their
@@ -214,6 +220,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd normal_multipliers(const Eigen::VectorXd& x) const { return x.segment(n_, m_); }
   std::unique_ptr<TotalLagrangianAssembler> tl_;
   Eigen::VectorXd weights_;          // K_K
+  // f_int and K of the elasticity (TotalLagrangianAssembler::assemble), summed
+  // over the processes of a distributed run (FiniteStrainSetup::share); false
+  // on every process when the state is inadmissible on one.
+  bool elasticity(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,
+                  const Eigen::VectorXd* z = nullptr, TotalLagrangianAssembler::LocalDilatation* local = nullptr) const;
   RigidModes modes_;                 // of the free displacements
   BlockJacobian blocks_;             // jacobian()'s, reused across calls
   // The follower pressures' load stiffness, of the loaded faces' pattern

@@ -104,6 +104,22 @@ void sum_over_processes(Eigen::VectorXd& f) {
   MPI_Allreduce(MPI_IN_PLACE, f.data(), int(f.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);  // PETSc's world
 }
 
+ProcessShare elasticity_share(const Model& m) {
+  if (!uses_petsc(m) || !PetscSession::active() || PetscSession::size() == 1) return {};
+  ProcessShare share;
+  share.elements = process_elements(m);
+  // (an Allreduce's sum is the same on every process: each decides alike)
+  share.sum = [](double* values, int count) {
+    MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  };
+  share.everywhere = [](bool mine) {
+    int here = mine ? 1 : 0, all = 0;
+    MPI_Allreduce(&here, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return all == 1;
+  };
+  return share;
+}
+
 ContactSolution solve_with_petsc(const Model& m, LinearSystem& sys, const WeightedGapOperator& op,
                                  const RigidModes& modes, const ContactSolverOptions& opt, LinearSolverRecord& record) {
   if (!PetscSession::active()) throw std::logic_error("the PETSc solver needs a PetscSession");
@@ -200,6 +216,7 @@ std::unique_ptr<LinearBackend> petsc_linear_backend(const Model& m, std::functio
                                "(`scripts/bootstrap.sh petsc` installs and builds it)", m.spec.path));
 }
 ElementRange process_elements(const Model&) { return {}; }
+ProcessShare elasticity_share(const Model&) { return {}; }
 void sum_over_processes(Eigen::VectorXd&) {}
 ContactSolution solve_with_petsc(const Model& m, LinearSystem&, const WeightedGapOperator&, const RigidModes&,
                                  const ContactSolverOptions&, LinearSolverRecord&) {

@@ -20,6 +20,10 @@ bool uses_petsc(const Model& model);
 ElementRange process_elements(const Model& model);
 // Element loads of every process summed, on every process (no-op on one).
 void sum_over_processes(Eigen::VectorXd& f);
+// The share of a large-deformation run's elasticity this process evaluates
+// (FiniteStrainSetup::share): its block of elements and the sums over
+// the processes; empty on one process or without PETSc.
+ProcessShare elasticity_share(const Model& model);
 // The contact solve in PETSc (op with no rows: the plain linear solve).
 // `system.K` is consumed (solve_contact_petsc).  Throws InputError for a bad PETSc option.
 ContactSolution solve_with_petsc(const Model& model, LinearSystem& system, const WeightedGapOperator& op,

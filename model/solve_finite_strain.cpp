@@ -144,6 +144,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
                               c.integration, c.curve, c.contact_law()});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   setup.mesh_size = m.mesh_size;
+  setup.share = elasticity_share(m);  // (several processes: each its elements)
   if (m.spec.incompressible) setup.incompressibility_tolerance = TotalLagrangianAssembler::kIncompressibilityTolerance;
   return setup;
 }

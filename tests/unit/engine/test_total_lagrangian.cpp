@@ -526,5 +526,40 @@ TEST(FollowerPressure, NewtonConvergesQuadratically) {
   EXPECT_GE(checked, 1);
 }
 
+// A distributed run's shares (set_element_range): any cut of the elements
+// gives f_int and K whose sums over the blocks are the whole body's, to
+// round-off of the order of the additions changed; a mixed patch refuses.
+TEST(TotalLagrangian, ElementRangesSumToTheWholeBody) {
+  const Geometry g = quarter_disc(1.0);
+  const NurbsPatch patch = refined(g.patch, 2, 4);
+  const DofMap dofs = quarter_disc_dofs(g, patch);
+  const auto law = make_law("neo_hookean", kMaterial);
+  const TotalLagrangianAssembler whole(patch, dofs, *law);
+  const Eigen::MatrixXd u = dofs.expand(random_state(patch, dofs, 0.01, 3));
+  Eigen::VectorXd f;
+  Eigen::SparseMatrix<double> K;
+  ASSERT_TRUE(whole.assemble(u, f, &K));
+  const int n_el = whole.num_elements();
+  for (const int cut : {1, n_el / 3, n_el - 1}) {
+    Eigen::VectorXd f_sum = Eigen::VectorXd::Zero(f.size());
+    Eigen::SparseMatrix<double> K_sum(K.rows(), K.cols());
+    for (const ElementRange range : {ElementRange{0, cut}, ElementRange{cut, -1}}) {
+      TotalLagrangianAssembler share(patch, dofs, *law);
+      share.set_element_range(range);
+      Eigen::VectorXd f_share;
+      Eigen::SparseMatrix<double> K_share;
+      ASSERT_TRUE(share.assemble(u, f_share, &K_share));
+      EXPECT_EQ(K_share.nonZeros(), K.nonZeros()) << "each share keeps the whole pattern";
+      f_sum += f_share;
+      K_sum += K_share;
+    }
+    EXPECT_LE((f_sum - f).cwiseAbs().maxCoeff(), kRoundoff * f.cwiseAbs().maxCoeff()) << "cut " << cut;
+    EXPECT_LE(max_abs(Eigen::MatrixXd(K_sum - K)), kRoundoff * max_abs(Eigen::MatrixXd(K))) << "cut " << cut;
+  }
+  TotalLagrangianAssembler mixed(patch, dofs, *law, Formulation::mixed);
+  EXPECT_THROW(mixed.set_element_range({0, 1}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace igac
+
