@@ -17,22 +17,7 @@ Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J) {
     A.makeCompressed();
     return A;
   }
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(J.K.nonZeros() + 2 * J.B.nonZeros() + m);
-  for (int c = 0; c < J.K.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
-  for (int c = 0; c < J.K_coupling.outerSize(); ++c)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
-      t.emplace_back(it.row(), it.col(), it.value());
-  for (int k = 0; k < m; ++k) {
-    for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
-      t.emplace_back(it.col(), n + k, it.value());
-      t.emplace_back(n + k, it.col(), J.s[k] * it.value());
-    }
-    t.emplace_back(n + k, n + k, J.d[k]);
-  }
-  Eigen::SparseMatrix<double> A(n + m, n + m);
-  A.setFromTriplets(t.begin(), t.end());
+  Eigen::SparseMatrix<double> A(condensed_rows(J, 0, n + m));  // (every row: the one walk of J's blocks)
   A.makeCompressed();
   return A;
 }

@@ -34,7 +34,6 @@ struct PetscNewtonSolver::Impl {
   OwnedVec b, x, x_all;
   OwnedScatter to_all;
   bool solved_once = false;
-  KSP described = nullptr;  // the KSP `method` names
   std::vector<int> iterations;
   std::string method;
   // The symmetric form (below) of the last setup, and the one the KSP was made for.
@@ -487,11 +486,8 @@ bool PetscNewtonSolver::solve(const Eigen::VectorXd& b_whole, Eigen::VectorXd& x
   I.stop_at = (tolerance > 0 ? tolerance : kTight) * rhs.b.norm();
   check(KSPSolve(I.ksp, I.b, I.x), "solve", !I.solved_once);
   if (!I.solved_once) refuse_unused_options();
-  if (!I.solved_once || I.ksp.p != I.described) {  // the method of the last KSP made (LU after L D L^T, ...)
-    I.describe();
-    I.described = I.ksp.p;
-  }
   I.solved_once = true;
+  I.describe();  // the method of this solve's KSP (a new one after a change of form: LU after L D L^T)
   PetscInt iterations = 0;
   check(KSPGetIterationNumber(I.ksp, &iterations), "solver");
   stats_.krylov_iterations += int(iterations);

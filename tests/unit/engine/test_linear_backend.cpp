@@ -130,8 +130,8 @@ TEST(LinearBackend, TheInjectedBackendSolvesEveryStepAndGivesTheDirectRun) {
 }
 
 TEST(BlockJacobianRows, AnyRangeOfRowsIsThoseOfTheWholeCondensedMatrix) {
-  // What a process hands to a distributed solver: its rows of
-  // assemble_condensed(J) + extra, built without the whole; K_coupling
+  // What a process hands to a distributed solver: its rows of the
+  // condensed J (assemble_condensed) + extra, built without the whole; K_coupling
   // overlapping K's pattern (a follower load) and beside it (two bodies).
   const int n = 7, m = 3;
   BlockJacobian J;
@@ -153,7 +153,15 @@ TEST(BlockJacobianRows, AnyRangeOfRowsIsThoseOfTheWholeCondensedMatrix) {
   Eigen::SparseMatrix<double, Eigen::RowMajor> extra(n + m, n + m);
   extra.insert(4, 0) = 0.125;
   extra.insert(9, 9) = 4.0;
-  const Eigen::MatrixXd whole = Eigen::MatrixXd(assemble_condensed(J)) + Eigen::MatrixXd(extra);
+  // the condensed J written out densely, block by block
+  Eigen::MatrixXd whole = Eigen::MatrixXd::Zero(n + m, n + m);
+  const Eigen::MatrixXd B(J.B);
+  whole.topLeftCorner(n, n) = Eigen::MatrixXd(J.K) + Kc;
+  whole.topRightCorner(n, m) = B.transpose();
+  whole.bottomLeftCorner(m, n) = J.s.asDiagonal() * B;
+  whole.bottomRightCorner(m, m) = J.d.asDiagonal();
+  whole += Eigen::MatrixXd(extra);
+  EXPECT_EQ((Eigen::MatrixXd(assemble_condensed(J)) + Eigen::MatrixXd(extra) - whole).cwiseAbs().sum(), 0.0);
   for (const auto& [begin, end, columns] : {std::tuple{0, n + m, -1}, {0, 4, -1}, {4, 9, -1}, {6, n + m, -1},
                                             {2, n, n}, {0, 0, -1}}) {
     const Eigen::SparseMatrix<double, Eigen::RowMajor> R = condensed_rows(J, begin, end, columns, &extra);
