@@ -38,6 +38,9 @@ class KinsolNewton {
     double tolerance = 1e-9;           // on max_i w_i |R_i| / force scale
     bool line_search = true;           // KINSOL's KIN_LINESEARCH, else KIN_NONE
     bool halving_line_search = false;  // the wrapper's own (LoadSteppingOptions::halving_line_search)
+    // The inner active-set loop of each Newton step
+    // (NonlinearProblem::relinearise_active_set); false: one set per step.
+    bool linearised_active_set = true;
   };
   // `problem` and `solver` must outlive this.
   KinsolNewton(NonlinearProblem& problem, LinearBackend& solver, Options options);

@@ -45,6 +45,11 @@ class LinearBackend {
   // as it goes); a direct factorisation is exact to round-off whatever the
   // tolerance.  False (with why()) when the solve fails.
   virtual bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance) = 0;
+  // J's constraint rows (s and d, engine/block_jacobian.hpp) changed since
+  // setup, nothing else did: prepare the solves again.  A backend that
+  // factorises K apart from the constraints (SaddleSolver) redoes only the
+  // active rows' Schur complement; the default sets up anew.
+  virtual bool update_constraint_rows(const BlockJacobian& J) { return setup(J); }
   virtual const std::string& why() const = 0;
   virtual const LinearSolveStats& stats() const = 0;
   // kappa_1 of the last matrix factorised, estimated; 0: not estimated.

@@ -48,7 +48,8 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
   SaddleSolver direct;
   LinearBackend& solver = opt.linear_backend ? *opt.linear_backend : direct;
   KinsolNewton newton(problem, solver,
-                      {opt.max_newton_iterations, opt.tolerance, opt.line_search, opt.halving_line_search});
+                      {opt.max_newton_iterations, opt.tolerance, opt.line_search, opt.halving_line_search,
+                       opt.linearised_active_set});
   BlockJacobian& J = newton.jacobian();
 
   double t = 0;

@@ -85,6 +85,9 @@ struct LoadSteppingOptions {
   // Every step starts from the tangent predictor, not from the last
   // increment extrapolated (one more factorisation per step).
   bool tangent_every_step = false;
+  // Each Newton step solves the linearised contact problem to its own
+  // active set (KinsolNewton::Options::linearised_active_set).
+  bool linearised_active_set = true;
   bool quiet = false;
   // Load curves (engine/load_curve.hpp): the times t runs through, the
   // curves' corners in increasing order, the last where the run ends.  A

@@ -36,6 +36,19 @@ class NonlinearProblem {
   // A fingerprint of the active set at (x; t), to detect cycling: a function
   // of (x; t) alone, whatever was called before.
   virtual std::vector<char> active_set(double t, const Eigen::VectorXd& x) const { return {}; }
+  // The active set of the Newton step's linearisation.  dx solves J dx = rhs
+  // for the J of the last block_jacobian (rhs = -R there, its constraint
+  // rows as J's set reads them); decide the set again on the linearised
+  // gaps and multipliers of x + dx.  Where a row's decision differs, its
+  // row of J (s, d) and of rhs are those of the other decision, and true
+  // is returned: the driver solves again with the same K (an inner
+  // primal-dual active-set loop, which solves the linearised contact
+  // problem instead of taking one semismooth step per change of set).
+  // False: the set is settled, or the problem has none.
+  virtual bool relinearise_active_set(const Eigen::VectorXd& dx, BlockJacobian& J, Eigen::VectorXd& rhs) {
+    static_cast<void>(dx), static_cast<void>(J), static_cast<void>(rhs);
+    return false;
+  }
   // Force scale at (x; t) for the relative residual (e.g. |f_ext| + |f_int|).
   virtual double force_scale(double t, const Eigen::VectorXd& x) = 0;
   // Per row, the weight of |R_i| in the convergence test (and the residual

@@ -37,6 +37,7 @@ struct SaddleSolver::Impl {
   std::vector<char> pinned;
   // per setup
   bool fallback = false;
+  bool factorised = false;  // K_s's factor is that of the last setup (its Schur part may be redone)
   double norm_J = 0;  // infinity norm
   std::vector<int> active, inactive;
   SparseCholesky::Reach reach;
@@ -183,6 +184,26 @@ struct SaddleSolver::Impl {
   }
 };
 
+namespace {
+// |J|_inf, the scale of the solves' backward error
+double infinity_norm(const BlockJacobian& J) {
+  const int n = int(J.K.rows()), m = int(J.B.rows());
+  Eigen::VectorXd rows = Eigen::VectorXd::Zero(n + m);
+  for (int c = 0; c < J.K.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) rows[it.row()] += std::abs(it.value());
+  for (int c = 0; c < J.K_coupling.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
+      rows[it.row()] += std::abs(it.value());
+  for (int k = 0; k < m; ++k)
+    for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
+      rows[it.col()] += std::abs(it.value());
+      rows[n + k] += std::abs(J.s[k] * it.value());
+    }
+  if (m > 0) rows.tail(m) += J.d.cwiseAbs();
+  return rows.size() ? rows.maxCoeff() : 0.0;
+}
+}  // namespace
+
 SaddleSolver::SaddleSolver() : impl_(std::make_unique<Impl>()) {}
 SaddleSolver::~SaddleSolver() = default;
 
@@ -195,22 +216,8 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   I.m = int(J.B.rows());
   I.k = int(J.rigid_modes.cols());
   I.fallback = false;
-  I.norm_J = 0;
-  {
-    Eigen::VectorXd rows = Eigen::VectorXd::Zero(I.n + I.m);
-    for (int c = 0; c < J.K.outerSize(); ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(J.K, c); it; ++it) rows[it.row()] += std::abs(it.value());
-    for (int c = 0; c < J.K_coupling.outerSize(); ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(J.K_coupling, c); it; ++it)
-        rows[it.row()] += std::abs(it.value());
-    for (int k = 0; k < I.m; ++k)
-      for (RowSparse::InnerIterator it(J.B, k); it; ++it) {
-        rows[it.col()] += std::abs(it.value());
-        rows[I.n + k] += std::abs(J.s[k] * it.value());
-      }
-    if (I.m > 0) rows.tail(I.m) += J.d.cwiseAbs();
-    I.norm_J = rows.size() ? rows.maxCoeff() : 0.0;
-  }
+  I.factorised = false;
+  I.norm_J = infinity_norm(J);
   const Stopwatch factorize_clock;
   const bool same_pattern =
       J.K.isCompressed() && I.Ks.rows() == J.K.rows() && I.Ks.nonZeros() == J.K.nonZeros() &&
@@ -255,8 +262,21 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
     return ok;
   }
   stats_.factorize_s += factorize_clock.seconds();
+  I.factorised = true;
+  return schur_of_active_rows(J);
+}
 
-  // Schur complement of the active multipliers
+bool SaddleSolver::update_constraint_rows(const BlockJacobian& J) {
+  auto& I = *impl_;
+  if (I.fallback || !I.factorised || I.J != &J) return setup(J);
+  why_.clear();
+  I.norm_J = infinity_norm(J);
+  return schur_of_active_rows(J);
+}
+
+// The Schur complement of the active multipliers, K_s factorised.
+bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
+  auto& I = *impl_;
   const Stopwatch schur_clock;
   I.active.clear();
   I.inactive.clear();

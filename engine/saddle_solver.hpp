@@ -50,6 +50,9 @@ class SaddleSolver final : public LinearBackend {
   // asks for tolerance ~ |R| (relative), which keeps Newton quadratic.
   // False (with why()) when the solve fails.
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance = 0) override;
+  // New active rows, same K: only their Schur complement is formed again
+  // (the LU fallback factorises the whole J again).
+  bool update_constraint_rows(const BlockJacobian& J) override;
   const std::string& why() const override { return why_; }
   const LinearSolveStats& stats() const override { return stats_; }
   // kappa_1 of the matrix of the last setup that was factorised: K_s with
@@ -59,6 +62,7 @@ class SaddleSolver final : public LinearBackend {
   LinearBackendReport report() const override;
 
  private:
+  bool schur_of_active_rows(const BlockJacobian& J);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string why_;

@@ -49,7 +49,7 @@ const std::set<std::string> kContactKeys{"face",         "obstacle", "master",  
 const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
-                                         "max_newton_iterations", "line_search", "predictor", "pressure"};
+                                         "max_newton_iterations", "line_search", "predictor", "pressure", "active_set"};
 const std::set<std::string> kOutputKeys{"vtk"};
 const std::set<std::string> kSolverKeys{"type", "options", "preconditioner"};
 const std::set<std::string> kUnitsKeys{"system", "length", "force", "stress"};
@@ -530,6 +530,11 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
                           "\"tangent_every_step\" or \"none\"");
     l.tangent_predictor = predictor != "none";
     l.tangent_every_step = predictor == "tangent_every_step";
+    const std::string active_set = s.string("active_set", "linearised");
+    if (active_set != "linearised" && active_set != "semismooth")
+      s.fail("active_set", "must be \"linearised\" (each Newton step solves its linearised contact problem to "
+                           "its own active set) or \"semismooth\" (one active set per Newton step)");
+    l.linearised_active_set = active_set == "linearised";
     const std::string pk = s.string("pressure", "follower");
     if (pk != "follower" && pk != "dead") s.fail("pressure", "must be \"follower\" or \"dead\"");
     l.follower_pressure = pk == "follower";

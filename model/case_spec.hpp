@@ -89,6 +89,7 @@ struct LoadingSpec {
   bool halving_line_search = false;  // "halving": the driver's own (engine/load_stepping.hpp)
   bool tangent_predictor = true;   // [loading] predictor = "tangent" | "tangent_every_step" | "none"
   bool tangent_every_step = false;
+  bool linearised_active_set = true;  // [loading] active_set = "linearised" | "semismooth"
   bool follower_pressure = true;  // false: dead load (reference normal)
 };
 

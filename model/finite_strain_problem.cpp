@@ -254,6 +254,11 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     evaluate_contact(t, u, lambda, &J.K, ce, true, &coupling);
     active = decide_active(ce.gamma, lambda);
     gamma = ce.gamma;
+    at_jacobian_.x = x;
+    at_jacobian_.gamma = ce.gamma;
+    at_jacobian_.lambda = lambda;
+    at_jacobian_.active = active;
+    at_jacobian_.visited.assign(1, active);
     J.B.setFromTriplets(ce.G.begin(), ce.G.end());
     J.K_coupling.setFromTriplets(coupling.begin(), coupling.end());
     for (int K = 0; K < m_; ++K) {
@@ -295,6 +300,25 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     J.local.g = local.stiffness;
     J.local.h = local_scale_;
   }
+  return true;
+}
+
+bool FiniteStrainProblem::relinearise_active_set(const Eigen::VectorXd& dx, BlockJacobian& J, Eigen::VectorXd& rhs) {
+  JacobianPoint& p = at_jacobian_;
+  if (m_ == 0 || friction_ || J.general || p.active.size() != size_t(m_) || p.x.size() != dx.size()) return false;
+  const Eigen::VectorXd gamma = p.gamma + J.B * dx.head(n_);
+  const Eigen::VectorXd lambda = p.lambda + normal_multipliers(dx);
+  std::vector<char> active = decide_active(gamma, lambda);
+  if (active == p.active) return false;
+  if (std::find(p.visited.begin(), p.visited.end(), active) != p.visited.end()) return false;  // a cycle
+  p.visited.push_back(active);
+  // the rows of R(x) (residual) and of J (block_jacobian) under the new set
+  for (int K = 0; K < m_; ++K) {
+    J.s[K] = active[K] ? s_.complementarity_scale : 0.0;
+    J.d[K] = active[K] ? 0.0 : weights_[K];
+    rhs[n_ + K] = -(active[K] ? s_.complementarity_scale * p.gamma[K] : weights_[K] * p.lambda[K]);
+  }
+  p.active = std::move(active);
   return true;
 }
 

@@ -208,6 +208,7 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
   opt.halving_line_search = m.spec.loading.halving_line_search;
   opt.tangent_predictor = m.spec.loading.tangent_predictor;
   opt.tangent_every_step = m.spec.loading.tangent_every_step;
+  opt.linearised_active_set = m.spec.loading.linearised_active_set;
   opt.quiet = control.quiet;
   // PETSc's linear solver when the case asks for it (else the driver's direct
   // one); the console's header once its first solve has read the options

@@ -125,7 +125,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"curve_without_load", "bad_curve_no_load.toml", "curve =",
                 {"[dirichlet] curve:", "no prescribed value for the curve to scale"}},
         BadCase{"line_search_unknown", "bad_line_search_unknown.toml", "line_search =",
-                {"[loading] line_search:", "\"halving\""}}),
+                {"[loading] line_search:", "\"halving\""}},
+        BadCase{"active_set_unknown", "bad_active_set_unknown.toml", "active_set =",
+                {"[loading] active_set:", "\"linearised\"", "\"semismooth\""}}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
 TEST(BadInput, RefineOptionBeyondMemory) {

@@ -180,3 +180,171 @@ TEST(BlockJacobianRows, AnyRangeOfRowsIsThoseOfTheWholeCondensedMatrix) {
     if (begin <= 3 && 3 < end) EXPECT_EQ(R.innerVector(3 - begin).nonZeros(), 5);  // K(3, 3) = 0 kept
   }
 }
+
+namespace {
+
+// A block matrix with m constraint rows on an SPD K (a chain of springs,
+// held at its first node): the Schur complement is what depends on the set.
+BlockJacobian chain_with_stops(int n, int m) {
+  BlockJacobian J;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, i == 0 ? 3.0 : 2.0 + 0.01 * i);
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0), t.emplace_back(i + 1, i, -1.0);
+  }
+  J.K.resize(n, n);
+  J.K.setFromTriplets(t.begin(), t.end());
+  J.B.resize(m, n);
+  for (int k = 0; k < m; ++k) {  // row k: a weighted gap of two neighbouring nodes
+    const int i = (k * (n - 1)) / m;
+    J.B.insert(k, i) = 0.75;
+    J.B.insert(k, i + 1) = 0.25;
+  }
+  J.s = Eigen::VectorXd::Zero(m);
+  J.d = Eigen::VectorXd::Zero(m);
+  for (int k = 0; k < m; ++k) {
+    if (k % 3 == 0) J.s[k] = 2.0;  // active: s B du = b
+    else J.d[k] = 0.5;             // inactive: d dl = b
+  }
+  return J;
+}
+
+}  // namespace
+
+// SaddleSolver::update_constraint_rows (new active rows, same K: the Schur
+// complement alone is formed again) solves as a solver set up afresh on the
+// changed matrix, and as a dense LU of it.
+TEST(SaddleSolver, NewActiveRowsSolveAsAFreshSetup) {
+  const int n = 40, m = 9;
+  BlockJacobian J = chain_with_stops(n, m);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n + m, -1.0, 2.0);
+  SaddleSolver kept;
+  ASSERT_TRUE(kept.setup(J));
+  Eigen::VectorXd x;
+  ASSERT_TRUE(kept.solve(b, x));
+  for (int k = 0; k < m; ++k) {  // every row's decision turned over
+    const bool was_active = J.s[k] != 0;
+    J.s[k] = was_active ? 0.0 : 2.0;
+    J.d[k] = was_active ? 0.5 : 0.0;
+  }
+  ASSERT_TRUE(kept.update_constraint_rows(J));
+  Eigen::VectorXd updated, fresh_x;
+  ASSERT_TRUE(kept.solve(b, updated));
+  SaddleSolver fresh;
+  ASSERT_TRUE(fresh.setup(J));
+  ASSERT_TRUE(fresh.solve(b, fresh_x));
+  const Eigen::VectorXd dense = Eigen::MatrixXd(assemble_full(J)).partialPivLu().solve(b);
+  EXPECT_GT((updated - x).norm(), 1e-3 * x.norm());  // the rows did change the solution
+  EXPECT_LE((updated - fresh_x).norm(), 1e-12 * fresh_x.norm());
+  EXPECT_LE((updated - dense).norm(), 1e-12 * dense.norm());
+  EXPECT_EQ(kept.stats().setups, 1);  // (no second factorisation)
+}
+
+namespace {
+
+// Nodes on springs pulled down onto stops, linear: the contact problem in
+// its simplest form.  u_i: node i, a chain with a spring to ground at each
+// node, the load t f_i pushing every node down onto its stop at -g_i; l_i
+// the stop's multiplier.  Started with every stop closed, the semismooth
+// Newton step opens the stops whose multiplier pulls a few at a time; with
+// the inner active-set loop the linearised problem (here the problem
+// itself) is solved in one Newton iteration.
+class ChainOnStops final : public NonlinearProblem {
+ public:
+  static constexpr int n = 30;
+  static constexpr double c = 1.0;
+  Eigen::VectorXd gap, force;
+  Eigen::MatrixXd K;
+  bool inner_loop = true;
+  ChainOnStops() : gap(n), force(n), K(Eigen::MatrixXd::Zero(n, n)) {
+    for (int i = 0; i < n; ++i) {
+      const double s = double(i) / (n - 1);
+      gap[i] = 0.02 + 0.5 * (s - 0.5) * (s - 0.5);  // a parabolic obstacle: the middle touches first
+      force[i] = -1.0 / n;
+      K(i, i) = 0.05 + 2.0;
+      if (i + 1 < n) K(i, i + 1) = K(i + 1, i) = -1.0;
+    }
+  }
+  int size() const override { return 2 * n; }
+  // stop i closed: l_i + c (-u_i - gap_i) > 0, l_i >= 0 pushes up
+  static std::vector<char> decide(const Eigen::VectorXd& gamma, const Eigen::VectorXd& l) {
+    std::vector<char> a(n);
+    for (int i = 0; i < n; ++i) a[i] = l[i] + c * gamma[i] > 0;
+    return a;
+  }
+  Eigen::VectorXd gamma_of(const Eigen::VectorXd& x) const { return -x.head(n) - gap; }
+  bool residual(double t, const Eigen::VectorXd& x, Eigen::VectorXd& r) override {
+    r.resize(2 * n);
+    const Eigen::VectorXd u = x.head(n), l = x.tail(n), gamma = gamma_of(x);
+    r.head(n) = K * u - t * force - l;  // B = d gamma / du = -I: B^T l = -l
+    const auto a = decide(gamma, l);
+    for (int i = 0; i < n; ++i) r[n + i] = a[i] ? c * gamma[i] : l[i];
+    return true;
+  }
+  bool jacobian(double, const Eigen::VectorXd&, Eigen::SparseMatrix<double>&) override { return false; }
+  bool block_jacobian(double, const Eigen::VectorXd& x, BlockJacobian& J) override {
+    J.K = K.sparseView();
+    J.B.resize(n, n);
+    for (int i = 0; i < n; ++i) J.B.insert(i, i) = -1.0;
+    const auto a = decide(gamma_of(x), x.tail(n));
+    J.s = Eigen::VectorXd::Zero(n);
+    J.d = Eigen::VectorXd::Zero(n);
+    for (int i = 0; i < n; ++i) {
+      J.s[i] = a[i] ? c : 0.0;
+      J.d[i] = a[i] ? 0.0 : 1.0;
+    }
+    at_jacobian = x;
+    return true;
+  }
+  bool relinearise_active_set(const Eigen::VectorXd& dx, BlockJacobian& J, Eigen::VectorXd& rhs) override {
+    if (!inner_loop) return false;
+    const Eigen::VectorXd moved = at_jacobian + dx;
+    const auto a = decide(gamma_of(moved), moved.tail(n));
+    const Eigen::VectorXd gamma = gamma_of(at_jacobian);
+    bool changed = false;
+    for (int i = 0; i < n; ++i) {
+      if (bool(a[i]) == (J.s[i] != 0)) continue;
+      changed = true;
+      J.s[i] = a[i] ? c : 0.0, J.d[i] = a[i] ? 0.0 : 1.0;
+      rhs[n + i] = -(a[i] ? c * gamma[i] : at_jacobian[n + i]);
+    }
+    return changed;
+  }
+  int active_set_size(double, const Eigen::VectorXd& x) const override {
+    const auto a = decide(gamma_of(x), x.tail(n));
+    return int(std::count(a.begin(), a.end(), 1));
+  }
+  double force_scale(double t, const Eigen::VectorXd&) override { return std::max(t, 1e-3); }
+
+ private:
+  Eigen::VectorXd at_jacobian;
+};
+
+}  // namespace
+
+// The Newton driver's inner active-set loop (NonlinearProblem::
+// relinearise_active_set): started from every stop closed, the linear
+// contact problem is solved in one Newton iteration, where the semismooth
+// step alone takes several (a few stops opened per iteration), and both
+// reach the same state.
+TEST(NewtonActiveSet, TheLinearisedContactProblemIsSolvedInOneNewtonIteration) {
+  LoadSteppingOptions opt = options();
+  opt.steps = 1;
+  opt.tangent_predictor = false;
+  opt.line_search = false;
+  ChainOnStops with, without;
+  without.inner_loop = false;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * ChainOnStops::n), y = x;
+  x.tail(ChainOnStops::n).setConstant(1.0), y = x;  // every stop closed at the start
+  const LoadSteppingSummary a = run_load_steps(with, x, opt, {});
+  const LoadSteppingSummary b = run_load_steps(without, y, opt, {});
+  ASSERT_EQ(a.status, "converged");
+  ASSERT_EQ(b.status, "converged");
+  EXPECT_EQ(a.steps.front().newton_iterations, 1);
+  EXPECT_GE(b.steps.front().newton_iterations, 3);
+  const int final_set = a.steps.front().active_set_sizes.back();
+  EXPECT_GT(final_set, 0);
+  EXPECT_LT(final_set, ChainOnStops::n);
+  EXPECT_EQ(b.steps.front().active_set_sizes.back(), final_set);
+  EXPECT_LE((x - y).cwiseAbs().maxCoeff(), 1e-12);
+}
