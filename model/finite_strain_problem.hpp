@@ -141,9 +141,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // J and rhs rewritten for it at x.  False when nothing changes, or the
   // set was already tried since block_jacobian (a cycle).  Not with
   // friction: its whole matrix is factorised by LU, and an LU per change of
-  // set cost more than the Newton iterations it saved (the sphere on a
-  // block with f = 0.2, 16.6k unknowns: 18 iterations in 9 min against 42
-  // in 3 min).
+  // set cost more than the Newton iterations it saved (docs/design.md,
+  // "Large deformation").
   bool relinearise_active_set(const Eigen::VectorXd& dx, BlockJacobian& J, Eigen::VectorXd& rhs) override;
   // The active set of (t, x), K_K lambda_K + c gamma_K(t, x) < 0: the one
   // residual and Jacobian at (t, x) use (each decides it from its own x).
