@@ -254,11 +254,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     evaluate_contact(t, u, lambda, &J.K, ce, true, &coupling);
     active = decide_active(ce.gamma, lambda);
     gamma = ce.gamma;
-    at_jacobian_.x = x;
-    at_jacobian_.gamma = ce.gamma;
-    at_jacobian_.lambda = lambda;
-    at_jacobian_.active = active;
-    at_jacobian_.visited.assign(1, active);
+    if (!friction_) at_jacobian_ = {ce.gamma, lambda, active, {active}};  // (relinearise_active_set)
     J.B.setFromTriplets(ce.G.begin(), ce.G.end());
     J.K_coupling.setFromTriplets(coupling.begin(), coupling.end());
     for (int K = 0; K < m_; ++K) {
@@ -305,7 +301,7 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
 
 bool FiniteStrainProblem::relinearise_active_set(const Eigen::VectorXd& dx, BlockJacobian& J, Eigen::VectorXd& rhs) {
   JacobianPoint& p = at_jacobian_;
-  if (m_ == 0 || friction_ || J.general || p.active.size() != size_t(m_) || p.x.size() != dx.size()) return false;
+  if (m_ == 0 || friction_ || p.active.size() != size_t(m_) || dx.size() != size()) return false;
   const Eigen::VectorXd gamma = p.gamma + J.B * dx.head(n_);
   const Eigen::VectorXd lambda = p.lambda + normal_multipliers(dx);
   std::vector<char> active = decide_active(gamma, lambda);

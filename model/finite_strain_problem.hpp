@@ -252,7 +252,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // The last block_jacobian's state and the set its J holds (changed by
   // relinearise_active_set).
   struct JacobianPoint {
-    Eigen::VectorXd x, gamma, lambda;
+    Eigen::VectorXd gamma, lambda;
     std::vector<char> active;
     std::vector<std::vector<char>> visited;  // the sets tried from this point
   } at_jacobian_;
