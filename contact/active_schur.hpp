@@ -11,6 +11,7 @@
 
 #include "contact/small_strain_contact.hpp"
 #include "engine/cholesky.hpp"
+#include "engine/dense_kernels.hpp"
 
 namespace igac {
 using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
@@ -101,8 +102,12 @@ class ActiveSchur {
     const Eigen::Index old = Y_.cols(), total = Eigen::Index(all.size());
     Eigen::MatrixXd S(total, total);
     S.topLeftCorner(old, old) = S_;
-    S.rightCols(total - old).noalias() = Y.transpose() * Y.rightCols(total - old);
-    S.bottomLeftCorner(total - old, old) = S.topRightCorner(old, total - old).transpose();
+    if (old == 0) {
+      S = dense::gram(Y);
+    } else {
+      dense::gemm(1.0, Y, true, Y.rightCols(total - old), false, 0.0, S.rightCols(total - old));
+      S.bottomLeftCorner(total - old, old) = S.topRightCorner(old, total - old).transpose();
+    }
     for (size_t j = 0; j < fresh.size(); ++j) slot_[fresh[j]] = int(old + j);
     S_ = std::move(S);
     Y_ = std::move(Y);

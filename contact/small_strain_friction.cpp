@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "contact/active_schur.hpp"
+#include "engine/bordered_spd.hpp"
 
 namespace igac {
 
@@ -16,6 +17,7 @@ struct SmallStrainFriction::Impl {
   double cn = 1;
   Eigen::VectorXd ct;  // c_t per multiplier (tangential_scales)
   int max_iterations = 100;
+  double touch_tolerance = 1e-9;  // a gap (length) this small is touching (ContactSolverOptions::initial_gap_tolerance)
   const RigidModes& modes;
   SparseCholesky& chol;
   RowSparse Gs, Gsp;    // [G; T], and without the pinned columns
@@ -99,6 +101,7 @@ SmallStrainFriction::SmallStrainFriction(const Eigen::SparseMatrix<double>& K, c
   s.cn = opt.complementarity_scale;
   s.ct = tangential_scales(s.cn, opt.mesh_size, op.weights, s.nt + 1);
   s.max_iterations = std::max(opt.max_iterations, 100);
+  s.touch_tolerance = opt.initial_gap_tolerance;
   s.Gs.resize(s.m * (1 + s.nt), s.n);
   {
     std::vector<Eigen::Triplet<double>> t;
@@ -229,6 +232,37 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     return sol;
   }
 
+  // Nothing to apply (no load, no gap closed beyond touching, no tangential
+  // offset; the first of a moving obstacle's steps often): the solution is
+  // u = 0 and lambda = 0, and the states stay.  An iteration would decide them
+  // on round-off: a block touching a plane at rest came out with 76 of its
+  // 1024 multipliers sliding on tractions of 1e-15, and the next step started
+  // from there.
+  if (s.fp.isZero(0.0)) {
+    bool at_rest = true;
+    for (int K = 0; K < m && at_rest; ++K) {
+      const double g = r0[K] / op.weights[K];
+      at_rest = op.law(K).bilateral() ? std::abs(g) <= s.touch_tolerance : g >= -s.touch_tolerance;
+      for (int l = 0; l < nt && at_rest; ++l) at_rest = std::abs(r0[s.trow(K, l)] / op.weights[K]) <= s.touch_tolerance;
+    }
+    if (at_rest) {
+      sol.converged = true;
+      sol.status = "converged";
+      sol.u = Eigen::VectorXd::Zero(s.n);
+      sol.lambda = Eigen::VectorXd::Zero(m);
+      sol.lambda_t = Eigen::VectorXd::Zero(m * nt);
+      sol.active.assign(m, 0);
+      for (int K = 0; K < m; ++K) sol.active[K] = s.state[K] != kOpen;
+      sol.weighted_gap = op.g0.cwiseQuotient(op.weights);
+      s.tau_prev = op.t0;
+      sol.slip = s.slip_total;
+      sol.friction_state = s.state;
+      sol.schur_columns = s.counters.schur_columns;
+      sol.reach_rows = s.counters.reach_rows;
+      return sol;
+    }
+  }
+
   // The unknowns of an iteration, each a combination of the stacked rows
   // [G; T]: its force direction H_j and its constraint row C_j (below).
   struct Unknown {
@@ -245,32 +279,38 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   std::vector<int> loc(rows_all, -1);
   for (size_t i = 0; i < cols.size(); ++i) loc[cols[i]] = int(i);
   const int nc = int(unknowns.size());
-  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(nc + k, nc + k);
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nc + k);
-  for (int j = 0; j < nc; ++j) {
-    Eigen::VectorXd sc = Eigen::VectorXd::Zero(S.rows()), hr = Eigen::VectorXd::Zero(k);
-    for (const auto& [q, b] : unknowns[j].H) {
-      sc += b * S.col(loc[q]);
-      hr += b * s.GR.row(q).transpose();
+  // [A -Bc; -Bh^T 0] [x; c] = [r; -R^T f]: A_ij = C_i . S H_j (+ D_jj), the rows of Bc and Bh
+  // C_i . G R and H_j . G R
+  // (C and H as sparse matrices on the columns: A = C S H^T, two sparse-dense products)
+  Eigen::SparseMatrix<double> C(nc, S.rows()), H(S.rows(), nc);
+  Eigen::MatrixXd Bc = Eigen::MatrixXd::Zero(nc, k), Bh = Eigen::MatrixXd::Zero(nc, k);
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(nc);
+  {
+    std::vector<Eigen::Triplet<double>> tc, th;
+    for (int i = 0; i < nc; ++i) {
+      for (const auto& [row, a] : unknowns[i].C) {
+        tc.emplace_back(i, loc[row], a);
+        Bc.row(i) += a * s.GR.row(row);
+        r[i] += a * (r0[row] + s.Gvf[row]);
+      }
+      for (const auto& [q, b] : unknowns[i].H) {
+        th.emplace_back(loc[q], i, b);
+        Bh.row(i) += b * s.GR.row(q);
+      }
     }
-    for (int i = 0; i < nc; ++i)
-      for (const auto& [r, a] : unknowns[i].C) M(i, j) += a * sc[loc[r]];
-    M(j, j) += unknowns[j].diagonal;
-    M.block(nc, j, k, 1) = -hr;
+    C.setFromTriplets(tc.begin(), tc.end());
+    H.setFromTriplets(th.begin(), th.end());
   }
-  for (int i = 0; i < nc; ++i)
-    for (const auto& [r, a] : unknowns[i].C) {
-      M.block(i, nc, 1, k) -= a * s.GR.row(r);
-      rhs[i] += a * (r0[r] + s.Gvf[r]);
-    }
-  rhs.tail(k) = -s.Rf;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
-  if (lu.rank() < nc + k) return false;
-  const Eigen::VectorXd x = lu.solve(rhs);
+  const Eigen::MatrixXd SH = S * H;
+  Eigen::MatrixXd A = C * SH;
+  for (int j = 0; j < nc; ++j) A(j, j) += unknowns[j].diagonal;
+  BorderedLuSolver dense;
+  if (!dense.compute(A, Bc, Bh)) return false;
+  Eigen::VectorXd x;
+  dense.solve(r, s.Rf, x, c_out);
   lam.setZero();
   for (int j = 0; j < nc; ++j)
     for (const auto& [q, b] : unknowns[j].H) lam[q] += b * x[j];
-  c_out = x.tail(k);
   Gu = s.Gvf + s.GR * c_out - s.schur->G_solve_Gt(cols, lam);
   return true;
   };
@@ -390,7 +430,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
     std::vector<char> next(m, kOpen);
     Eigen::MatrixXd next_dir = s.dir;
     Eigen::VectorXd next_alpha = s.alpha;
-    bool directions_settled = true;
+    bool directions_settled = true, turned_back = false;
     for (int K = 0; K < m; ++K) {
       const InterfaceLaw& law = op.law(K);
       // (a unilateral law's rule, with the rigid motions' extension, is next_active_set's)
@@ -408,6 +448,7 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
         next_dir.row(K) = (xi / norm).transpose();
         next_alpha[K] = b / norm;
         if ((next_dir.row(K) - s.dir.row(K)).norm() > 1e-10 && s.state[K] == kSlip) directions_settled = false;
+        if (nt == 2 && s.state[K] == kSlip && next_dir.row(K).dot(s.dir.row(K)) < 0) turned_back = true;
       }
     }
     sol.weighted_gap = gap;
@@ -416,31 +457,33 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
       sol.status = forced == 0 ? "converged" : pulled_off_status(forced);
       break;
     }
-    // A repeated state (with the signs of a 2D slip) is a cycle.
+    // A repeated state (with the signs of a 2D slip) is a cycle; so is, in
+    // 3D, a slip direction turned back (more than 90 degrees in one
+    // iteration): the same overshoot, whose directions never repeat exactly.
     std::vector<char> key = s.state;
     if (nt == 1)
       for (int K = 0; K < m; ++K) key[K] += s.state[K] == kSlip && s.dir(K, 0) < 0 ? 1 : 0;
-    if (nt == 1 || directions_settled) {
-      if (seen.count(key) && restarts < kCycleRestarts) {
-        // A cycle (seen when a step reverses the slip: slip one way, then
-        // the other, never stick, c_t s overshooting the cone): the
-        // iteration starts again from every closed multiplier stuck, the
-        // elastic predictor of a return mapping, and after the first time
-        // with c_t 10 times smaller (the solution does not depend on c_t).
-        // Runs that do not cycle never come here: their iterations are as before.
-        if (restarts++ > 0) ct_factor *= 0.1;
-        seen.clear();
-        for (int K = 0; K < m; ++K)
-          if (next[K] != kOpen) next[K] = closed_state(op.law(K));
-        s.state = next;
-        continue;
-      }
-      if (seen.count(key)) {
-        sol.status = fmt::format("active set cycling after {} iterations", it + 1);
-        break;
-      }
-      seen.insert(key);
+    const bool keyed = nt == 1 || directions_settled;
+    const bool repeated = keyed && seen.count(key);
+    if ((repeated || turned_back) && restarts < kCycleRestarts) {
+      // A cycle (seen when a step reverses the slip: slip one way, then
+      // the other, never stick, c_t s overshooting the cone): the
+      // iteration starts again from every closed multiplier stuck, the
+      // elastic predictor of a return mapping, and after the first time
+      // with c_t 10 times smaller (the solution does not depend on c_t).
+      // Runs that do not cycle never come here: their iterations are as before.
+      if (restarts++ > 0) ct_factor *= 0.1;
+      seen.clear();
+      for (int K = 0; K < m; ++K)
+        if (next[K] != kOpen) next[K] = closed_state(op.law(K));
+      s.state = next;
+      continue;
     }
+    if (repeated) {
+      sol.status = fmt::format("active set cycling after {} iterations", it + 1);
+      break;
+    }
+    if (keyed) seen.insert(key);
     s.state = next;
     s.dir = next_dir;
     s.alpha = next_alpha;

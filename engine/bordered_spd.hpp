@@ -15,6 +15,8 @@
 
 #include <Eigen/Dense>
 
+#include "engine/dense_kernels.hpp"
+
 namespace igac {
 
 class BorderedSpdSolver {
@@ -29,6 +31,30 @@ class BorderedSpdSolver {
   Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
   Eigen::MatrixXd R1_, T_;  // T = Q^T S Q
   Eigen::LLT<Eigen::MatrixXd> llt_;
+};
+
+// The same border on a general square A whose two borders differ (friction:
+// a sliding multiplier's force direction is not its constraint row),
+//     [ A      -Bc ] [x]   [ r ]      A: n x n, Bc, Bh: n x k, full column rank
+//     [ -Bh^T   0  ] [c] = [ -q ]
+// by the same null-space method with Bh = Qh [R1h; 0] on the unknowns and
+// Bc = Qc [R1c; 0] on the rows: x = Qh [w; mu], R1h^T w = q, then
+// (Qc^T A Qh)_22 mu = (Qc^T r)_2 - (Qc^T A Qh)_21 w by a partial-pivoting
+// LU (engine/dense_kernels: a few thousand unknowns in a fraction of a
+// second), and c from the first k rows.
+class BorderedLuSolver {
+ public:
+  // False when Bc or Bh does not have full column rank, or the reduced
+  // matrix is singular (a pivot below n eps of the largest, as a
+  // full-pivoting LU's rank).
+  bool compute(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Bc, const Eigen::MatrixXd& Bh);
+  void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& q, Eigen::VectorXd& x, Eigen::VectorXd& c) const;
+
+ private:
+  int n_ = 0, k_ = 0;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_rows_, qr_unknowns_;  // of Bc, of Bh
+  Eigen::MatrixXd R1c_, R1h_, T_;  // T = Qc^T A Qh
+  dense::Lu lu_;
 };
 
 }  // namespace igac

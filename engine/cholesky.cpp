@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/cholesky.hpp"
+#include "engine/dense_kernels.hpp"
 
 #include "engine/condition_estimate.hpp"
 
@@ -294,10 +295,11 @@ Eigen::MatrixXd SparseCholesky::forward(const Reach& R, const Eigen::SparseMatri
     const Supernode sn = supernode(I.L, k);
     const Block Lk(sn.x, sn.nsrow, sn.nscol, Eigen::OuterStride<>(sn.nsrow));
     auto Xk = Y.middleRows(local[sn.k1], sn.nscol);
-    Lk.topRows(sn.nscol).triangularView<Eigen::Lower>().solveInPlace(Xk);
+    dense::lower_solve_in_place(Lk.topRows(sn.nscol), Xk);
     const int below = sn.nsrow - sn.nscol;
     if (below == 0) continue;
-    W.noalias() = Lk.bottomRows(below) * Xk;
+    W.resize(below, Xk.cols());
+    dense::gemm(1.0, Lk.bottomRows(below), false, Xk, false, 0.0, W);
     for (int r = 0; r < below; ++r) Y.row(local[sn.rows[sn.nscol + r]]) -= W.row(r);
   }
   return Y;

@@ -239,6 +239,40 @@ TEST(Friction, Block3DPartialSlipSettles) {
   EXPECT_LT(r.tangential_force.norm(), kF * r.normal_force);
 }
 
+// A block touching a plane at rest (no load: the plane's motion is the
+// only one), as the first step of a moving obstacle poses it: the solution
+// is zero and the multipliers stay stuck, as they start.  Solved by an
+// iteration, the states were decided on tractions of 1e-15 (on a 32 x 32
+// face, 76 of 1024 multipliers came out sliding), and the next step started
+// from there; the plane's first move then settles from the stuck start.
+TEST(Friction, BlockAtRestOnAPlaneStaysStuck) {
+  const std::string text =
+      "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 0.25]\n[mesh]\ndegree = 2\nelements = [6, 6, 2]\n"
+      "[material]\nE = 1.0\nnu = 0.3\n"
+      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"y\"\n"
+      "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"z\"\n"
+      "[contact]\nface = \"bottom\"\nfriction = 0.3\n[contact.obstacle]\ntype = \"plane\"\n"
+      "point = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmotion = [0.0003, 0.0004, 0.001]\n";
+  const Model m = build_model(read_case(write_case("rest3d", text).string()));
+  const LinearSystem sys = assemble_linear_elasticity(m.body, *m.dofs, m.material, Eigen::VectorXd::Zero(3));
+  const RigidModes modes = free_rigid_modes(m.body, *m.dofs);
+  ContactSolverOptions opt;
+  opt.complementarity_scale = m.spec.E / m.mesh_size;
+  opt.mesh_size = m.mesh_size;
+  SparseCholesky chol;
+  const WeightedGapOperator start = assemble_contact_operator(m, 0.0);
+  SmallStrainFriction friction(sys.K, sys.f, start, modes, chol, opt);
+  const ContactSolution rest = friction.step(start);
+  ASSERT_TRUE(rest.converged) << rest.status;
+  EXPECT_EQ(rest.u.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(rest.lambda.cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_TRUE(rest.active_set_sizes.empty());  // no iteration
+  for (size_t K = 0; K < rest.friction_state.size(); ++K) EXPECT_EQ(rest.friction_state[K], kStick) << "multiplier " << K;
+  const ContactSolution moved = friction.step(assemble_contact_operator(m, 1.0));
+  ASSERT_TRUE(moved.converged) << moved.status;
+  EXPECT_GT(moved.lambda.cwiseAbs().maxCoeff(), 0.0);
+}
+
 // The stick zone's half width (tests/support/stick_zone.hpp) against
 // c = a sqrt(1 - Q / (f N)).
 TEST(Friction, CattaneoMindlinStickZone) {

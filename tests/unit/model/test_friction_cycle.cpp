@@ -14,6 +14,10 @@
 //    friction that never slides (f = 10), the same curve gives no area.
 //  - A sliding block dragged and brought back: the tangential force goes
 //    from +f N to -f N and the block ends displaced on the plane.
+//  - In 3D, a block pressed on a plane that is dragged along (0.6, 0.8)
+//    there and back: at each turn every slip direction turns back, the
+//    iteration starts again from every multiplier stuck (it did not settle
+//    in 100 iterations before), and the force follows the plane's motion.
 //  - Without a curve a frictional case runs as before (the golden records).
 #include <gtest/gtest.h>
 
@@ -41,7 +45,7 @@ constexpr double kF = 0.3;
 struct Frame {
   double t = 0, moved = 0, Q = 0, N = 0;
   Eigen::MatrixXd u;
-  Eigen::VectorXd lambda, lambda_t;
+  Eigen::VectorXd lambda, lambda_t, tangential;
   std::vector<char> state;
 };
 
@@ -60,6 +64,7 @@ Cycle run_cycle(const CaseSpec& spec) {
     const ObstacleReaction& r = step.reactions.at(0);
     f.N = r.normal_force;
     f.Q = r.tangential_force.size() ? r.tangential_force[0] : 0.0;
+    f.tangential = r.tangential_force;
     f.u = step.u;
     f.lambda = step.contact->solution.lambda;
     f.lambda_t = step.contact->solution.lambda_t;
@@ -255,6 +260,46 @@ TEST(FrictionCycle, TwoBodiesMasterCurveThereAndBack) {
   EXPECT_NEAR(corner_x[3], 0.02, 1e-15);  // (the corner on the support: its motion alone)
   EXPECT_NEAR(corner_x[4], 0.01, 1e-15);
   EXPECT_NEAR(corner_x[5], 0.0, 1e-15);
+}
+
+// A 3D block (1 x 1 x 0.5, nu = 0.3) clamped at its top, pushed down by
+// 0.01 onto a plane, the plane then dragged to +d = (0.01, 0.004) and back
+// to -d and +d (Mindlin-Deresiewicz in 3D, past sliding each way).  At each
+// turn every sliding multiplier's direction turns back in the first
+// iteration: read as the overshoot cycle it is, the iteration starts from
+// every multiplier stuck.  Before, the directions flipped back and forth and
+// the step at t = 2.25 stopped after 100 iterations.
+TEST(FrictionCycle, ABlockDraggedThereAndBackIn3DSettlesAtEachTurn) {
+  const fs::path dir = fs::temp_directory_path() / "igac_friction_cycle";
+  fs::create_directories(dir);
+  std::ofstream(dir / "block3d.toml")
+      << "[geometry]\nshape = \"box\"\nsize = [1.0, 1.0, 0.5]\n[mesh]\ndegree = 2\nelements = [8, 8, 4]\n"
+         "[material]\nE = 1.0\nnu = 0.3\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"x\"\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"y\"\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"z\"\nvalue = -0.01\n"
+         "[contact]\nface = \"bottom\"\nfriction = 0.3\n[contact.obstacle]\ntype = \"plane\"\n"
+         "point = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nmotion = [0.01, 0.004, 0.0]\n"
+         "curve = [[0, 0], [1, 0], [2, 1], [3, -1], [4, 1]]\n[loading]\nsteps = 4\n";
+  const Cycle c = run_cycle(read_case((dir / "block3d.toml").string()));
+  ASSERT_EQ(c.result.status, "converged");
+  ASSERT_EQ(c.frames.size(), 16u);
+  constexpr double kRoundOff = 1e-11;
+  for (const Frame& f : c.frames) {
+    const double scale = f.lambda.cwiseAbs().maxCoeff();
+    for (size_t K = 0; K < f.state.size(); ++K) {
+      const double on_disc = f.lambda_t.segment(2 * Eigen::Index(K), 2).norm(), cone = -kF * f.lambda[Eigen::Index(K)];
+      if (f.state[K] == kSlip) EXPECT_NEAR(on_disc, cone, kRoundOff * scale) << "t = " << f.t << ", multiplier " << K;
+      if (f.state[K] == kStick) EXPECT_LE(on_disc, cone + kRoundOff * scale) << "t = " << f.t << ", multiplier " << K;
+    }
+    EXPECT_LE(f.tangential.norm(), kF * f.N * (1 + kRoundOff));
+  }
+  // The force follows the plane: along +d at +d, along -d at -d.
+  const Eigen::Vector2d d = Eigen::Vector2d(0.01, 0.004).normalized();
+  const Frame &there = at(c, 2.0), &back = at(c, 3.0), &again = at(c, 4.0);
+  EXPECT_GT(there.tangential.dot(d), 0.5 * kF * there.N);
+  EXPECT_LT(back.tangential.dot(d), -0.5 * kF * back.N);
+  EXPECT_GT(again.tangential.dot(d), 0.5 * kF * again.N);
 }
 
 }  // namespace
