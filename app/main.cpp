@@ -402,10 +402,11 @@ int main(int argc, char** argv) {
   // writers report in one line, instead of killing the run with SIGXFSZ.
   signal(SIGXFSZ, SIG_IGN);
   end_on_termination_signals();
-  // Threads adapt to the cores that are free: CHOLMOD asks OpenMP for 4
-  // threads whatever the machine has, and busy-waiting teams larger than
-  // the idle cores cost several times the work (measured 3x on 2 shared cores).
-  omp_set_dynamic(1);
+  // Threads adapt to the cores that are free, region by region
+  // (engine/free_cores.hpp), not by libgomp's dynamic mode, which reads the
+  // 15-minute load average.  CHOLMOD's own OpenMP loops run on one thread
+  // (engine/cholesky.cpp).
+  omp_set_dynamic(0);
   CLI::App app{"igac: isogeometric contact mechanics (NURBS bodies pressed on rigid obstacles)"};
   app.set_version_flag("--version", std::string("igac ") + IGAC_VERSION);
   app.require_subcommand(1);

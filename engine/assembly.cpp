@@ -4,6 +4,7 @@
 #include "engine/assembly.hpp"
 #include "engine/follower_pressure.hpp"
 #include "engine/sparsity.hpp"
+#include "engine/free_cores.hpp"
 
 #include <fmt/format.h>
 #include <limits>
@@ -233,7 +234,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
   double* f = s.f.data();
   double min_det = std::numeric_limits<double>::infinity();
 
-#pragma omp parallel reduction(min : min_det)
+#pragma omp parallel reduction(min : min_det) num_threads(free_cores())
   {
     ElementValues<2, 2> v2;  // of the one element kernel (element_values.hpp)
     ElementValues<3, 3> v3;

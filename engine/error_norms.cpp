@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "engine/discretisation.hpp"
+#include "engine/free_cores.hpp"
 
 namespace igac {
 namespace {
@@ -19,7 +20,7 @@ ErrorNorms integrate(const Body& mesh, const Eigen::MatrixXd& u, int points, con
   const BodyQuadrature quad(mesh, points);
   const int dim = mesh.space_dim();
   double e0 = 0, e1 = 0, r0 = 0, r1 = 0;
-#pragma omp parallel reduction(+ : e0, e1, r0, r1)
+#pragma omp parallel reduction(+ : e0, e1, r0, r1) num_threads(free_cores())
   {
     ElementData ed;
     Eigen::VectorXd v;

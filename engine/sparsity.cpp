@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/sparsity.hpp"
+#include "engine/free_cores.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>
@@ -89,7 +90,7 @@ Eigen::SparseMatrix<double> pattern_of_units(const Units& units, const DofMap& d
   // (each control point once: a stamp per thread, so only the 3^d p-ish
   // distinct neighbours are sorted, not every unit's copy of them)
   std::vector<std::vector<int>> cols(n_free);
-#pragma omp parallel
+#pragma omp parallel num_threads(free_cores())
   {
     std::vector<int> seen(n_cp, -1);
 #pragma omp for schedule(dynamic, 256)

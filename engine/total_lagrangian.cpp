@@ -3,6 +3,7 @@
 
 #include "engine/quadrature.hpp"
 #include "engine/sparsity.hpp"
+#include "engine/free_cores.hpp"
 
 #include <algorithm>
 #include <array>
@@ -279,7 +280,7 @@ bool function_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u,
   const int n_el = in.quad.num_elements();
   std::vector<double> c(in.layout.function_entry.back(), 0.0);
   std::atomic<bool> failed{false};
-#pragma omp parallel if (n_el >= 4 * kElementsPerColourForThreads)
+#pragma omp parallel if (n_el >= 4 * kElementsPerColourForThreads) num_threads(free_cores())
   {
     Workspace<dim> ws;
 #pragma omp for schedule(dynamic, 16)
@@ -361,7 +362,7 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
   std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(nf) : 0);
   std::vector<std::vector<int>> mean_B_eq(mean_B.size());
 
-#pragma omp parallel if (threaded)
+#pragma omp parallel if (threaded) num_threads(free_cores())
   {
     if (tangent) {
 #pragma omp for schedule(static)
@@ -498,7 +499,7 @@ TotalLagrangianAssembler::TotalLagrangianAssembler(const Body& body, const DofMa
   tangent_ = tangent;
   set_pressure_space(mixed_pressure_space(quad_, formulations_));
   double min_det = std::numeric_limits<double>::infinity();
-#pragma omp parallel
+#pragma omp parallel num_threads(free_cores())
   {
     ElementValues<2, 2> g2;
     ElementValues<3, 3> g3;

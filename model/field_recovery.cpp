@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <fmt/format.h>
 #include <limits>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "engine/quadrature.hpp"
 #include "engine/spline/refinement.hpp"
 #include "engine/volumetric_projection.hpp"
+#include "engine/free_cores.hpp"
 
 namespace igac {
 
@@ -49,50 +51,84 @@ double measure(const Eigen::MatrixXd& J) {
   return std::sqrt((J.transpose() * J).determinant());
 }
 
+// One quadrature point of a Bezier element: its rational basis R, grad u
+// (3 x 3, zero outside the space dimensions) and its weight w |det J|.
+struct ProjectionPoint {
+  Eigen::VectorXd R;
+  Eigen::Matrix3d grad;
+  double weight = 0;
+};
+
+// The element-local L2 projection, onto each element's rational Bezier basis
+// R_i, of `columns` values per quadrature point (max(p) + 2 Gauss points per
+// direction): sum_j (int_e R_i R_j) c_j = int_e R_i f.  values(e, q, point,
+// row) fills the row of f at point q of element e.  Elements run in
+// parallel (each writes only its own rows); the first exception thrown in
+// one is rethrown after the loop.  The one kernel of the body's recovered
+// fields (stress and strain, J and the pressure).
+template <class Values>
+Eigen::MatrixXd project_on_elements(const BezierMesh& mesh, int columns, Values&& values) {
+  const int dim = mesh.space_dim(), nl = mesh.num_local(), ne = mesh.num_elements();
+  const TensorGaussRule rule = tensor_gauss_rule(mesh.param_dim(), max_degree(mesh) + 2);
+  const int nq = int(rule.points.size());
+  Eigen::MatrixXd out(mesh.num_points(), columns);
+  std::exception_ptr error;
+#pragma omp parallel num_threads(free_cores())
+  {
+    ProjectionPoint point;
+    Eigen::MatrixXd dR, M(nl, nl), B(nl, columns);
+    Eigen::RowVectorXd f(columns);
+    // dX/ds and du/ds padded to 3 x 3 (J with 1 on the unused diagonal): the
+    // closed-form inverse of a fixed-size matrix, no allocation per point
+    Eigen::Matrix3d J, G;
+#pragma omp for schedule(dynamic, 16)
+    for (int e = 0; e < ne; ++e) {
+      try {
+        const BezierElement& el = mesh.element(e);
+        M.setZero();
+        B.setZero();
+        for (int q = 0; q < nq; ++q) {
+          mesh.basis(el, rule.points[size_t(q)], point.R, &dR);
+          J.setIdentity();
+          G.setZero();
+          J.topLeftCorner(dim, dim).noalias() = el.points.transpose() * dR;     // dX/ds
+          G.topLeftCorner(dim, dim).noalias() = el.fields[0].transpose() * dR;  // du/ds
+          point.grad.noalias() = G * J.inverse();
+          point.weight = rule.weights[size_t(q)] * std::abs(J.determinant());
+          values(e, q, point, f);
+          M.selfadjointView<Eigen::Lower>().rankUpdate(point.R, point.weight);
+          for (int c = 0; c < columns; ++c) B.col(c) += (point.weight * f[c]) * point.R;
+        }
+        out.middleRows(Eigen::Index(e) * nl, nl) = M.selfadjointView<Eigen::Lower>().llt().solve(B);
+      } catch (...) {
+#pragma omp critical(igac_projection_error)
+        if (!error) error = std::current_exception();
+      }
+    }
+  }
+  if (error) std::rethrow_exception(error);
+  return out;
+}
+
 }  // namespace
 
 RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law, bool green_lagrange) {
-  const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
-  if (pd != dim) throw std::invalid_argument("stress recovery needs a volume mesh");
+  if (mesh.param_dim() != mesh.space_dim()) throw std::invalid_argument("stress recovery needs a volume mesh");
   if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
     throw std::invalid_argument("stress recovery needs the displacement as field 0");
-  const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
-  RecoveredStress out;
-  out.stress.resize(mesh.num_points(), 6);
-  out.strain.resize(mesh.num_points(), 6);
-  out.von_mises.resize(mesh.num_points());
-  out.magnitude.resize(mesh.num_points());
-  out.principal.resize(mesh.num_points(), 3);
-
-  Eigen::VectorXd R;
-  Eigen::MatrixXd dR, J(dim, dim), G(dim, dim), M(nl, nl), B(nl, 12);
-  Eigen::RowVectorXd f(12);
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const BezierElement& el = mesh.element(e);
-    M.setZero();
-    B.setZero();
-    for (size_t q = 0; q < rule.points.size(); ++q) {
-      mesh.basis(el, rule.points[q], R, &dR);
-      J.noalias() = el.points.transpose() * dR;     // dX/ds
-      G.noalias() = el.fields[0].transpose() * dR;  // du/ds
-      Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
-      grad.topLeftCorner(dim, dim) = G * J.inverse();
-      const Eigen::Matrix3d sigma = law(grad);
-      // small strain eps = sym grad u; large deformation E = (F^T F - I) / 2
-      const Eigen::Matrix3d eps = green_lagrange ? Eigen::Matrix3d(0.5 * (grad + grad.transpose() + grad.transpose() * grad))
-                                                 : Eigen::Matrix3d(0.5 * (grad + grad.transpose()));
-      for (int c = 0; c < 6; ++c) {
-        f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
-        f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
-      }
-      const double wt = rule.weights[q] * std::abs(J.determinant());
-      M.selfadjointView<Eigen::Lower>().rankUpdate(R, wt);
-      B.noalias() += (wt * R) * f;
+  const Eigen::MatrixXd C = project_on_elements(mesh, 12, [&](int, int, const ProjectionPoint& x, Eigen::RowVectorXd& f) {
+    const Eigen::Matrix3d sigma = law(x.grad);
+    // small strain eps = sym grad u; large deformation E = (F^T F - I) / 2
+    const Eigen::Matrix3d eps = green_lagrange ? Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose() + x.grad.transpose() * x.grad))
+                                               : Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose()));
+    for (int c = 0; c < 6; ++c) {
+      f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
+      f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
     }
-    const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
-    out.stress.middleRows(e * nl, nl) = C.leftCols(6);
-    out.strain.middleRows(e * nl, nl) = C.rightCols(6);
-  }
+  });
+  RecoveredStress out;
+  out.stress = C.leftCols(6);
+  out.strain = C.rightCols(6);
   fill_stress_scalars(out);
   return out;
 }
@@ -172,44 +208,6 @@ void take_formulation_pressure(const Model& model, const BezierMesh& mesh, const
 
 }  // namespace
 
-RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u,
-                                     const RecoveredVolume* volume) {
-  RecoveredStress s = recover_law_stress(model, mesh, u);
-  if (volume) take_formulation_pressure(model, mesh, *volume, s);
-  return s;
-}
-
-RecoveredStress recover_law_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u) {
-  const Body& body = model.body;
-  const bool green_lagrange = model.spec.finite_strain();
-  if (model.parts.size() <= 1) return recover_stress(mesh, model_stress_law(model), green_lagrange);
-  // Several bodies: each with its own law, stacked in the patches' order.
-  std::vector<RecoveredStress> each;
-  Eigen::Index rows = 0;
-  for (const Model::Part& part : model.parts) {
-    const BezierMesh part_mesh = body_bezier_mesh(body, u, part.first_patch, part.num_patches);
-    each.push_back(recover_stress(part_mesh, cauchy_stress(part.law, !green_lagrange), green_lagrange));
-    rows += each.back().stress.rows();
-  }
-  RecoveredStress out;
-  out.stress.resize(rows, 6);
-  out.von_mises.resize(rows);
-  out.magnitude.resize(rows);
-  out.principal.resize(rows, 3);
-  out.strain.resize(rows, 6);
-  Eigen::Index at = 0;
-  for (const RecoveredStress& s : each) {
-    const Eigen::Index n = s.stress.rows();
-    out.stress.middleRows(at, n) = s.stress;
-    out.von_mises.segment(at, n) = s.von_mises;
-    out.magnitude.segment(at, n) = s.magnitude;
-    out.principal.middleRows(at, n) = s.principal;
-    out.strain.middleRows(at, n) = s.strain;
-    at += n;
-  }
-  return out;
-}
-
 Eigen::Matrix3d symmetric_tensor(const Eigen::Ref<const Eigen::RowVectorXd>& v) {
   Eigen::Matrix3d s;
   for (int c = 0; c < 6; ++c) s(kVoigt[c][0], kVoigt[c][1]) = s(kVoigt[c][1], kVoigt[c][0]) = v[c];
@@ -224,8 +222,13 @@ StressLaw model_stress_law(const Model& model) {
                    : linear_elastic_stress(model.material.lambda(), model.material.mu());  // a Model made in code
 }
 
-RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures) {
-  const int pd = mesh.param_dim(), dim = mesh.space_dim(), nl = mesh.num_local();
+namespace {
+// recover_volume, and with `with_stress` the stress and strain in the same
+// projection (one pass over the elements, the law evaluated once per point;
+// the stress of a mixed patch then takes the formulation's pressure).
+RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures,
+                                    bool with_stress) {
+  const int pd = mesh.param_dim(), dim = mesh.space_dim();
   if (pd != dim) throw std::invalid_argument("volume recovery needs a volume mesh");
   const BodyQuadrature quad(model.body, gauss_points_for(model.body.degree()));
   if (mesh.num_elements() != quad.num_elements())
@@ -249,7 +252,7 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
   const TensorGaussRule rule = tensor_gauss_rule(pd, max_degree(mesh) + 2);
   const int nq = int(rule.points.size());
   Eigen::VectorXd R;
-  Eigen::MatrixXd dR, Jm(dim, dim), G(dim, dim), M(nl, nl), B(nl, 2);
+  Eigen::MatrixXd dR, Jm(dim, dim), G(dim, dim);
   // grad u at point q of element e, and its weight
   const auto gradient = [&](const BezierElement& el, int q, double& weight) {
     mesh.basis(el, rule.points[size_t(q)], R, &dR);
@@ -309,41 +312,63 @@ RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const
           per_patch(laws, k)->volumetric(theta, v) ? -v.dU : std::numeric_limits<double>::quiet_NaN();
     }
   }
-  // Pass 2: J and the pressure projected onto each element's Bezier basis.
-  RecoveredVolume out;
-  out.jacobian.resize(mesh.num_points());
-  out.pressure.resize(mesh.num_points());
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const BezierElement& el = mesh.element(e);
-    const int k = quad.patch_of(e);
-    const bool mixed = is_mixed(per_patch(formulations, k));
-    const StressLaw& law = per_patch(stress_laws, k);
-    M.setZero();
-    B.setZero();
-    for (int q = 0; q < nq; ++q) {
-      double w = 0;
-      const Eigen::Matrix3d grad = gradient(el, q, w);
-      double pressure = 0;
-      if (!mixed) {
-        pressure = -law(grad).trace() / 3;
-      } else if (given_per_element) {
-        pressure = -element_pressures[e];
-      } else {
-        // p(x) = sum_A N_A(x) p_A; the stabilisation's mu_s (J - Pi_e J)
-        // is not part of the field (see the header).
-        functions(e, q);
-        const int* a = space.functions_begin(e);
-        for (size_t i = 0; i < N.size(); ++i) pressure += N[i] * function_pressure[size_t(a[i])];
-      }
-      M.selfadjointView<Eigen::Lower>().rankUpdate(R, w);
-      B.col(0) += w * (Eigen::Matrix3d::Identity() + grad).determinant() * R;
-      B.col(1) += w * pressure * R;
-    }
-    const Eigen::MatrixXd C = M.selfadjointView<Eigen::Lower>().llt().solve(B);
-    out.jacobian.segment(e * nl, nl) = C.col(0);
-    out.pressure.segment(e * nl, nl) = C.col(1);
+  // Pass 2: J and the pressure (and the stress and strain) projected onto
+  // each element's Bezier basis.
+  const bool green_lagrange = !small;
+  const int first = with_stress ? 12 : 0;  // the columns of J and the pressure
+  const Eigen::MatrixXd C =
+      project_on_elements(mesh, first + 2, [&](int e, int q, const ProjectionPoint& x, Eigen::RowVectorXd& f) {
+        const int k = quad.patch_of(e);
+        const StressLaw& law = stress_laws[stress_laws.size() == 1 ? 0 : size_t(k)];  // (not copied: elements run in parallel)
+        const bool mixed = is_mixed(formulations[formulations.size() == 1 ? 0 : size_t(k)]);
+        Eigen::Matrix3d sigma;
+        if (with_stress || !mixed) sigma = law(x.grad);
+        if (with_stress) {
+          // small strain eps = sym grad u; large deformation E = (F^T F - I) / 2
+          const Eigen::Matrix3d eps = green_lagrange
+                                          ? Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose() + x.grad.transpose() * x.grad))
+                                          : Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose()));
+          for (int c = 0; c < 6; ++c) {
+            f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
+            f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
+          }
+        }
+        double pressure = 0;
+        if (!mixed) {
+          pressure = -sigma.trace() / 3;
+        } else if (given_per_element) {
+          pressure = -element_pressures[e];
+        } else {
+          // p(x) = sum_A N_A(x) p_A; the stabilisation's mu_s (J - Pi_e J)
+          // is not part of the field (see the header).
+          PressureSpace::Scratch own_scratch;  // (per call: elements run in parallel)
+          std::vector<double> values;
+          space.values_local(e, rule.points[size_t(q)].data(), values, own_scratch);
+          const int* a = space.functions_begin(e);
+          for (size_t i = 0; i < values.size(); ++i) pressure += values[i] * function_pressure[size_t(a[i])];
+        }
+        f[first] = (Eigen::Matrix3d::Identity() + x.grad).determinant();
+        f[first + 1] = pressure;
+      });
+  RecoveredFields out;
+  out.volume.jacobian = C.col(first);
+  out.volume.pressure = C.col(first + 1);
+  if (with_stress) {
+    out.stress.stress = C.leftCols(6);
+    out.stress.strain = C.middleCols(6, 6);
+    fill_stress_scalars(out.stress);
+    take_formulation_pressure(model, mesh, out.volume, out.stress);
   }
   return out;
+}
+}  // namespace
+
+RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures) {
+  return project_body_fields(mesh, model, element_pressures, false).volume;
+}
+
+RecoveredFields recover_body_fields(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures) {
+  return project_body_fields(mesh, model, element_pressures, true);
 }
 
 ContactPartner contact_partner(const Model& model, size_t k, const Eigen::MatrixXd& u, double t) {

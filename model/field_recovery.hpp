@@ -77,20 +77,6 @@ StressLaw model_stress_law(const Model& model);
 // `patch_of`, when given, receives each element's patch.
 BezierMesh body_bezier_mesh(const Body& body, const Eigen::MatrixXd& u, int first_patch = 0, int num_patches = -1,
                             std::vector<int>* patch_of = nullptr);
-struct RecoveredVolume;
-// recover_stress on `mesh`, the model's body_bezier_mesh for the
-// displacement u (one row per body control point): one body with the
-// case's law on that mesh; several bodies each with its own law (on a mesh
-// of its own patches, stacked in the patches' order).  On a patch in a mixed
-// formulation the stress's volumetric part is the formulation's pressure
-// (`volume`, recover_volume on the same mesh), not the pointwise law's
-// U'(J): every stress field of a mixed run, and its principal stresses and
-// magnitude, agree with the hydrostatic_pressure field (von Mises, which
-// has no volumetric part, is the law's).  recover_law_stress: the law's
-// stress alone.
-RecoveredStress recover_model_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u,
-                                     const RecoveredVolume* volume);
-RecoveredStress recover_law_stress(const Model& model, const BezierMesh& mesh, const Eigen::MatrixXd& u);
 
 // J = det F and the hydrostatic pressure -tr(sigma)/3, projected onto each
 // element's Bezier basis like the stress (rows as recover_stress), for
@@ -113,6 +99,20 @@ struct RecoveredVolume {
 // element is read per element, as a run numbered them before the pressure
 // space); any other non-zero length: std::invalid_argument.
 RecoveredVolume recover_volume(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures = {});
+
+// The ParaView body fields in one pass over the elements (the law evaluated
+// once per Gauss point): recover_volume's J and pressure, and recover_stress's
+// stress and strain with each patch's own law (its body's).  On a patch in a
+// mixed formulation the stress's volumetric part is the formulation's
+// pressure (the volume's), not the pointwise law's U'(J): every stress field
+// of a mixed run, and its principal stresses and magnitude, agree with the
+// hydrostatic_pressure field (von Mises, which has no volumetric part, is
+// the law's).
+struct RecoveredFields {
+  RecoveredStress stress;
+  RecoveredVolume volume;
+};
+RecoveredFields recover_body_fields(const BezierMesh& mesh, const Model& model, const Eigen::VectorXd& element_pressures = {});
 
 // Where contact k's partner stands when the body has the displacement u
 // (n_cp x dim, every body's control points) at load factor (or time) t: the

@@ -107,7 +107,8 @@ void BezierMesh::basis(const BezierElement& el, const Eigen::VectorXd& s, Eigen:
     }
   }
   R.resize(num_local_);
-  std::vector<double> drv(dR ? size_t(num_local_) * param_dim_ : 0);
+  thread_local std::vector<double> drv;  // (no allocation per point: the stress recovery calls this per Gauss point)
+  drv.resize(dR ? size_t(num_local_) * param_dim_ : 0);
   const int np[3] = {degree_[0] + 1, degree_[1] + 1, degree_[2] + 1};
   const double* N[3] = {v[0], v[1], v[2]};
   const double* dN[3] = {dv[0], dv[1], dv[2]};
