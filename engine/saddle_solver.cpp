@@ -8,6 +8,7 @@
 
 #include "engine/bordered_spd.hpp"
 #include "engine/cholesky.hpp"
+#include "engine/dense_kernels.hpp"
 #include "engine/condition_estimate.hpp"
 #include "engine/stopwatch.hpp"
 
@@ -301,7 +302,7 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
   }
   I.BR.resize(na, k);
   for (int i = 0; i < na; ++i) I.BR.row(i) = J.B.row(I.active[i]) * J.rigid_modes;
-  const Eigen::MatrixXd S = I.Y.transpose() * I.Y;
+  const Eigen::MatrixXd S = dense::gram(I.Y);  // Y^T Y on OpenBLAS (engine/dense_kernels.hpp)
   if (!I.M.compute(S, I.BR)) {  // dependent constraints: let LU on J decide
     const bool ok = I.factor_full(why_);
     stats_.schur_s += schur_clock.seconds();
