@@ -19,18 +19,42 @@
 
 namespace igac {
 
-class BorderedSpdSolver {
+// The reduced matrix's factorisation, by Cholesky (SPD) or by LU.
+struct CholeskyFactor {
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  void compute(const Eigen::MatrixXd& A) { llt.compute(A); }
+  bool singular() const { return llt.info() != Eigen::Success; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return llt.solve(b); }
+};
+
+// The null-space method on [A -Bc; -Bh^T 0] (below), the reduced matrix
+// (Qc^T A Qh)_22 factorised by `Factor`.
+template <class Factor>
+class NullSpaceBordered {
  public:
-  // False when B does not have full column rank (the multipliers cannot
-  // hold the rigid motions) or S is not positive definite on its null space.
-  bool compute(const Eigen::MatrixXd& S, const Eigen::MatrixXd& B);
+  // False when Bc or Bh does not have full column rank, or the reduced
+  // matrix is singular (not positive definite for the Cholesky factor).
+  bool compute(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Bc, const Eigen::MatrixXd& Bh);
   void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& q, Eigen::VectorXd& x, Eigen::VectorXd& c) const;
 
  private:
   int n_ = 0, k_ = 0;
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr_;
-  Eigen::MatrixXd R1_, T_;  // T = Q^T S Q
-  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr_rows_, qr_unknowns_;  // of Bc, of Bh
+  Eigen::MatrixXd R1c_, R1h_, T_;  // T = Qc^T A Qh
+  Factor factor_;
+};
+
+class BorderedSpdSolver {
+ public:
+  // False when B does not have full column rank (the multipliers cannot
+  // hold the rigid motions) or S is not positive definite on its null space.
+  bool compute(const Eigen::MatrixXd& S, const Eigen::MatrixXd& B) { return impl_.compute(S, B, B); }
+  void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& q, Eigen::VectorXd& x, Eigen::VectorXd& c) const {
+    impl_.solve(r, q, x, c);
+  }
+
+ private:
+  NullSpaceBordered<CholeskyFactor> impl_;
 };
 
 // The same border on a general square A whose two borders differ (friction:
@@ -41,20 +65,8 @@ class BorderedSpdSolver {
 // Bc = Qc [R1c; 0] on the rows: x = Qh [w; mu], R1h^T w = q, then
 // (Qc^T A Qh)_22 mu = (Qc^T r)_2 - (Qc^T A Qh)_21 w by a partial-pivoting
 // LU (engine/dense_kernels: a few thousand unknowns in a fraction of a
-// second), and c from the first k rows.
-class BorderedLuSolver {
- public:
-  // False when Bc or Bh does not have full column rank, or the reduced
-  // matrix is singular (a pivot below n eps of the largest, as a
-  // full-pivoting LU's rank).
-  bool compute(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Bc, const Eigen::MatrixXd& Bh);
-  void solve(const Eigen::VectorXd& r, const Eigen::VectorXd& q, Eigen::VectorXd& x, Eigen::VectorXd& c) const;
-
- private:
-  int n_ = 0, k_ = 0;
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr_rows_, qr_unknowns_;  // of Bc, of Bh
-  Eigen::MatrixXd R1c_, R1h_, T_;  // T = Qc^T A Qh
-  dense::Lu lu_;
-};
+// second; singular when a pivot falls below n eps of the largest, as a
+// full-pivoting LU's rank), and c from the first k rows.
+using BorderedLuSolver = NullSpaceBordered<dense::Lu>;
 
 }  // namespace igac
