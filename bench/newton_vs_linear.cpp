@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "usage: {} CASE.toml [REFINE ...] [--csv FILE] [--repeat N]\n", argv[0]);
     return 2;
   }
-  omp_set_dynamic(1);  // as igac: threads adapt to the machine's load
+  omp_set_dynamic(0);  // as igac: each region takes the free cores (engine/free_cores.hpp)
   std::string csv_path;
   int repeat = 3;
   std::vector<int> refines;

@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "usage: {} CASE.toml [--integration segmented|element] [--csv FILE]\n", argv[0]);
     return 2;
   }
-  omp_set_dynamic(1);  // as igac
+  omp_set_dynamic(0);  // as igac: each region takes the free cores (engine/free_cores.hpp)
   std::string csv_path, integration;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
