@@ -235,9 +235,8 @@ ContactSolution SmallStrainFriction::step(const WeightedGapOperator& op) {
   // Nothing to apply (no load, no gap closed beyond touching, no tangential
   // offset; the first of a moving obstacle's steps often): the solution is
   // u = 0 and lambda = 0, and the states stay.  An iteration would decide them
-  // on round-off: a block touching a plane at rest came out with 76 of its
-  // 1024 multipliers sliding on tractions of 1e-15, and the next step started
-  // from there.
+  // on tractions at round-off, and the next step would start from there
+  // (docs/benchmarks.md, "Friction in 3D").
   if (s.fp.isZero(0.0)) {
     bool at_rest = true;
     for (int K = 0; K < m && at_rest; ++K) {

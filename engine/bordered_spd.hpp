@@ -64,9 +64,9 @@ class BorderedSpdSolver {
 // by the same null-space method with Bh = Qh [R1h; 0] on the unknowns and
 // Bc = Qc [R1c; 0] on the rows: x = Qh [w; mu], R1h^T w = q, then
 // (Qc^T A Qh)_22 mu = (Qc^T r)_2 - (Qc^T A Qh)_21 w by a partial-pivoting
-// LU (engine/dense_kernels: a few thousand unknowns in a fraction of a
-// second; singular when a pivot falls below n eps of the largest, as a
-// full-pivoting LU's rank), and c from the first k rows.
+// LU (engine/dense_kernels, blocked; singular when a pivot falls below
+// n eps of the largest, as a full-pivoting LU's rank), and c from the first
+// k rows.
 using BorderedLuSolver = NullSpaceBordered<dense::Lu>;
 
 }  // namespace igac

@@ -4,9 +4,8 @@
 // threaded), where Eigen's own are compiled for the portable instruction set
 // (-march=x86-64-v2) and run on one core: the Gram matrix of the Schur
 // complement's columns, the supernodal forward solve on the contact zone and
-// the LU of the frictional iteration's dense system.  Measured on a frictional
-// flat punch with 1024 multipliers (3072 Schur columns, a zone of 5100 rows):
-// docs/benchmarks.md, "Friction in 3D".
+// the LU of the frictional iteration's dense system (measured:
+// docs/benchmarks.md, "Friction in 3D").
 #pragma once
 
 #include <Eigen/Dense>

@@ -29,8 +29,7 @@ int runnable_threads() {
 }
 
 // This process's runnable threads (the caller, and workers of an OpenMP or
-// OpenBLAS team that still spin after their last region): they wait for
-// this region, so they are not the machine's other work.
+// OpenBLAS team that still spin after their last call; see the header).
 int own_runnable_threads() {
   int own = 0;
   std::error_code ec;

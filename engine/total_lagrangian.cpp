@@ -280,7 +280,8 @@ bool function_dilatations_dim(const AssemblyInput& in, const Eigen::MatrixXd& u,
   const int n_el = in.quad.num_elements();
   std::vector<double> c(in.layout.function_entry.back(), 0.0);
   std::atomic<bool> failed{false};
-#pragma omp parallel if (n_el >= 4 * kElementsPerColourForThreads) num_threads(free_cores())
+#pragma omp parallel if (n_el >= 4 * kElementsPerColourForThreads) \
+    num_threads(n_el >= 4 * kElementsPerColourForThreads ? free_cores() : 1)
   {
     Workspace<dim> ws;
 #pragma omp for schedule(dynamic, 16)
@@ -362,7 +363,7 @@ bool assemble_dim(const AssemblyInput& in, const std::vector<std::vector<int>>& 
   std::vector<Eigen::VectorXd> mean_B(local && tangent ? size_t(nf) : 0);
   std::vector<std::vector<int>> mean_B_eq(mean_B.size());
 
-#pragma omp parallel if (threaded) num_threads(free_cores())
+#pragma omp parallel if (threaded) num_threads(threaded ? free_cores() : 1)
   {
     if (tangent) {
 #pragma omp for schedule(static)

@@ -131,9 +131,9 @@ void write_grid(vtkUnstructuredGrid* grid, const std::string& dir, const std::st
   w->SetInputData(grid);
   w->SetDataModeToAppended();
   w->EncodeAppendedDataOff();
-  // LZ4: 16 times faster than zlib for 15 % more bytes (the doubles of a
-  // field hardly compress): hertz3d's step, 38 MB, in 0.9 s with zlib, 0.055 s
-  // with LZ4 (docs/benchmarks.md, "Output").  ParaView reads it since 5.5.
+  // LZ4, not zlib: the doubles of a field hardly compress, and zlib cost
+  // more than the rest of the step (docs/benchmarks.md, "Output").  ParaView
+  // reads it since 5.5.
   w->SetCompressorTypeToLZ4();
   w->SetGlobalWarningDisplay(0);  // a failure is one line of ours, not VTK's multi-line dump
   errno = 0;

@@ -29,7 +29,7 @@
 //                         where the body kept its volume.
 //         "hydrostatic_pressure"  -tr(sigma)/3; with formulation = "mixed"
 //                         the formulation's projected pressure
-//                         (model/field_recovery.hpp: recover_volume).
+//                         (model/field_recovery.hpp: recover_body_fields).
 //         "principal_stress"  3 components sigma_1 >= sigma_2 >= sigma_3.
 //         "strain"        6 components as "stress" (tensor components, not
 //                         engineering shear): eps = sym grad u in small

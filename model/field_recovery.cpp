@@ -59,6 +59,19 @@ struct ProjectionPoint {
   double weight = 0;
 };
 
+// The first 12 columns of a projected row: sigma's 6 Voigt components, then
+// the strain's (small strain eps = sym grad u; large deformation
+// E = (F^T F - I) / 2).
+void put_stress_and_strain(const Eigen::Matrix3d& sigma, const Eigen::Matrix3d& grad, bool green_lagrange,
+                           Eigen::RowVectorXd& f) {
+  const Eigen::Matrix3d eps = green_lagrange ? Eigen::Matrix3d(0.5 * (grad + grad.transpose() + grad.transpose() * grad))
+                                             : Eigen::Matrix3d(0.5 * (grad + grad.transpose()));
+  for (int c = 0; c < 6; ++c) {
+    f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
+    f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
+  }
+}
+
 // The element-local L2 projection, onto each element's rational Bezier basis
 // R_i, of `columns` values per quadrature point (max(p) + 2 Gauss points per
 // direction): sum_j (int_e R_i R_j) c_j = int_e R_i f.  values(e, q, point,
@@ -117,14 +130,7 @@ RecoveredStress recover_stress(const BezierMesh& mesh, const StressLaw& law, boo
   if (mesh.num_elements() > 0 && mesh.element(0).fields.empty())
     throw std::invalid_argument("stress recovery needs the displacement as field 0");
   const Eigen::MatrixXd C = project_on_elements(mesh, 12, [&](int, int, const ProjectionPoint& x, Eigen::RowVectorXd& f) {
-    const Eigen::Matrix3d sigma = law(x.grad);
-    // small strain eps = sym grad u; large deformation E = (F^T F - I) / 2
-    const Eigen::Matrix3d eps = green_lagrange ? Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose() + x.grad.transpose() * x.grad))
-                                               : Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose()));
-    for (int c = 0; c < 6; ++c) {
-      f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
-      f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
-    }
+    put_stress_and_strain(law(x.grad), x.grad, green_lagrange, f);
   });
   RecoveredStress out;
   out.stress = C.leftCols(6);
@@ -185,6 +191,7 @@ namespace {
 // Bezier basis) in place of the pointwise law's.  Coefficient by
 // coefficient, sigma - (tr sigma / 3) I - p_hyd I: exact for the projected
 // fields, both being L2 projections with the same rule and the trace linear.
+// The stress scalars (von Mises, principal, magnitude) are the caller's to fill.
 void take_formulation_pressure(const Model& model, const BezierMesh& mesh, const RecoveredVolume& volume,
                                RecoveredStress& s) {
   const std::vector<Formulation> formulations = model.patch_formulations();
@@ -203,7 +210,6 @@ void take_formulation_pressure(const Model& model, const BezierMesh& mesh, const
       }
     e += n;
   }
-  fill_stress_scalars(s);
 }
 
 }  // namespace
@@ -323,16 +329,7 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
         const bool mixed = is_mixed(formulations[formulations.size() == 1 ? 0 : size_t(k)]);
         Eigen::Matrix3d sigma;
         if (with_stress || !mixed) sigma = law(x.grad);
-        if (with_stress) {
-          // small strain eps = sym grad u; large deformation E = (F^T F - I) / 2
-          const Eigen::Matrix3d eps = green_lagrange
-                                          ? Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose() + x.grad.transpose() * x.grad))
-                                          : Eigen::Matrix3d(0.5 * (x.grad + x.grad.transpose()));
-          for (int c = 0; c < 6; ++c) {
-            f[c] = sigma(kVoigt[c][0], kVoigt[c][1]);
-            f[6 + c] = eps(kVoigt[c][0], kVoigt[c][1]);
-          }
-        }
+        if (with_stress) put_stress_and_strain(sigma, x.grad, green_lagrange, f);
         double pressure = 0;
         if (!mixed) {
           pressure = -sigma.trace() / 3;
@@ -356,8 +353,8 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
   if (with_stress) {
     out.stress.stress = C.leftCols(6);
     out.stress.strain = C.middleCols(6, 6);
-    fill_stress_scalars(out.stress);
     take_formulation_pressure(model, mesh, out.volume, out.stress);
+    fill_stress_scalars(out.stress);
   }
   return out;
 }
