@@ -111,7 +111,8 @@ std::vector<std::string> body_names(const Model& m) {
 // progress lines that follow go to stderr).
 void print_header(const Model& m) {
   const Body& b = m.body;
-  fmt::print("igac: {} — {}D, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
+  fmt::print("igac: {} — {}D{}, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
+             m.spec.plane_stress() ? " plane stress" : "",
              b.degree(), b.num_elements(), m.parts.size() > 1 ? fmt::format(" in {} bodies ({})", m.parts.size(), fmt::join(body_names(m), ", "))
                                            : b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
              m.dofs->num_free(), m.num_multipliers());

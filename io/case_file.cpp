@@ -38,7 +38,7 @@ namespace {
 // keys of a shape, a law or an obstacle come from their registries.
 const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", "material", "dirichlet",
                                      "pressure", "traction", "body_force", "contact", "reference", "output", "loading",
-                                     "faces", "solver", "body", "units"};
+                                     "faces", "solver", "body", "units", "model"};
 const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value", "curve"};
 const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
@@ -53,6 +53,21 @@ const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increm
 const std::set<std::string> kOutputKeys{"vtk"};
 const std::set<std::string> kSolverKeys{"type", "options", "preconditioner"};
 const std::set<std::string> kUnitsKeys{"system", "length", "force", "stress"};
+const std::set<std::string> kModelKeys{"kind"};
+
+// Why the case cannot be the plane stress model it declares ("" when it can).
+std::string plane_stress_refusal(const CaseSpec& c) {
+  if (c.dim() != 2) return "plane_stress is a 2D model (this case is 3D: leave [model] out)";
+  for (const BodySpec& b : c.body_list())
+    if (is_mixed(b.formulation))
+      return fmt::format("plane stress needs no mixed formulation (the thickness takes the volume change, nothing "
+                         "locks): give{} [material] formulation = \"displacement\"",
+                         b.body_name.empty() ? "" : " body '" + b.body_name + "'");
+  if (c.finite_strain() && c.loading.follower_pressure && !c.pressure.empty())
+    return "a follower pressure in large-deformation plane stress would act on a face whose thickness changes, "
+           "which igac does not model: give [loading] pressure = \"dead\" (on the reference face)";
+  return {};
+}
 
 }  // namespace
 
@@ -580,6 +595,18 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
         s.fail(key, fmt::format("{:?} holds a control character: a unit's name is a label (\"mm\", \"N\", \"MPa\")",
                                 *label));
   }
+  if (root.contains("model")) {
+    const Section s(path, "model", top.sub("model"), kModelKeys);
+    const std::string kind = s.string("kind", "plane_strain");
+    if (const auto k = model_kind_named(kind)) c.kind = *k;
+    else
+      s.fail("kind", fmt::format("unknown kind '{}' (plane_strain: a long body, eps_zz = 0; plane_stress: a thin "
+                                 "plate, sigma_zz = 0)", kind));
+    if (c.kind == ModelKind::plane_stress)
+      if (const std::string why = plane_stress_refusal(c); !why.empty()) s.fail("kind", why);
+    if (c.kind == ModelKind::plane_strain && c.dim() != 2)
+      s.fail("kind", "plane_strain is a 2D model (this case is 3D: leave [model] out)");
+  }
   check_load_curves(c);
   check_load_step_count(c, root, path);
   apply_overrides(c, {}, {});
@@ -618,6 +645,7 @@ std::vector<std::string> declared_case_keys() {
   add("output", kOutputKeys);
   add("solver", kSolverKeys);
   add("units", kUnitsKeys);
+  add("model", kModelKeys);
   return {out.begin(), out.end()};
 }
 

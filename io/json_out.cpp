@@ -145,6 +145,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     j["units"] = units;
   }
   j["dim"] = body.space_dim();
+  if (body.space_dim() == 2) j["kind"] = std::string(name_of(m.spec.kind));  // [model] kind
   j["degree"] = body.degree();
   j["elements"] = body.num_elements();
   j["patches"] = body.num_patches();

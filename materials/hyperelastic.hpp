@@ -12,8 +12,9 @@
 // so A has the major symmetry A_iJkL = A_kLiJ.  A is stored as a
 // (dim*dim) x (dim*dim) matrix with F flattened row by row:
 //   A(i*dim + J, k*dim + L) = dP_iJ / dF_kL.
-// In 2D the model is plane strain: F = [[F_2x2, 0], [0, 1]], and the 2D
-// methods return the in-plane block of the 3D P and A (P_33 is not returned).
+// In 2D a law is plane strain: F = [[F_2x2, 0], [0, 1]], and the 2D
+// methods return the in-plane block of the 3D P and A (P_33 is not returned);
+// PlaneStressLaw (materials/plane_stress.hpp) makes the plane stress law of any law.
 //
 // Who owns what: a law owns its constants (lambda, mu) and nothing else; it
 // keeps no scratch (callers may share one law between threads).  It reports an
@@ -115,6 +116,12 @@ class HyperelasticLaw {
   // Psi(F); +inf when F is inadmissible.
   virtual double energy(const Eigen::Matrix2d& F) const = 0;
   virtual double energy(const Eigen::Matrix3d& F) const = 0;
+  // F_33 of the 2D model at the in-plane F: 1 in plane strain (every law's
+  // own 2D methods); the plane stress wrapper (materials/plane_stress.hpp)
+  // solves it from P_33 = 0.  NaN when F is inadmissible.
+  virtual double out_of_plane_stretch(const Eigen::Matrix2d& F) const {
+    return F.allFinite() ? 1.0 : std::numeric_limits<double>::quiet_NaN();
+  }
 
   // The isochoric/volumetric split Psi_split = W_iso(F) + U(J) of a law that
   // declares one (VolumetricSplitLaw below): W_iso depends on F only through

@@ -19,6 +19,7 @@
 #include "engine/spline/refinement.hpp"
 #include "engine/spline/split.hpp"
 #include "contact/mortar_gap.hpp"
+#include "materials/plane_stress.hpp"
 #include "model/case_body.hpp"
 
 namespace igac {
@@ -381,7 +382,12 @@ Model build_model(const CaseSpec& spec) {
   // its own.
   auto law_of = [&](const BodySpec& b) -> std::unique_ptr<HyperelasticLaw> {
     const MaterialParameters& given = b.material_parameters;
-    return make_law(b.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{b.E, b.nu, {}} : given);
+    std::unique_ptr<HyperelasticLaw> law =
+        make_law(b.model, std::isnan(given.E) && given.values.empty() ? MaterialParameters{b.E, b.nu, {}} : given);
+    // Plane stress: the law with sigma_zz = 0, in both paths (its tangent at
+    // F = I is the plane stress elasticity the small-deformation path takes).
+    if (spec.plane_stress()) law = std::make_unique<PlaneStressLaw>(std::shared_ptr<const HyperelasticLaw>(std::move(law)));
+    return law;
   };
   m.law = law_of(spec);
   for (size_t i = 0; i < m.parts.size(); ++i) {

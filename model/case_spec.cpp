@@ -46,6 +46,14 @@ std::optional<Preconditioner> preconditioner_named(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<ModelKind> model_kind_named(std::string_view name) {
+  if (name == "plane_strain") return ModelKind::plane_strain;
+  if (name == "plane_stress") return ModelKind::plane_stress;
+  return std::nullopt;
+}
+
+std::string_view name_of(ModelKind kind) { return kind == ModelKind::plane_stress ? "plane_stress" : "plane_strain"; }
+
 std::string_view name_of(SolverType type) { return type == SolverType::petsc ? "petsc" : "direct"; }
 
 std::string_view name_of(Preconditioner p) {

@@ -111,6 +111,14 @@ std::optional<Preconditioner> preconditioner_named(std::string_view name);
 std::string_view name_of(SolverType type);
 std::string_view name_of(Preconditioner preconditioner);
 
+// [model] kind: what a 2D case models in the third direction.  plane_strain
+// (a long body: eps_zz = 0) or plane_stress (a thin plate: sigma_zz = 0, the
+// thickness free; materials/plane_stress.hpp); forces per unit thickness
+// either way.  A 3D case is neither (its kind stays plane_strain, unread).
+enum class ModelKind { plane_strain, plane_stress };
+std::optional<ModelKind> model_kind_named(std::string_view name);
+std::string_view name_of(ModelKind kind);
+
 struct SolverSpec {
   SolverType type = SolverType::direct;
   std::string options;
@@ -217,6 +225,8 @@ struct CaseSpec : BodySpec {
   std::vector<BodySpec> bodies;  // [[body]] tables; empty: the case is one body
   std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
   LoadingSpec loading;
+  ModelKind kind = ModelKind::plane_strain;  // [model] kind (2D)
+  bool plane_stress() const { return kind == ModelKind::plane_stress && dim() == 2; }
   // conditions and loads
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;

@@ -327,9 +327,15 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
         const int k = quad.patch_of(e);
         const StressLaw& law = stress_laws[stress_laws.size() == 1 ? 0 : size_t(k)];  // (not copied: elements run in parallel)
         const bool mixed = is_mixed(formulations[formulations.size() == 1 ? 0 : size_t(k)]);
+        // grad u with its out-of-plane entry: the law's F_33 - 1 in 2D (0 in
+        // plane strain; plane stress solves sigma_zz = 0), so the strain, J and
+        // the stress are the plate's.
+        Eigen::Matrix3d grad = x.grad;
+        if (const HyperelasticLaw* patch_law = per_patch(laws, k); dim == 2 && patch_law)
+          grad(2, 2) = patch_law->out_of_plane_stretch(Eigen::Matrix2d::Identity() + grad.topLeftCorner<2, 2>()) - 1;
         Eigen::Matrix3d sigma;
-        if (with_stress || !mixed) sigma = law(x.grad);
-        if (with_stress) put_stress_and_strain(sigma, x.grad, green_lagrange, f);
+        if (with_stress || !mixed) sigma = law(grad);
+        if (with_stress) put_stress_and_strain(sigma, grad, green_lagrange, f);
         double pressure = 0;
         if (!mixed) {
           pressure = -sigma.trace() / 3;
@@ -344,7 +350,7 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
           const int* a = space.functions_begin(e);
           for (size_t i = 0; i < values.size(); ++i) pressure += values[i] * function_pressure[size_t(a[i])];
         }
-        f[first] = (Eigen::Matrix3d::Identity() + x.grad).determinant();
+        f[first] = (Eigen::Matrix3d::Identity() + grad).determinant();
         f[first + 1] = pressure;
       });
   RecoveredFields out;

@@ -3,9 +3,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace igac {
 namespace {
+
+// The (E, nu) that turn a plane-strain closed form into the case's: its own
+// in plane strain (and 3D); in plane stress E (1 + 2 nu) / (1 + nu)^2 and
+// nu / (1 + nu), whose plane-strain Lame constants are plane stress's
+// (lambda* = 2 lambda mu / (lambda + 2 mu), mu).  Hertz's E / (1 - nu^2)
+// then reads E, the plane stress contact modulus.
+std::pair<double, double> in_plane_constants(const CaseSpec& spec) {
+  if (!spec.plane_stress()) return {spec.E, spec.nu};
+  const double nu = spec.nu;
+  return {spec.E * (1 + 2 * nu) / ((1 + nu) * (1 + nu)), nu / (1 + nu)};
+}
 
 // Hertz: a round body of radius R (a quarter disc in 2D, a sphere octant in
 // 3D, or a geometry file that gives its radius) pressed by the sum P of its
@@ -20,13 +32,14 @@ std::string hertz_unusable(const CaseSpec& c) {
 std::optional<HertzSolution> hertz_pressure(const CaseSpec& spec) {
   double P = 0;
   for (const auto& p : spec.pressure) P += p.value;
-  return spec.dim() == 2 ? hertz_cylinder(spec.radius, P, spec.E, spec.nu) : hertz_sphere(spec.radius, P, spec.E, spec.nu);
+  const auto [E, nu] = in_plane_constants(spec);
+  return spec.dim() == 2 ? hertz_cylinder(spec.radius, P, E, nu) : hertz_sphere(spec.radius, P, E, nu);
 }
 
 std::optional<ExactDisplacement> no_displacement(const CaseSpec&) { return std::nullopt; }
 std::optional<HertzSolution> no_pressure(const CaseSpec&) { return std::nullopt; }
 
-// Lame: the plane-strain thick cylinder (a quarter annulus, or a geometry
+// Lame: the thick cylinder (plane strain) or disc (plane stress) (a quarter annulus, or a geometry
 // file that gives both radii) under the pressure on its face "inner".
 std::string lame_unusable(const CaseSpec& c) {
   if (c.shape != "quarter_annulus" && !(c.shape == "file" && c.inner_radius > 0 && c.outer_radius > 0))
@@ -35,14 +48,15 @@ std::string lame_unusable(const CaseSpec& c) {
 }
 
 std::optional<ExactDisplacement> lame_displacement(const CaseSpec& spec) {
-  // Plane strain thick cylinder, internal pressure pi on r = a, free at r = b:
+  // Plane strain thick cylinder (plane stress: in_plane_constants), internal pressure pi on r = a, free at r = b:
   // sigma_rr = A - B/r^2, A = pi a^2/(b^2-a^2), B = pi a^2 b^2/(b^2-a^2),
   // u_r = (1+nu)/E ((1-2nu) A r + B/r).
   double pi = 0;
   for (const auto& p : spec.pressure)
     for (const auto& f : p.faces)
       if (f == "inner") pi += p.value;
-  const double a = spec.inner_radius, b = spec.outer_radius, E = spec.E, nu = spec.nu;
+  const auto [E, nu] = in_plane_constants(spec);
+  const double a = spec.inner_radius, b = spec.outer_radius;
   const double A = pi * a * a / (b * b - a * a), B = pi * a * a * b * b / (b * b - a * a);
   const double c = (1 + nu) / E;
   return [=](const Eigen::VectorXd& X, Eigen::VectorXd& u, Eigen::MatrixXd& g) {

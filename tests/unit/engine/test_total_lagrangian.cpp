@@ -31,6 +31,7 @@
 #include "engine/spline/refinement.hpp"
 #include "engine/total_lagrangian.hpp"
 #include "materials/hyperelastic.hpp"
+#include "materials/plane_stress.hpp"
 #include "tests/support/distort.hpp"
 
 namespace igac {
@@ -93,10 +94,8 @@ double fd_error(const Eigen::MatrixXd& K, const DofMap& dofs, const Eigen::Vecto
 // The wiggle is a fraction of the control-point spacing, so that
 // |Grad u| ~ 0.2 stays admissible (det F > 0) at every Gauss point.
 double tangent_fd_error(const NurbsPatch& patch, const DofMap& dofs, double wiggle, unsigned seed,
-                        Formulation formulation = Formulation::displacement, const std::string& law_name = "neo_hookean",
-                        const MaterialParameters& material = kMaterial) {
-  const auto law = make_law(law_name, material);
-  const TotalLagrangianAssembler tl(patch, dofs, *law, formulation);
+                        Formulation formulation, const HyperelasticLaw& law) {
+  const TotalLagrangianAssembler tl(patch, dofs, law, formulation);
   const Eigen::VectorXd free = random_state(patch, dofs, wiggle, seed);
   Eigen::VectorXd f;
   Eigen::SparseMatrix<double> K;
@@ -115,6 +114,11 @@ double tangent_fd_error(const NurbsPatch& patch, const DofMap& dofs, double wigg
             << ", " << dofs.num_free() << " dofs): " << err << "\n";
   return err;
 }
+double tangent_fd_error(const NurbsPatch& patch, const DofMap& dofs, double wiggle, unsigned seed,
+                        Formulation formulation = Formulation::displacement, const std::string& law_name = "neo_hookean",
+                        const MaterialParameters& material = kMaterial) {
+  return tangent_fd_error(patch, dofs, wiggle, seed, formulation, *make_law(law_name, material));
+}
 
 // Quarter disc held on the left (u_x = 0) with a prescribed, non-zero u_y on
 // the top face: rows and columns of prescribed dofs are skipped while their
@@ -128,6 +132,18 @@ TEST(TotalLagrangian, TangentMatchesFiniteDifferences2D) {
   for (int p : {2, 3}) {
     const NurbsPatch patch = refined(g.patch, p, 3);
     EXPECT_LE(tangent_fd_error(patch, quarter_disc_dofs(g, patch), 0.02, 7 + p), kFiniteDifference) << "p = " << p;
+  }
+}
+
+// Plane stress (materials/plane_stress.hpp): the condensed tangent of each
+// law assembles into the tangent of the assembled force.
+TEST(TotalLagrangian, PlaneStressTangentMatchesFiniteDifferences) {
+  const Geometry g = quarter_disc(1.0);
+  const NurbsPatch patch = refined(g.patch, 2, 3);
+  for (const std::string& name : {"neo_hookean", "saint_venant_kirchhoff"}) {
+    const PlaneStressLaw law(std::shared_ptr<const HyperelasticLaw>(make_law(name, kMaterial)));
+    EXPECT_LE(tangent_fd_error(patch, quarter_disc_dofs(g, patch), 0.02, 11, Formulation::displacement, law),
+              kFiniteDifference) << name;
   }
 }
 
