@@ -148,8 +148,8 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     status += fmt::format(" (active set sizes per iteration: {})", sizes);
   }
   if (!m.reoriented_patches.empty())
-    fmt::print("  geometry      patch(es) {} reoriented: left-handed in the file, run with u backwards (face names as "
-               "the file gives them)\n", fmt::join(m.reoriented_patches, ", "));
+    fmt::print("  geometry      patch(es) {} reoriented: left-handed (in the file, or mirrored), run with u backwards "
+               "(face names as the file or the shape gives them)\n", fmt::join(m.reoriented_patches, ", "));
   if (!m.joined_sides.empty()) {
     std::vector<std::string> pairs;
     for (const PatchInterface& itf : m.joined_sides) pairs.push_back(side_label(itf.first) + " = " + side_label(itf.second));

@@ -81,6 +81,40 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
   // Where the body stands: its shape or file moved by a translation (two
   // built-in shapes side by side, a file's body placed against another).
   if (geo.has("translate")) c.translate = geo.loads("translate", size_t(dim));
+  if (geo.has("scale")) {
+    c.scale = geo.scale("scale", "the factor every coordinate is multiplied by");
+    // the radii a reference reads are the body's as it stands
+    c.radius *= c.scale, c.inner_radius *= c.scale, c.outer_radius *= c.scale;
+  }
+  if (geo.has("mirror")) {
+    const toml::node* n = geo.node("mirror");
+    std::vector<std::string> axes;
+    if (const auto* one = n->as_string()) axes.push_back(one->get());
+    else if (const auto* list = n->as_array())
+      for (const toml::node& a : *list)
+        if (const auto* word = a.as_string()) axes.push_back(word->get());
+        else axes.push_back("?");
+    if (axes.empty()) geo.fail("mirror", "give an axis (\"x\", \"y\"" + std::string(dim == 3 ? ", \"z\"" : "") +
+                                         ") or a list of them: its coordinate changes sign");
+    for (const std::string& a : axes) {
+      const int axis = a == "x" ? 0 : a == "y" ? 1 : a == "z" && dim == 3 ? 2 : -1;
+      if (axis < 0)
+        geo.fail("mirror", fmt::format("unknown axis '{}' (\"x\", \"y\"{}: the coordinate that changes sign)", a,
+                                       dim == 3 ? ", \"z\"" : ""));
+      c.mirror.push_back(axis);
+    }
+  }
+  if (geo.has("rotate")) {
+    if (dim == 2) {
+      if (!geo.node("rotate")->is_number())
+        geo.fail("rotate", "in 2D one angle in degrees, counter-clockwise about the origin");
+      c.rotate = {geo.load("rotate")};
+    } else {
+      c.rotate = geo.loads("rotate", 3);  // about x, then y, then z
+    }
+    for (double a : c.rotate)
+      if (!(std::abs(a) <= 3600)) geo.fail("rotate", fmt::format("{:g} degrees: give an angle within one turn or ten", a));
+  }
 
   const Section mesh(path, where + "mesh", owner.sub("mesh"), kMeshKeys);
   c.degree = mesh.integer("degree");

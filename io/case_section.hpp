@@ -21,7 +21,7 @@ namespace igac::case_reading {
 
 // The keys of one body's tables (the keys of a shape and a law come from
 // their registries).
-inline const std::set<std::string> kGeometryKeys{"shape", "file", "translate"};  // and the shape's own
+inline const std::set<std::string> kGeometryKeys{"shape", "file", "scale", "mirror", "rotate", "translate"};  // and the shape's own
 inline const std::set<std::string> kGeometryFileKeys{"radius", "inner_radius", "outer_radius"};  // with file =
 inline const std::set<std::string> kMeshKeys{"degree", "elements", "refine", "grading"};
 inline const std::set<std::string> kGradingKeys{"direction", "toward", "span_fraction", "range_fraction", "coarse"};

@@ -93,7 +93,10 @@ double largest_element_diameter(const NurbsPatch& p) {
 // Refines one coarse patch as the case asks: degree elevation to
 // [mesh] degree, then per direction the uniform or graded knots (with the
 // patch's own interior knots kept), subdivided `refine` times.
-NurbsPatch refine_patch(const CaseSpec& c, const BodySpec& spec, const NurbsPatch& coarse, const std::string& which) {
+// `backwards`: the patch was reoriented (its first direction runs backwards),
+// so a grading of that direction toward the start is toward its new end.
+NurbsPatch refine_patch(const CaseSpec& c, const BodySpec& spec, const NurbsPatch& coarse, const std::string& which,
+                        bool backwards = false) {
   for (int d = 0; d < coarse.param_dim(); ++d)
     if (coarse.degree(d) > spec.degree)
       throw InputError(fmt::format("{}: [mesh] degree = {} is below the geometry's degree {} in direction {}{}: igac "
@@ -106,7 +109,8 @@ NurbsPatch refine_patch(const CaseSpec& c, const BodySpec& spec, const NurbsPatc
       if (gs.direction == d) g = &gs;
     KnotVector target;
     try {
-      target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, g->at_start,
+      const bool at_start = g && (d == 0 && backwards ? !g->at_start : g->at_start);
+      target = g ? KnotVector::graded(spec.degree, spec.elements[d], g->span_fraction, g->range_fraction, at_start,
                                       g->geometric_coarse ? KnotVector::CoarseSpans::geometric
                                                           : KnotVector::CoarseSpans::uniform)
                  : KnotVector::uniform(spec.degree, spec.elements[d]);
@@ -286,7 +290,16 @@ void add_body(Model& m, const BodySpec& b, std::vector<NurbsPatch>& patches, std
   // the patches of a geometry file.
   MultiPatch coarse;
   if (b.geometry_file.empty()) {
-    const Geometry g = body_geometry(spec, b);
+    Geometry g = body_geometry(spec, b);
+    // A mirrored shape is left-handed: its first direction runs backwards,
+    // its faces keep their names (as a file's patch below).
+    if (orientation(g.patch, gauss_points_for(b.degree)) < 0) {
+      g.patch = reversed(g.patch, 0);
+      m.reoriented_patches.push_back(offset);
+      for (auto& [name, sides] : g.faces)
+        for (PatchSide& side : sides)
+          if (side.face.direction == 0) side.face.at_end = !side.face.at_end;
+    }
     coarse = MultiPatch{{g.patch}, {}, {}};
     for (const auto& [name, sides] : g.faces) {
       std::vector<PatchSide> shifted = sides;
@@ -314,7 +327,10 @@ void add_body(Model& m, const BodySpec& b, std::vector<NurbsPatch>& patches, std
   std::vector<NurbsPatch> own;
   for (size_t k = 0; k < coarse.patches.size(); ++k) {
     const std::string which = several ? fmt::format(" of patch {}", k) : "";
-    own.push_back(refine_patch(spec, b, coarse.patches[k], b.body_name.empty() ? which : which + " of body '" + b.body_name + "'"));
+    const bool backwards =
+        std::count(m.reoriented_patches.begin(), m.reoriented_patches.end(), offset + int(k)) > 0;
+    own.push_back(refine_patch(spec, b, coarse.patches[k], b.body_name.empty() ? which : which + " of body '" + b.body_name + "'",
+                               backwards));
     if (!b.geometry_file.empty()) check_patch_map(spec, b, own.back(), int(k));
   }
   for (InsertedKnots knots : make_interfaces_conform(own, coarse.interfaces)) {

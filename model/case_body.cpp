@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <numbers>
+
 #include "engine/geometry/shapes.hpp"
 #include "engine/spline/split.hpp"
 
@@ -37,12 +40,29 @@ Geometry shape_geometry(const CaseSpec& spec, const BodySpec& body) {
                                body.shape));
 }
 
-NurbsPatch translated(const NurbsPatch& p, const std::vector<double>& by) {
-  if (by.empty()) return p;
+// The patch's control points moved by the body's transforms, in order:
+// scale, mirror, rotate, translate.  Affine maps of the control points are
+// exact for NURBS (weights unchanged).
+NurbsPatch placed(const NurbsPatch& p, const BodySpec& body) {
+  const bool moved = body.scale != 1 || !body.mirror.empty() || !body.rotate.empty() || !body.translate.empty();
+  if (!moved) return p;
+  const int dim = p.space_dim();
+  Eigen::MatrixXd A = body.scale * Eigen::MatrixXd::Identity(dim, dim);
+  for (int axis : body.mirror) A.row(axis) *= -1;
+  const auto turn = [dim](int axis, double degrees) {  // about the origin (2D: axis 2, the plane's normal)
+    const double a = degrees * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+    Eigen::MatrixXd R = Eigen::MatrixXd::Identity(dim, dim);
+    const int i = (axis + 1) % 3, j = (axis + 2) % 3;  // the plane of the turn, counter-clockwise seen from +axis
+    R(i, i) = c, R(i, j) = -s, R(j, i) = s, R(j, j) = c;
+    return R;
+  };
+  if (dim == 2 && !body.rotate.empty()) A = turn(2, body.rotate[0]) * A;
+  if (dim == 3)
+    for (int axis = 0; axis < int(body.rotate.size()); ++axis) A = turn(axis, body.rotate[size_t(axis)]) * A;
+  Eigen::MatrixXd X = p.points() * A.transpose();
+  for (int c = 0; c < X.cols() && c < int(body.translate.size()); ++c) X.col(c).array() += body.translate[size_t(c)];
   std::vector<KnotVector> knots;
   for (int d = 0; d < p.param_dim(); ++d) knots.push_back(p.knots(d));
-  Eigen::MatrixXd X = p.points();
-  for (int c = 0; c < X.cols() && c < int(by.size()); ++c) X.col(c).array() += by[size_t(c)];
   return NurbsPatch(std::move(knots), std::move(X), p.weights());
 }
 
@@ -50,7 +70,7 @@ NurbsPatch translated(const NurbsPatch& p, const std::vector<double>& by) {
 
 Geometry body_geometry(const CaseSpec& spec, const BodySpec& body) {
   Geometry g = shape_geometry(spec, body);
-  g.patch = translated(g.patch, body.translate);
+  g.patch = placed(g.patch, body);
   return g;
 }
 
@@ -61,7 +81,7 @@ MultiPatch body_patches(const CaseSpec& spec, const BodySpec& body) {
                                    "(read it with io/case_file's read_case)", spec.where(body, "geometry", "file"), table(body),
                                    body.geometry_file));
     MultiPatch mp = *body.file_body;  // as the user wrote it, placed where the case puts it
-    for (NurbsPatch& p : mp.patches) p = translated(p, body.translate);
+    for (NurbsPatch& p : mp.patches) p = placed(p, body);
     return mp;
   }
   return single_patch_body(body_geometry(spec, body).patch);

@@ -160,6 +160,12 @@ struct BodySpec {
   int dimension = 0;          // the body's, from the shape's registry entry or the file (0: from the shape name)
   double radius = 1, inner_radius = 1, outer_radius = 2;
   std::vector<double> size;
+  // Where the body stands: its shape or file's patches scaled about the
+  // origin, mirrored across coordinate planes, rotated about the origin and
+  // translated, in that order (place_patch, model/case_body.hpp).
+  double scale = 1;
+  std::vector<int> mirror;        // the axes (0, 1, 2) whose coordinate changes sign, in order
+  std::vector<double> rotate;     // degrees: one angle in 2D; about x, then y, then z in 3D (empty: none)
   std::vector<double> translate;  // moves the shape or the file's patches (empty: where they stand)
   // mesh
   int degree = 2;
