@@ -45,7 +45,8 @@ const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
 const std::set<std::string> kTractionKeys{"faces", "value", "curve"};
 const std::set<std::string> kBodyForceKeys{"value", "curve"};
 const std::set<std::string> kContactKeys{"face",         "obstacle", "master",     "master_motion",
-                                          "master_curve", "friction", "integration", "law"};
+                                          "master_curve", "friction", "integration", "law",
+                                          "interference"};
 const std::set<std::string> kObstacleKeys{"type", "motion", "curve"};  // and the obstacle type's own
 const std::set<std::string> kReferenceKeys{"solution"};
 const std::set<std::string> kLoadingKeys{"steps", "first_increment", "min_increment", "max_increment",
@@ -496,6 +497,12 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
       const std::string integration = s.string("integration");
       if (const auto i = mortar_integration_named(integration)) cs.integration = *i;
       else s.fail("integration", fmt::format("\"{}\" is not one of \"segmented\", \"element\"", integration));
+    }
+    if (s.has("interference")) {  // an intended starting overlap, removed with the load (model/model.hpp)
+      cs.interference = s.boolean("interference", false);
+      if (cs.interference && !cs.law.empty() && interface_law(cs.law).bilateral())
+        s.fail("interference", fmt::format("a \"{}\" contact holds the gap it starts with; an interference fit needs "
+                                           "a contact that can push the faces apart", cs.law));
     }
     if (c.degree < 2) s.fail("face", "contact needs mesh.degree >= 2 (multipliers have degree p-2)");
     for (const ContactSpec& o : c.contacts)  // its multipliers twice over: a singular system

@@ -479,20 +479,24 @@ Model build_model(const CaseSpec& spec) {
       // Two bodies that start inside one another: a geometry placed wrong
       // (a translate forgotten), not a load.  Touching to round-off, or a
       // fit tighter than kOverlapTolerance of the face's size, is allowed.
+      // An intended overlap (interference = true) is removed over the load.
       constexpr double kOverlapTolerance = 1e-3;
       const Penetration overlap = deepest_penetration(*c.face, *c.obstacle);
       const double extent = face_extent(m.body, *faces);
-      if (overlap.depth > kOverlapTolerance * extent)
+      c.interference = cs.interference;
+      if (!cs.interference && overlap.depth > kOverlapTolerance * extent)
         throw InputError(fmt::format("{}: [contact] face '{}' starts inside the body of its master '{}': {:.3g} deep at "
-                                     "({:.4g}), more than {:g} of the face's size {:.3g}; place the bodies apart "
-                                     "([body.geometry] translate)", at_face, cs.face, cs.master, overlap.depth,
-                                     fmt::join(overlap.point, ", "), kOverlapTolerance, extent));
+                                     "({:.4g}), more than {:g} x the face's size {:.3g} = {:.3g}; place the bodies apart "
+                                     "([body.geometry] translate), or declare a fit with interference = true in this "
+                                     "[contact] table", at_face, cs.face, cs.master, overlap.depth,
+                                     fmt::join(overlap.point, ", "), kOverlapTolerance, extent, kOverlapTolerance * extent));
       m.contacts.push_back(std::move(c));
       continue;
     }
     const auto& o = cs.obstacle;
     ++obstacles;
     c.friction = cs.friction;
+    c.interference = cs.interference;
     if (!cs.law.empty()) c.law = &interface_law(cs.law);
     try {
       c.obstacle = find_obstacle_type(o.type)->make(o.values);

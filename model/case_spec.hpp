@@ -76,6 +76,11 @@ struct ContactSpec {
   std::string law;        // the interface law (contact/interface_law.hpp); empty: coulomb where friction > 0, else
                           // frictionless
   MortarIntegration integration = MortarIntegration::segmented;  // with master (contact/mortar_gap.hpp)
+  // The faces start overlapping on purpose (a shrink or press fit): the
+  // overlap is removed gradually, the gaps offset by (1 - t) times it over
+  // the load (Model::Contact::interference).  Without it, two bodies that
+  // start inside one another are an error.
+  bool interference = false;
 };
 
 // Large deformation (hyperelastic models): how the load is applied.

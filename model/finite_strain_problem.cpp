@@ -64,6 +64,19 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     for (int K = 0; K < m_; ++K)
       if (laws_[size_t(K)]->bilateral()) gamma_start_[K] = start.gamma[K];
   }
+  // An interference fit: the overlap the reference configuration has,
+  // max(0, -g_0), offsets the gaps by (1 - min(t, 1)) times it
+  // (evaluate_contact), so the run starts clear and fits by the load's end.
+  if (std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const auto& c) { return c.interference; })) {
+    ContactEval start;
+    evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.dofs->num_dofs() / s_.dofs->dim(), s_.dofs->dim()),
+                     Eigen::VectorXd(), nullptr, start, false);
+    Eigen::VectorXd overlap = Eigen::VectorXd::Zero(m_);
+    for (size_t k = 0; k < s_.contacts.size(); ++k)
+      if (s_.contacts[k].interference)
+        for (int K = offsets_[k]; K < offsets_[k + 1]; ++K) overlap[K] = std::max(0.0, -start.gamma[K]);
+    overlap_ = std::move(overlap);
+  }
   if (std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const auto& c) { return c.law.tangential(); })) {
     std::vector<FrictionContact> fc;
     for (size_t k = 0; k < s_.contacts.size(); ++k) {
@@ -174,6 +187,7 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
     });
   }
   if (gamma_start_.size()) out.gamma -= gamma_start_;  // a tie's gap counts from where it started
+  if (overlap_.size()) out.gamma += (1.0 - std::clamp(t, 0.0, 1.0)) * overlap_;  // a fit not yet whole
 }
 
 bool FiniteStrainProblem::elasticity(const Eigen::MatrixXd& u, Eigen::VectorXd& f_int, Eigen::SparseMatrix<double>* K,

@@ -101,6 +101,9 @@ struct FiniteStrainSetup {
     // Its interface law and coefficient (contact/interface_law.hpp): a law
     // with tangential rows brings contact/finite_strain_friction.hpp in.
     ContactLaw law;
+    // The faces start overlapping on purpose: the overlap of the reference
+    // configuration is removed with the load (Model::Contact::interference).
+    bool interference = false;
   };
   std::vector<Contact> contacts;
   // A distributed run's share (engine/assembly.hpp; empty: the whole
@@ -224,6 +227,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   Eigen::VectorXd local_residual(const TotalLagrangianAssembler::LocalDilatation& local, const Eigen::VectorXd& z) const;
   std::vector<const InterfaceLaw*> laws_;  // per multiplier
   Eigen::VectorXd gamma_start_;             // a tie's g_0 per multiplier (empty: no tie)
+  Eigen::VectorXd overlap_;                 // an interference fit's max(0, -g_0) per multiplier (empty: none)
   std::unique_ptr<FiniteStrainFriction> friction_;  // null: frictionless
   Eigen::VectorXd normal_multipliers(const Eigen::VectorXd& x) const { return x.segment(n_, m_); }
   std::unique_ptr<TotalLagrangianAssembler> tl_;

@@ -136,7 +136,7 @@ RunResult solve_small_strain_history(const Model& m, const RunControl& control) 
     return f;
   };
   bool moving = false;
-  for (const auto& c : m.contacts) moving = moving || c.motion.size() > 0;
+  for (const auto& c : m.contacts) moving = moving || changes_with_the_load(c);
   std::optional<WeightedGapOperator> fixed_op;
   if (!m.contacts.empty() && !moving) fixed_op = assemble_contact_operator(m);
   // Friction depends on the path: one frictional solve (K factorised once)

@@ -84,6 +84,15 @@ struct Model {
     const InterfaceLaw* law = nullptr;   // [contact] law; null: by the coefficient (default_interface_law)
     ContactLaw contact_law() const { return law ? ContactLaw(*law, friction) : ContactLaw(friction); }
     MortarIntegration integration = MortarIntegration::segmented;  // with a master
+    // [contact] interference = true: the faces start overlapping on purpose.
+    // Each weighted gap is offset by (1 - s(t)) o_K, o_K = max(0, -g_K) of
+    // the reference configuration (the overlap's part of multiplier K), with
+    // s(t) the load factor (with load curves: ramp and hold, min(t, 1)); so
+    // the run starts with no overlap and the full fit is reached at the end
+    // of the load (of the first unit of time), as Abaqus' interference fit
+    // removes it over a step.  A small-deformation solve without steps is
+    // at s = 1 only: the fit at once, which linear elasticity allows.
+    bool interference = false;
   };
   std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter

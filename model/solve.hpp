@@ -64,10 +64,18 @@ void check_body_is_held(const Model& model, const RigidModes& modes, const Eigen
                         const WeightedGapOperator* op = nullptr);
 // The stacked weighted-gap operator of every contact (small deformation),
 // with the tangential rows of the frictional ones; `motion_factor` t puts
-// each moving obstacle at t * motion (1: where the case has it).
+// each moving obstacle at t * motion (1: where the case has it) and leaves
+// (1 - t) of each interference fit's overlap in the gaps.
 WeightedGapOperator assemble_contact_operator(const Model& model, double motion_factor = 1.0);
-// The same at time t of the load curves: each moving obstacle at curve(t) * motion.
+// The same at time t of the load curves: each moving obstacle at curve(t) *
+// motion, (1 - min(t, 1)) of each interference fit's overlap left.
 WeightedGapOperator assemble_contact_operator_at_time(const Model& model, double time);
+// An interference fit's overlap per multiplier of contact c: max(0, -g0_K)
+// where the faces stand before any load (Model::Contact::interference).
+Eigen::VectorXd interference_overlap(const Model& model, const Model::Contact& c);
+// Does contact c's operator change along the load (a moving partner, an
+// interference fit being removed)?
+bool changes_with_the_load(const Model::Contact& c);
 // What the contacts of a small-deformation solve add to the residual
 // K u - f on every dof, prescribed ones included: G^T lambda + T^T lambda_t
 // of the operator the solve used, with its couplings to the prescribed dofs

@@ -141,7 +141,7 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
   setup.follower_pressure = m.spec.loading.follower_pressure;
   for (const auto& c : m.contacts)
     setup.contacts.push_back({c.face.get(), c.obstacle.get(), c.motion, c.master.get(),
-                              c.integration, c.curve, c.contact_law()});
+                              c.integration, c.curve, c.contact_law(), c.interference});
   setup.complementarity_scale = m.spec.E / std::max(m.mesh_size, 1e-300);
   setup.mesh_size = m.mesh_size;
   setup.share = elasticity_share(m);  // (several processes: each its elements)

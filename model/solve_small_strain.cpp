@@ -55,9 +55,10 @@ void add_traction_loads(const Model& m, const DofMap& dofs, std::optional<double
 }
 
 namespace {
-// The stacked operator with each moving obstacle at factor(contact) * motion.
+// The stacked operator with each moving obstacle at factor(contact) *
+// motion, and each interference fit's overlap removed by `fit` (1: whole).
 template <class Factor>
-WeightedGapOperator contact_operator(const Model& m, Factor&& factor) {
+WeightedGapOperator contact_operator(const Model& m, Factor&& factor, double fit) {
   std::vector<WeightedGapOperator> ops;
   for (const auto& c : m.contacts) {
     const double t = factor(c);
@@ -65,25 +66,43 @@ WeightedGapOperator contact_operator(const Model& m, Factor&& factor) {
       const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
       ops.push_back(assemble_mortar_gaps(*m.dofs, *c.face, *c.master, c.integration,
                                          c.contact_law(), shift));
-      continue;
+    } else {
+      const bool moved = t != 1.0 && c.motion.size() > 0;
+      const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
+      std::optional<TranslatedObstacle> at;  // the obstacle at t * motion (c.obstacle stands at 1 * motion)
+      if (moved) at.emplace(*c.obstacle, (t - 1.0) * c.motion);
+      ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, at ? static_cast<const Obstacle&>(*at) : *c.obstacle,
+                                           c.contact_law(), shift));
     }
-    const bool moved = t != 1.0 && c.motion.size() > 0;
-    const Eigen::VectorXd shift = c.motion.size() ? Eigen::VectorXd(t * c.motion) : Eigen::VectorXd();
-    std::optional<TranslatedObstacle> at;  // the obstacle at t * motion (c.obstacle stands at 1 * motion)
-    if (moved) at.emplace(*c.obstacle, (t - 1.0) * c.motion);
-    ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, at ? static_cast<const Obstacle&>(*at) : *c.obstacle,
-                                         c.contact_law(), shift));
+    if (c.interference && fit < 1.0) ops.back().g0 += (1.0 - fit) * interference_overlap(m, c);
   }
   return stack(ops);
 }
 }  // namespace
 
+Eigen::VectorXd interference_overlap(const Model& m, const Model::Contact& c) {
+  // The weighted gaps where the body and its partner stand before any
+  // load: the master unmoved, the obstacle without its motion (c.obstacle
+  // stands where the motion puts it in small deformation).
+  Eigen::VectorXd g0;
+  if (c.master) {
+    g0 = assemble_mortar_gaps(*m.dofs, *c.face, *c.master, c.integration).g0;
+  } else if (c.motion.size() > 0 && !m.spec.finite_strain()) {
+    g0 = assemble_weighted_gaps(*m.dofs, *c.face, TranslatedObstacle(*c.obstacle, -c.motion)).g0;
+  } else {
+    g0 = assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle).g0;
+  }
+  return (-g0).cwiseMax(0.0);
+}
+
+bool changes_with_the_load(const Model::Contact& c) { return (c.motion.size() > 0 && c.motion.norm() > 0) || c.interference; }
+
 WeightedGapOperator assemble_contact_operator(const Model& m, double t) {
-  return contact_operator(m, [t](const Model::Contact&) { return t; });
+  return contact_operator(m, [t](const Model::Contact&) { return t; }, t);
 }
 
 WeightedGapOperator assemble_contact_operator_at_time(const Model& m, double time) {
-  return contact_operator(m, [time](const Model::Contact& c) { return c.curve(time); });
+  return contact_operator(m, [time](const Model::Contact& c) { return c.curve(time); }, std::clamp(time, 0.0, 1.0));
 }
 
 Eigen::VectorXd contact_forces_on_every_dof(const Model& m, const ContactSolve& c) {
@@ -240,7 +259,7 @@ ContactSolution solve_with_friction(const Model& m, const LinearSystem& sys, con
                                     LinearSolverRecord& record) {
   const std::unique_ptr<LinearBackend> petsc = petsc_linear_backend(m);  // (null: CHOLMOD)
   bool moving = false;
-  for (const auto& c : m.contacts) moving = moving || (c.motion.size() > 0 && c.motion.norm() > 0);
+  for (const auto& c : m.contacts) moving = moving || changes_with_the_load(c);
   const int steps = moving ? m.spec.loading.steps : 0;
   const WeightedGapOperator first = moving ? assemble_contact_operator(m, 0.0) : WeightedGapOperator{};
   Stopwatch clock;
