@@ -189,6 +189,8 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     }
     if (several)
       fmt::print("    total force   {:.10g}\n", rep.total_force);
+    else if (m.contacts[i].self_contact)  // the load does not pass through it to another body
+      fmt::print("  total force   {:.10g}  (self-contact: the body presses on itself)\n", rep.total_force);
     else if (r.applied_force > 0 && c.resultant.size() == c.normal.size() &&
              std::abs(std::abs(c.resultant.dot(c.normal)) - std::abs(rep.total_force)) > 1e-9 * std::abs(rep.total_force)) {
       // against a curved or deformed partner the pressure turns with its

@@ -452,14 +452,23 @@ Model build_model(const CaseSpec& spec) {
         if (std::find(faces->begin(), faces->end(), s) != faces->end())
           throw InputError(fmt::format("{}: [contact] master '{}' and face '{}' share the side {}", at_master,
                                        cs.master, cs.face, m.body.describe(s)));
-      const std::vector<int> part = m.body.parts();  // a master on the slave's own body holds nothing
+      // Self-contact: a master on the slave's own body (a C-seal closing, the
+      // arms of a U pressed together).  The mortar pairs two faces whatever
+      // body holds them; it cannot move the master's body apart from the
+      // slave's, nor hold that body's rigid motions (their relative motion is
+      // nil: check_body_is_held says so).
+      const std::vector<int> part = m.body.parts();
       for (const PatchSide& s : master)
         for (const PatchSide& f : *faces)
-          if (part[s.patch] == part[f.patch])
-            throw InputError(fmt::format("{}: [contact] master '{}' is on the same body as the face '{}' ({} and {} are "
-                                         "joined): the master is a face of a second body", at_master, cs.master,
-                                         cs.face, m.body.describe(s), m.body.describe(f)));
+          if (part[s.patch] == part[f.patch] && !cs.master_motion.empty())
+            throw InputError(fmt::format("{}: [contact] master_motion moves the master's body, and master '{}' is on "
+                                         "the body of face '{}' (self-contact: {} and {}); move the body by its "
+                                         "[[dirichlet]] conditions", at_master, cs.master, cs.face,
+                                         m.body.describe(s), m.body.describe(f)));
       c.master_name = cs.master;
+      c.self_contact = std::any_of(master.begin(), master.end(), [&](const PatchSide& s) {
+        return std::any_of(faces->begin(), faces->end(), [&](const PatchSide& f) { return part[s.patch] == part[f.patch]; });
+      });
       c.friction = cs.friction;
       if (!cs.law.empty()) c.law = &interface_law(cs.law);
       c.integration = cs.integration;
@@ -484,6 +493,11 @@ Model build_model(const CaseSpec& spec) {
       const Penetration overlap = deepest_penetration(*c.face, *c.obstacle);
       const double extent = face_extent(m.body, *faces);
       c.interference = cs.interference;
+      if (c.self_contact && !cs.interference && overlap.depth > kOverlapTolerance * extent)
+        throw InputError(fmt::format("{}: [contact] face '{}' and its master '{}' are faces of one body that face each "
+                                     "other through it ({:.3g} deep at ({:.4g})): self-contact pairs faces across a "
+                                     "gap, as the arms of a U", at_face, cs.face, cs.master, overlap.depth,
+                                     fmt::join(overlap.point, ", ")));
       if (!cs.interference && overlap.depth > kOverlapTolerance * extent)
         throw InputError(fmt::format("{}: [contact] face '{}' starts inside the body of its master '{}': {:.3g} deep at "
                                      "({:.4g}), more than {:g} x the face's size {:.3g} = {:.3g}; place the bodies apart "

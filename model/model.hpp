@@ -77,6 +77,7 @@ struct Model {
                                          // the reports and checks read it, the coupling does not)
     std::unique_ptr<MasterSurface> master;  // the face of a second deformable body (null: a rigid obstacle)
     std::string master_name;
+    bool self_contact = false;           // the master is a face of the slave's own body
     Eigen::VectorXd motion;              // large deformation: the obstacle is moved by curve(t) * motion; a master
                                          // body: moved rigidly with its supports (small deformation)
     LoadCurve curve;                     // of the motion (no points: the factor is t)

@@ -147,9 +147,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadMaster{"twice", "master = \"0:north\"", "master = \"0:north\"\n[[contact]]\nface = \"1:south\"\nmaster = \"0:north\"",
                   "[contact] face: the contact of face '1:south' is given twice"},
         // and a master on the slave's own body "converged" to displacements
-        // of 1e30: the mortar gap of a body with itself holds nothing.
+        // of 1e30: self-contact pairs faces across a gap, not through the body.
         BadMaster{"same_body", "master = \"0:north\"", "master = \"1:north\"",
-                  "master '1:north' is on the same body as the face '1:south'"},
+                  "[contact] face '1:south' and its master '1:north' are faces of one body that face each other through it"},
         // master_motion moves a master body: three entries in 2D, or on a
         // contact with an obstacle, are one line naming the key.
         BadMaster{"master_motion_length", "master = \"0:north\"", "master = \"0:north\"\nmaster_motion = [0.1, 0.0, 0.0]",
