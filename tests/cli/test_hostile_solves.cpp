@@ -170,7 +170,8 @@ TEST(MessagesAfterReading, NameTheLineOfTheirKey) {
        {{"translate = [0.0, -5.0]", "translate = [0.0, -4.9]"}},
        "face = \"roller:curved\"",
        ": [contact] face 'roller:curved' starts inside the body of its master 'block:top': 0.1 deep at (0, -1), more "
-       "than 0.001 of the face's size 1.41; place the bodies apart ([body.geometry] translate)\n"},
+       "than 0.001 x the face's size 1.41 = 0.00141; place the bodies apart ([body.geometry] translate), or declare a fit "
+       "with interference = true in this [contact] table\n"},
       {"hertz2d",
        {{"value = 0.003", "value = -0.003"}},
        "value = -0.003",

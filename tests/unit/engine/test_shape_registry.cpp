@@ -39,7 +39,7 @@ TEST(ShapeRegistry, AKeyOfAnotherShapeIsRefused) {
                                           "[mesh]\ndegree = 2\nelements = [2, 2]\n[material]\nE = 1\nnu = 0.3\n";
   const auto o = igac_test::run_igac("run c.toml", tmp.path());
   EXPECT_EQ(o.exit_code, 2) << o.output;
-  EXPECT_NE(o.output.find("c.toml:5: [geometry] radius: unknown key (expected one of: file, shape, size, translate)"),
+  EXPECT_NE(o.output.find("c.toml:5: [geometry] radius: unknown key (expected one of: file, mirror, rotate, scale, shape, size, translate)"),
             std::string::npos) << o.output;
 }
 
