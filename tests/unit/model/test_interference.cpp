@@ -12,6 +12,7 @@
 //  - large deformation (Neo-Hookean) at 0.15 %: the same closed form to
 //    0.5 %; at 7 % (an overlap of 5 % of the face's size) it converges;
 //  - friction (0.1) changes nothing in this radial fit;
+//  - against a rigid plane in 3D the fit ends where a moving plane ends;
 //  - an overlap not declared stays an error naming the key, and a tied
 //    contact refuses interference.
 #include <gtest/gtest.h>
@@ -106,6 +107,36 @@ TEST(Interference, FrictionChangesNothingInARadialFit) {
   const double nh_frictionless = ring_cut_force(run(press_fit(0.01, "plane_stress", "neo_hookean")));
   ASSERT_TRUE(nh.status.is_converged()) << nh.status.text();
   EXPECT_NEAR(ring_cut_force(nh), nh_frictionless, 1e-6 * nh_frictionless);
+}
+
+// 3D, against a rigid obstacle: a sphere octant held on its top face, with
+// the plane below it raised by d into it (interference = true), ends where
+// the same plane moved up by d from touching ends: a frictionless elastic
+// body has one equilibrium there, whatever the path (the gaps along the
+// way differ: t (g - d) against g - t d).  Small deformation to round-off,
+// Neo-Hookean to the Newton tolerance.
+std::string octant(const std::string& law, const std::string& obstacle) {
+  return "name = \"octant\"\n[geometry]\nshape = \"sphere_octant\"\nradius = 1.0\n[mesh]\ndegree = 2\n"
+         "elements = [6, 2, 6]\n[material]\nmodel = \"" + law + "\"\nE = 1.0\nnu = 0.3\n"
+         "[[dirichlet]]\nfaces = [\"left\"]\ncomponent = \"x\"\n[[dirichlet]]\nfaces = [\"back\"]\ncomponent = \"y\"\n"
+         "[[dirichlet]]\nfaces = [\"top\"]\ncomponent = \"z\"\n[loading]\nsteps = 4\n"
+         "[contact]\nface = \"curved\"\n" + obstacle + "[contact.obstacle]\ntype = \"plane\"\nnormal = [0.0, 0.0, 1.0]\n";
+}
+
+TEST(Interference, AnOverlapWithAnObstacleEndsWhereTheObstacleMovedThereEnds) {
+  constexpr double d = 0.05;  // the pole's multiplier averages the gap over its support: it needs a few element heights
+  for (const std::string law : {"linear_elastic", "neo_hookean"}) {
+    const RunResult fit = run(octant(law, "interference = true\n") + "point = [0.0, 0.0, " + std::to_string(-1 + d) + "]\n");
+    const RunResult moved =
+        run(octant(law, "") + "point = [0.0, 0.0, -1.0]\nmotion = [0.0, 0.0, " + std::to_string(d) + "]\n");
+    ASSERT_TRUE(fit.status.is_converged()) << fit.status.text();
+    ASSERT_TRUE(moved.status.is_converged()) << moved.status.text();
+    const double a = fit.contacts.front().report.total_force, b = moved.contacts.front().report.total_force;
+    std::printf("  %s octant, overlap %.2f: force %.12g, moved plane %.12g\n", law.c_str(), d, a, b);
+    EXPECT_GT(b, 1e-3);
+    EXPECT_NEAR(a, b, (law == "linear_elastic" ? 1e-10 : 1e-7) * b) << law;
+    EXPECT_NEAR((fit.u - moved.u).cwiseAbs().maxCoeff(), 0.0, (law == "linear_elastic" ? 1e-12 : 1e-9)) << law;
+  }
 }
 
 TEST(Interference, AnUndeclaredOverlapIsAnErrorNamingTheKey) {
