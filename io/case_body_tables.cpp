@@ -93,7 +93,7 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
     else if (const auto* list = n->as_array())
       for (const toml::node& a : *list)
         if (const auto* word = a.as_string()) axes.push_back(word->get());
-        else axes.push_back("?");
+        else geo.fail("mirror", "the list holds axis names (\"x\", \"y\"" + std::string(dim == 3 ? ", \"z\"" : "") + "), not numbers");
     if (axes.empty()) geo.fail("mirror", "give an axis (\"x\", \"y\"" + std::string(dim == 3 ? ", \"z\"" : "") +
                                          ") or a list of them: its coordinate changes sign");
     for (const std::string& a : axes) {
