@@ -36,14 +36,20 @@ class ActiveSchur {
   Eigen::VectorXd G_solve_f() const { return G_times_backward(yf_face_); }
   // Makes the columns of A available; returns S_AA.
   Eigen::MatrixXd S_active(const std::vector<int>& A) {
-    std::vector<int> fresh;
-    for (int K : A)
-      if (slot_[K] < 0) fresh.push_back(K);
-    if (!fresh.empty()) add_columns(fresh);
+    prepare(A);
     std::vector<int> s(A.size());
     for (size_t i = 0; i < A.size(); ++i) s[i] = slot_[A[i]];
     return S_(s, s);
   }
+  // Makes the columns of A available without copying S_AA out: then
+  // S(K1, K2) reads its entries (K1, K2 in A).
+  void prepare(const std::vector<int>& A) {
+    std::vector<int> fresh;
+    for (int K : A)
+      if (slot_[K] < 0) fresh.push_back(K);
+    if (!fresh.empty()) add_columns(fresh);
+  }
+  double S(int K1, int K2) const { return S_(slot_[K1], slot_[K2]); }
   // The multipliers whose columns were computed, batch by batch in the
   // order they were: S_active of each again, in a fresh ActiveSchur of the
   // same factor, gives the same columns and S, bit for bit.

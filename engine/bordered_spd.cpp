@@ -34,8 +34,9 @@ bool NullSpaceBordered<Factor>::compute(const Eigen::MatrixXd& A, const Eigen::M
   qr_rows_.compute(Bc);
   qr_unknowns_.compute(Bh);
   if (!full_column_rank(qr_rows_, Bc, R1c_) || !full_column_rank(qr_unknowns_, Bh, R1h_)) return false;
-  T_ = qr_rows_.householderQ().adjoint() * A;
-  T_ = T_ * qr_unknowns_.householderQ();
+  T_ = A;  // Qc^T A Qh in place: no temporary of A's size
+  qr_rows_.householderQ().adjoint().applyThisOnTheLeft(T_);
+  qr_unknowns_.householderQ().applyThisOnTheRight(T_);
   if (n_ == k_) return true;
   factor_.compute(T_.bottomRightCorner(n_ - k_, n_ - k_));
   return !factor_.singular();

@@ -22,7 +22,7 @@ namespace igac {
 // The reduced matrix's factorisation, by Cholesky (SPD) or by LU.
 struct CholeskyFactor {
   Eigen::LLT<Eigen::MatrixXd> llt;
-  void compute(const Eigen::MatrixXd& A) { llt.compute(A); }
+  void compute(const Eigen::Ref<const Eigen::MatrixXd>& A) { llt.compute(A); }
   bool singular() const { return llt.info() != Eigen::Success; }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return llt.solve(b); }
 };

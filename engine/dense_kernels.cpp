@@ -59,7 +59,7 @@ void lower_solve_in_place(const ConstBlock& L, Block X) {
   dtrsm_("L", "L", "N", "N", &m, &n, &one, L.data(), &lda, X.data(), &ldb);
 }
 
-void Lu::compute(const Eigen::MatrixXd& A) {
+void Lu::compute(const Eigen::Ref<const Eigen::MatrixXd>& A) {
   if (A.rows() != A.cols()) throw std::invalid_argument("dense::Lu: not square");
   lu_ = A;
   const int n = int(A.rows());

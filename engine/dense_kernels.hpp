@@ -28,7 +28,7 @@ void lower_solve_in_place(const ConstBlock& L, Block X);
 // largest (the threshold of a full-pivoting LU's rank) or is not finite.
 class Lu {
  public:
-  void compute(const Eigen::MatrixXd& A);
+  void compute(const Eigen::Ref<const Eigen::MatrixXd>& A);  // (a block: no temporary copy)
   bool singular() const { return singular_; }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
 
