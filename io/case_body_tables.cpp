@@ -113,7 +113,7 @@ void read_body_tables(const std::string& path, const Section& owner, const std::
       c.rotate = geo.loads("rotate", 3);  // about x, then y, then z
     }
     for (double a : c.rotate)
-      if (!(std::abs(a) <= 3600)) geo.fail("rotate", fmt::format("{:g} degrees: give an angle within one turn or ten", a));
+      if (!(std::abs(a) <= 3600)) geo.fail("rotate", fmt::format("{:g} degrees: give an angle between -3600 and 3600", a));
   }
 
   const Section mesh(path, where + "mesh", owner.sub("mesh"), kMeshKeys);

@@ -458,17 +458,14 @@ Model build_model(const CaseSpec& spec) {
       // slave's, nor hold that body's rigid motions (their relative motion is
       // nil: check_body_is_held says so).
       const std::vector<int> part = m.body.parts();
-      for (const PatchSide& s : master)
-        for (const PatchSide& f : *faces)
-          if (part[s.patch] == part[f.patch] && !cs.master_motion.empty())
-            throw InputError(fmt::format("{}: [contact] master_motion moves the master's body, and master '{}' is on "
-                                         "the body of face '{}' (self-contact: {} and {}); move the body by its "
-                                         "[[dirichlet]] conditions", at_master, cs.master, cs.face,
-                                         m.body.describe(s), m.body.describe(f)));
-      c.master_name = cs.master;
       c.self_contact = std::any_of(master.begin(), master.end(), [&](const PatchSide& s) {
         return std::any_of(faces->begin(), faces->end(), [&](const PatchSide& f) { return part[s.patch] == part[f.patch]; });
       });
+      if (c.self_contact && !cs.master_motion.empty())
+        throw InputError(fmt::format("{}: [contact] master_motion moves the master's body, and master '{}' is on the "
+                                     "body of face '{}' (self-contact); move the body by its [[dirichlet]] conditions",
+                                     at_master, cs.master, cs.face));
+      c.master_name = cs.master;
       c.friction = cs.friction;
       if (!cs.law.empty()) c.law = &interface_law(cs.law);
       c.integration = cs.integration;
@@ -504,6 +501,8 @@ Model build_model(const CaseSpec& spec) {
                                      "([body.geometry] translate), or declare a fit with interference = true in this "
                                      "[contact] table", at_face, cs.face, cs.master, overlap.depth,
                                      fmt::join(overlap.point, ", "), kOverlapTolerance, extent, kOverlapTolerance * extent));
+      if (c.interference && !spec.finite_strain())  // where the master stands before any load
+        c.interference_overlap = (-assemble_mortar_gaps(*m.dofs, *c.face, *c.master, c.integration).g0).cwiseMax(0.0);
       m.contacts.push_back(std::move(c));
       continue;
     }
@@ -519,6 +518,8 @@ Model build_model(const CaseSpec& spec) {
                                    spec.where({.table = "contact.obstacle", .key = "type", .index = obstacles}),
                                    e.what()));
     }
+    if (c.interference && !spec.finite_strain())  // the obstacle before its motion
+      c.interference_overlap = (-assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle).g0).cwiseMax(0.0);
     if (!o.motion.empty()) {
       c.motion = Eigen::Map<const Eigen::VectorXd>(o.motion.data(), Eigen::Index(o.motion.size()));
       c.curve = o.curve;

@@ -23,10 +23,11 @@ Geometry shape_geometry(const CaseSpec& spec, const BodySpec& body) {
   try {
     if (const ShapeType* kind = find_shape_type(body.shape)) {
       if (!body.shape_values.empty()) return kind->make(body.shape_values);
-      // A CaseSpec made in code may give only the named fields.
-      const ShapeValues v{{"radius", {body.radius}},
-                          {"inner_radius", {body.inner_radius}},
-                          {"outer_radius", {body.outer_radius}},
+      // A CaseSpec made in code may give only the named fields (its radii
+      // are the body's as it stands, after `scale`, which placed() applies).
+      const ShapeValues v{{"radius", {body.radius / body.scale}},
+                          {"inner_radius", {body.inner_radius / body.scale}},
+                          {"outer_radius", {body.outer_radius / body.scale}},
                           {"size", body.size}};
       return kind->make(v);
     }

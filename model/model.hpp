@@ -94,6 +94,11 @@ struct Model {
     // removes it over a step.  A small-deformation solve without steps is
     // at s = 1 only: the fit at once, which linear elasticity allows.
     bool interference = false;
+    // Small deformation: o_K, computed once when the model is built (empty
+    // without interference).  The large-deformation problem takes its own
+    // from its own gaps at u = 0 (model/finite_strain_problem.hpp), so that
+    // its run starts exactly clear.
+    Eigen::VectorXd interference_overlap;
   };
   std::vector<Contact> contacts;
   double mesh_size = 0;  // largest element diameter

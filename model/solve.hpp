@@ -70,9 +70,6 @@ WeightedGapOperator assemble_contact_operator(const Model& model, double motion_
 // The same at time t of the load curves: each moving obstacle at curve(t) *
 // motion, (1 - min(t, 1)) of each interference fit's overlap left.
 WeightedGapOperator assemble_contact_operator_at_time(const Model& model, double time);
-// An interference fit's overlap per multiplier of contact c: max(0, -g0_K)
-// where the faces stand before any load (Model::Contact::interference).
-Eigen::VectorXd interference_overlap(const Model& model, const Model::Contact& c);
 // Does contact c's operator change along the load (a moving partner, an
 // interference fit being removed)?
 bool changes_with_the_load(const Model::Contact& c);

@@ -74,26 +74,11 @@ WeightedGapOperator contact_operator(const Model& m, Factor&& factor, double fit
       ops.push_back(assemble_weighted_gaps(*m.dofs, *c.face, at ? static_cast<const Obstacle&>(*at) : *c.obstacle,
                                            c.contact_law(), shift));
     }
-    if (c.interference && fit < 1.0) ops.back().g0 += (1.0 - fit) * interference_overlap(m, c);
+    if (c.interference_overlap.size() > 0 && fit < 1.0) ops.back().g0 += (1.0 - fit) * c.interference_overlap;
   }
   return stack(ops);
 }
 }  // namespace
-
-Eigen::VectorXd interference_overlap(const Model& m, const Model::Contact& c) {
-  // The weighted gaps where the body and its partner stand before any
-  // load: the master unmoved, the obstacle without its motion (c.obstacle
-  // stands where the motion puts it in small deformation).
-  Eigen::VectorXd g0;
-  if (c.master) {
-    g0 = assemble_mortar_gaps(*m.dofs, *c.face, *c.master, c.integration).g0;
-  } else if (c.motion.size() > 0 && !m.spec.finite_strain()) {
-    g0 = assemble_weighted_gaps(*m.dofs, *c.face, TranslatedObstacle(*c.obstacle, -c.motion)).g0;
-  } else {
-    g0 = assemble_weighted_gaps(*m.dofs, *c.face, *c.obstacle).g0;
-  }
-  return (-g0).cwiseMax(0.0);
-}
 
 bool changes_with_the_load(const Model::Contact& c) { return (c.motion.size() > 0 && c.motion.norm() > 0) || c.interference; }
 
