@@ -112,7 +112,7 @@ std::vector<std::string> body_names(const Model& m) {
 void print_header(const Model& m) {
   const Body& b = m.body;
   fmt::print("igac: {} — {}D{}, degree {}, {} elements{}, {} dofs, {} multipliers\n", m.spec.name, b.space_dim(),
-             m.spec.plane_stress() ? " plane stress" : "",
+             m.spec.plane_stress() ? " plane stress" : m.spec.axisymmetric() ? " axisymmetric" : "",
              b.degree(), b.num_elements(), m.parts.size() > 1 ? fmt::format(" in {} bodies ({})", m.parts.size(), fmt::join(body_names(m), ", "))
                                            : b.num_patches() > 1 ? fmt::format(" in {} patches", b.num_patches()) : "",
              m.dofs->num_free(), m.num_multipliers());
@@ -173,7 +173,9 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
                  rep.active);
     if (!c.has_half_width)
       fmt::print("  {}contact area  {:.6g}{}\n", in, c.contact_area,
-                 b.space_dim() == 2 ? " (length per unit thickness)" : "");
+                 m.spec.axisymmetric() ? " (the area of the revolved contact zone)"
+                 : b.space_dim() == 2  ? " (length per unit thickness)"
+                                       : "");
     if (r.load_steps && !stepped_linear) {
       if (c.has_half_width)
         fmt::print("  {}half width    {:.6g} deformed, {:.6g} on the reference face\n", in, c.half_width_deformed,
@@ -383,7 +385,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       std::vector<std::string> faces;
       if (r.contacts.size() > 1)
         for (const ContactResult& c : r.contacts) faces.push_back(c.face);
-      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, model.body.space_dim(),
+      write_file_atomically(dir + "/load_curve.svg", svg::render(load_curve_figure(r, spec.name, faces, spec.units, spec.axisymmetric() ? 3 : model.body.space_dim(),
                                                                         spec.has_load_curves())));
     }
     // ParaView files (and the stress recovery they need) only when asked for.

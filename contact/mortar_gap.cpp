@@ -140,7 +140,7 @@ void for_each_mortar_point(const ContactFace& slave, const MasterSurface& master
       sp.cps[a] = side.face_cps[local[a]];
     }
     sp.N = values;
-    sp.JxW = w * std::sqrt((tangents.transpose() * tangents).determinant());
+    sp.JxW = w * std::sqrt((tangents.transpose() * tangents).determinant()) * side.face_patch.ring_length(sp.X);
     side.space.basis(xi, sp.K, sp.B);
     for (int& K : sp.K) K += side.first_multiplier;
     displace();

@@ -152,6 +152,30 @@ struct ElementDivergence {
   Eigen::VectorXd m;  // n_functions
 };
 
+// The axisymmetric model's hoop terms of a linear elastic element matrix:
+// eps_theta = u_r / r adds (lambda + 2 mu) h_a h_b to the (r, r) blocks and
+// lambda (h_a dN_b/dX_j + dN_a/dX_i h_b) to the (r, j) and (i, r) blocks,
+// h_a = N_a / r (tr eps = div u + u_r / r).
+template <int dim>
+void add_hoop_stiffness(const ElementValues<dim, dim>& ed, double lambda, double mu, Eigen::MatrixXd& Ke) {
+  const int nl = ed.n_loc;
+  for (int q = 0; q < ed.n_q; ++q) {
+    const double* dN = ed.gradients(q);
+    const double w = ed.JxW[q];
+    for (int b = 0; b < nl; ++b) {
+      const double hb = w * ed.hoop(q, b);
+      for (int a = 0; a < nl; ++a) {
+        const double ha = ed.hoop(q, a);
+        Ke(a * dim, b * dim) += (lambda + 2 * mu) * ha * hb;
+        for (int j = 0; j < dim; ++j) {
+          Ke(a * dim, b * dim + j) += lambda * ha * w * dN[b * dim + j];
+          Ke(a * dim + j, b * dim) += lambda * dN[a * dim + j] * hb;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
@@ -273,11 +297,14 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
         d.m[i] = m;
       }
     };
-    auto fill_divergence = [&](const auto& ed) {  // B(q, a dim + i) = dN_a/dX_i
+    auto fill_divergence = [&](const auto& ed) {  // B(q, a dim + i) = dN_a/dX_i (+ N_a / r: the hoop strain's)
       const int nd = ed.n_loc * dim;
       B.resize(ed.n_q, nd);
-      for (int q = 0; q < ed.n_q; ++q)
+      for (int q = 0; q < ed.n_q; ++q) {
         for (int c = 0; c < nd; ++c) B(q, c) = ed.gradients(q)[c];
+        if (ed.revolved)
+          for (int a = 0; a < ed.n_loc; ++a) B(q, a * dim) += ed.hoop(q, a);
+      }
     };
     // Adds element e's matrix and loads; a mixed element fills its
     // ElementDivergence too.  Returns whether it is mixed.
@@ -316,6 +343,7 @@ LinearSystem assemble_linear_elasticity(const Body& body, const DofMap& dofs,
               Ke(a * dim + i, b * dim + j) = lambda * mij + mu * mji + (i == j ? mu * trace(a, b) : 0.0);
             }
         }
+      if (ed.revolved) add_hoop_stiffness(ed, lambda, mu, Ke);
       if (mixed) {  // + mu (B - Bbar)^T W (B - Bbar), Bbar = Pi_e B
         projection.build(ed.xi, ed.JxW, k_pressure);
         fill_divergence(ed);

@@ -96,6 +96,7 @@ void PatchQuadrature::evaluate(int e, ElementValues<pd, sd>& out, bool gradients
   }
   out.n_loc = n_loc;
   out.n_q = n_q;
+  out.revolved = patch_.revolved();
   thread_local std::vector<int> own;
   control_points(e, out.cps, &own);
   out.X_cp.resize(n_loc);
@@ -137,15 +138,16 @@ void PatchQuadrature::evaluate(int e, ElementValues<pd, sd>& out, bool gradients
     }
     out.X[q] = X;
     out.w[q] = wq;
+    const double ring = patch_.ring_length(X);  // 2 pi r on a revolved patch
     if constexpr (face) {
       const Eigen::Matrix<double, sd, 1> nA = oriented_area<sd>(sigma, J);
       const double dA = nA.norm();
       out.normal[q] = nA / dA;
-      out.JxW[q] = dA * wq;
+      out.JxW[q] = dA * wq * ring;
     } else {
       const double det = J.determinant();  // closed forms for 2x2 and 3x3
       out.min_det_J = std::min(out.min_det_J, det);
-      out.JxW[q] = det * wq;
+      out.JxW[q] = det * wq * ring;
       if (!gradients) continue;
       const Eigen::Matrix<double, sd, sd> Jinv = J.inverse();
       double* dN = out.dR_dX.data() + size_t(q) * n_loc * sd;
@@ -171,6 +173,7 @@ template <int pd, int sd>
 void copy_values(const ElementValues<pd, sd>& v, bool gradients, ElementData& out) {
   const int n_loc = v.n_loc, n_q = v.n_q;
   out.cps = v.cps;
+  out.revolved = v.revolved;
   out.N.resize(n_q, n_loc);
   out.X.resize(n_q, sd);
   out.xi.resize(n_q, pd);

@@ -11,6 +11,8 @@
 // Volume patches (param_dim == space_dim): dN/dX = dN/dxi J^{-1},
 // JxW = det J * w.  Face patches (param_dim == space_dim - 1): the outward
 // area vector s cof(J) e_d gives the unit normal and dGamma = |n dA| w.
+// On a revolved patch (nurbs_patch.hpp, the axisymmetric model) both also
+// carry 2 pi r: integrals are over the whole solid of revolution.
 #pragma once
 
 #include <array>
@@ -45,6 +47,7 @@ struct ElementData {
   Eigen::VectorXd JxW;               // n_q
   Eigen::MatrixXd normal;            // n_q x space_dim, unit outward (faces only)
   double min_det_J = 0;              // volume: smallest det J at the points
+  bool revolved = false;             // axisymmetric (ElementValues::revolved)
 };
 
 class PatchQuadrature {

@@ -44,11 +44,16 @@ struct ElementValues {
   std::vector<Point> X;        // per point
   std::vector<Param> xi;       // per point (parameters of the patch)
   std::vector<double> w;       // per point: Gauss weight times element size (parametric)
-  std::vector<double> JxW;     // per point: det J w (volume), |n dA| w (face)
+  std::vector<double> JxW;     // per point: det J w (volume), |n dA| w (face), times 2 pi r if revolved
   std::vector<Point> normal;   // per point, unit outward (faces)
   double min_det_J = 0;        // volumes: smallest det J at the points
+  // The patch is revolved (axisymmetric, engine/spline/nurbs_patch.hpp): JxW
+  // carries 2 pi r, and the kinematics add the hoop strain u_r / r.
+  bool revolved = false;
 
   double N(int q, int a) const { return R[size_t(q) * n_loc + a]; }
+  // The hoop strain's function of a at point q: R_a / r (axisymmetric).
+  double hoop(int q, int a) const { return N(q, a) / X[q][0]; }
   // dR_a/dX at point q: [a * sd + J]
   const double* gradients(int q) const { return dR_dX.data() + size_t(q) * n_loc * sd; }
   // dR_a/dxi at point q: [a * pd + d]

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <type_traits>
 #include <fmt/format.h>
+#include <numbers>
 #include <stdexcept>
 
 #include "engine/face_quadrature.hpp"
@@ -61,10 +62,18 @@ void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<Patc
         for (int d = 0; d < pd; ++d) dR(a, d) = dRq[a * pd + d];
       const Eigen::Matrix<double, dim, pd> T = x.transpose() * dR;
       const Vec area = oriented_area<dim>(sigma, T);
-      const double pw = p * v.w[q];
+      // axisymmetric: the face is the surface the curve sweeps, so its area
+      // carries 2 pi r at the current (or reference) radius r = x_0
+      double ring = 1;
+      if (v.revolved) {
+        double r = 0;
+        for (int a = 0; a < nl; ++a) r += v.N(q, a) * x(a, 0);
+        ring = 2 * std::numbers::pi * r;
+      }
+      const double pw = p * v.w[q] * ring;
       fe.resize(nd);
       if (traction) {
-        const double aw = area.norm() * v.w[q];
+        const double aw = area.norm() * v.w[q] * ring;
         for (int a = 0; a < nl; ++a)
           for (int i = 0; i < dim; ++i) fe[a * dim + i] = aw * v.N(q, a) * traction[i];
       } else {
@@ -79,6 +88,10 @@ void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<Patc
           const Vec da = area_derivative<dim>(sigma, T, dRq + b * pd, k);
           for (int a = 0; a < nl; ++a)
             for (int i = 0; i < dim; ++i) Ke(a * dim + i, b * dim + k) = pw * v.N(q, a) * da[i];
+          if (v.revolved && k == 0)  // d(2 pi r)/du_(b, r) = 2 pi N_b
+            for (int a = 0; a < nl; ++a)
+              for (int i = 0; i < dim; ++i)
+                Ke(a * dim + i, b * dim) += p * v.w[q] * 2 * std::numbers::pi * v.N(q, b) * v.N(q, a) * area[i];
         }
       scatter_element_matrix(*K, K->valuePtr(), eq, Ke);
     }

@@ -11,7 +11,10 @@ namespace igac {
 
 RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
   const int dim = body.space_dim(), n_cp = body.num_control_points();
-  const int per_body = dim == 2 ? 3 : 6;
+  // An axisymmetric body (revolved patches) has one: the translation along
+  // the axis (a radial motion strains the hoop, a rotation leaves the axis).
+  const bool revolved = body.num_patches() > 0 && body.patch(0).revolved();
+  const int per_body = revolved ? 1 : dim == 2 ? 3 : 6;
   // Each body (group of joined patches) moves rigidly on its own.
   // (Body::parts labels each part by its smallest patch: numbered here 0, 1, ...)
   std::vector<int> component_of_patch = body.parts(), number(body.num_patches(), -1);
@@ -30,6 +33,10 @@ RigidModes free_rigid_modes(const Body& body, const DofMap& dofs) {
   for (int a = 0; a < n_cp; ++a) {
     const int c0 = per_body * component[a];
     const Eigen::RowVectorXd x = body.points().row(a) - centre[component[a]];
+    if (revolved) {
+      M(a * 2 + 1, c0) = 1.0;
+      continue;
+    }
     for (int i = 0; i < dim; ++i) M(a * dim + i, c0 + i) = 1.0;
     if (dim == 2) {
       M(a * 2 + 0, c0 + 2) = -x[1];

@@ -6,7 +6,8 @@
 // Rigid motions are exact in the NURBS space (partition of unity and affine
 // invariance: translations u_A = t, rotations u_A = W X_A), so the candidate
 // modes are known in closed form; those that vanish on every prescribed dof
-// survive (null space of the prescribed rows, by SVD).
+// survive (null space of the prescribed rows, by SVD).  An axisymmetric body
+// has one rigid motion, the translation along its axis.
 #pragma once
 
 #include <Eigen/Dense>

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <fmt/format.h>
 #include <limits>
 #include <stdexcept>
@@ -36,6 +37,7 @@ struct Workspace {
   Eigen::Matrix<double, Eigen::Dynamic, dim * dim> G; // (a*dim+i, k*dim+L): w sum_J dN_aJ A_iJkL
   std::vector<int> eq;                                // free equation per local dof, or -1
   std::vector<DimMatrix<dim>> F;                      // per point
+  std::vector<double> hoop;                           // per point: F_33 = 1 + u_r / r (axisymmetric), else 1
   // mixed formulation (volumetric_projection.hpp): per point J, theta, p, U''
   ElementProjection projection;
   Eigen::VectorXd J, theta, dU, pressure, d2U;
@@ -54,7 +56,7 @@ void element_function_dilatations(const Workspace<dim>& ws, double* c) {
   const int nq = ws.geo.n_q, nf = int(ws.N.cols());
   for (int i = 0; i < nf; ++i) c[i] = 0;
   for (int q = 0; q < nq; ++q) {
-    const double w = ws.geo.JxW[size_t(q)] * (ws.F[size_t(q)].determinant() - 1);
+    const double w = ws.geo.JxW[size_t(q)] * (ws.F[size_t(q)].determinant() * ws.hoop[size_t(q)] - 1);
     for (int i = 0; i < nf; ++i) c[i] += ws.N(q, i) * w;
   }
 }
@@ -92,6 +94,7 @@ bool element_deformation(const Eigen::MatrixXd& u, Workspace<dim>& ws) {
   ws.ue.resize(nl, dim);
   for (int a = 0; a < nl; ++a) ws.ue.row(a) = u.row(geo.cps[a]);
   ws.F.resize(nq);
+  ws.hoop.assign(size_t(nq), 1.0);
   for (int q = 0; q < nq; ++q) {
     const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
     DimMatrix<dim>& F = ws.F[q];
@@ -100,6 +103,10 @@ bool element_deformation(const Eigen::MatrixXd& u, Workspace<dim>& ws) {
       for (int J = 0; J < dim; ++J)
         for (int i = 0; i < dim; ++i) F(i, J) += ws.ue(a, i) * dN[a * dim + J];
     if (!F.allFinite() || !(F.determinant() > 0)) return false;
+    if (geo.revolved) {  // the circle of radius r goes to one of radius r + u_r
+      for (int a = 0; a < nl; ++a) ws.hoop[q] += ws.ue(a, 0) * geo.hoop(q, a);
+      if (!std::isfinite(ws.hoop[q]) || !(ws.hoop[q] > 0)) return false;
+    }
   }
   return true;
 }
@@ -115,7 +122,7 @@ double element_dilatation(int pressure_degree, Workspace<dim>& ws, double* volum
   const int nq = geo.n_q;
   ws.projection.build(geo.xi, geo.JxW, pressure_degree);
   ws.J.resize(nq);
-  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant() - 1;
+  for (int q = 0; q < nq; ++q) ws.J[q] = ws.F[q].determinant() * ws.hoop[q] - 1;
   ws.theta.noalias() = ws.projection.matrix() * ws.J;
   double s = 0, w = 0;
   for (int q = 0; q < nq; ++q) s += geo.JxW[q] * ws.theta[q], w += geo.JxW[q];
@@ -138,6 +145,53 @@ void add_pressure_stress(const DimMatrix<dim>& F, double p, DimMatrix<dim>& P, T
       for (int k = 0; k < dim; ++k)
         for (int L = 0; L < dim; ++L)
           (*A)(i * dim + Jd, k * dim + L) += p * J * (Fi(L, k) * Fi(Jd, i) - Fi(Jd, k) * Fi(L, i));
+}
+
+// One Gauss point q of an axisymmetric element (a revolved patch): the law
+// sees the 3D F = diag(F_rz, F_33), F_33 = 1 + u_r / r (ws.hoop), and a
+// displacement's variation moves F through D, its row for dof (a, i) holding
+// dN_a/dX_J at F_iJ and, for i = r, N_a / r at F_33.  With the five entries
+// of F that are not zero (rr, rz, zr, zz, 33): f_e += w D P, K_e += w D A D^T
+// (the full matrix, symmetric), and in the mixed formulation
+// B = dJ/du = J F^{-T} : D.  False when the law refuses F.
+bool revolved_point(const HyperelasticLaw& law, bool mixed, bool tangent, int q, Workspace<2>& ws) {
+  static constexpr std::array<int, 5> kEntry{0, 1, 3, 4, 8};  // rr, rz, zr, zz, 33 in the 3x3 row-major layout
+  const ElementValues<2, 2>& geo = ws.geo;
+  const int nl = geo.n_loc, nd = 2 * nl;
+  Eigen::Matrix3d F = Eigen::Matrix3d::Zero(), P;
+  F.topLeftCorner<2, 2>() = ws.F[q];
+  F(2, 2) = ws.hoop[q];
+  Eigen::Matrix<double, 9, 9> A;
+  if (!mixed) {
+    if (!law.evaluate(F, P, tangent ? &A : nullptr)) return false;
+  } else {
+    if (!law.evaluate_isochoric(F, P, tangent ? &A : nullptr)) return false;
+    add_pressure_stress<3>(F, ws.pressure[q], P, tangent ? &A : nullptr);
+  }
+  thread_local Eigen::Matrix<double, Eigen::Dynamic, 5> D;
+  D.setZero(nd, 5);
+  const double* dN = geo.gradients(q);
+  for (int a = 0; a < nl; ++a) {
+    D(2 * a, 0) = dN[2 * a], D(2 * a, 1) = dN[2 * a + 1];
+    D(2 * a + 1, 2) = dN[2 * a], D(2 * a + 1, 3) = dN[2 * a + 1];
+    D(2 * a, 4) = geo.hoop(q, a);
+  }
+  const double w = geo.JxW[q];
+  Eigen::Matrix<double, 5, 1> p5;
+  for (int m = 0; m < 5; ++m) p5[m] = P(kEntry[m] / 3, kEntry[m] % 3);
+  ws.fe.noalias() += w * (D * p5);
+  if (!tangent) return true;
+  Eigen::Matrix<double, 5, 5> A5;
+  for (int m = 0; m < 5; ++m)
+    for (int n = 0; n < 5; ++n) A5(m, n) = w * A(kEntry[m], kEntry[n]);
+  ws.Ke.noalias() += D * A5 * D.transpose();
+  if (mixed) {  // B(q, a dim + i) = J F^{-T} : D(a dim + i)
+    const Eigen::Matrix3d JFiT = ws.J[q] * F.inverse().transpose();
+    Eigen::Matrix<double, 5, 1> c;
+    for (int m = 0; m < 5; ++m) c[m] = JFiT(kEntry[m] / 3, kEntry[m] % 3);
+    ws.B.row(q) = (D * c).transpose();
+  }
+  return true;
 }
 
 // Element internal force and (when `tangent`) the tangent at the Gauss
@@ -171,6 +225,11 @@ bool element_kernel(const HyperelasticLaw& law, Formulation formulation, int pre
   DimMatrix<dim> P;
   TangentMatrix<dim> A;
   for (int q = 0; q < nq; ++q) {
+    if constexpr (dim == 2)
+      if (geo.revolved) {
+        if (!revolved_point(law, mixed, tangent, q, ws)) return false;
+        continue;
+      }
     const double* dN = geo.gradients(q);  // dN[a*dim+J] = dN_a/dX_J
     const DimMatrix<dim>& F = ws.F[q];
     if (!mixed) {

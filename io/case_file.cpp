@@ -608,11 +608,11 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
     if (const auto k = model_kind_named(kind)) c.kind = *k;
     else
       s.fail("kind", fmt::format("unknown kind '{}' (plane_strain: a long body, eps_zz = 0; plane_stress: a thin "
-                                 "plate, sigma_zz = 0)", kind));
+                                 "plate, sigma_zz = 0; axisymmetric: x the radius, y the axis)", kind));
     if (c.kind == ModelKind::plane_stress)
       if (const std::string why = plane_stress_refusal(c); !why.empty()) s.fail("kind", why);
-    if (c.kind == ModelKind::plane_strain && c.dim() != 2)
-      s.fail("kind", "plane_strain is a 2D model (this case is 3D: leave [model] out)");
+    if (c.kind != ModelKind::plane_stress && c.dim() != 2)
+      s.fail("kind", fmt::format("{} is a 2D model (this case is 3D: leave [model] out)", name_of(c.kind)));
   }
   check_load_curves(c);
   check_load_step_count(c, root, path);

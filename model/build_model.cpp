@@ -347,6 +347,33 @@ void add_body(Model& m, const BodySpec& b, std::vector<NurbsPatch>& patches, std
   m.parts.push_back({b.body_name, offset, int(coarse.patches.size()), LinearElastic{1.0, 0.0}, nullptr, b.formulation});
 }
 
+// The axisymmetric model: every patch is the section (x = r >= 0) of a
+// solid of revolution about the y axis (engine/spline/nurbs_patch.hpp).
+void revolve(const CaseSpec& spec, std::vector<NurbsPatch>& patches) {
+  for (NurbsPatch& p : patches) try {
+      p.set_revolved(true);
+    } catch (const SplineError& e) {
+      throw InputError(fmt::format("{}: kind = \"axisymmetric\": {}: move the section to x >= 0 (x is the radius, the "
+                                   "y axis the axis of revolution)",
+                                   spec.where({.table = "model", .key = "kind"}), e.what()));
+    }
+}
+
+// The sides of the body's patches that lie on the axis x = 0.
+std::vector<PatchSide> sides_on_the_axis(const Body& body) {
+  const Eigen::MatrixXd& X = body.points();
+  const double tol = 1e-10 * (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+  std::vector<PatchSide> out;
+  for (int k = 0; k < body.num_patches(); ++k)
+    for (int d = 0; d < body.param_dim(); ++d)
+      for (const bool end : {false, true}) {
+        const PatchSide side{k, Face{d, end}};
+        const std::vector<int> cps = body.side_control_points(side);
+        if (std::all_of(cps.begin(), cps.end(), [&](int i) { return std::abs(X(i, 0)) <= tol; })) out.push_back(side);
+      }
+  return out;
+}
+
 }  // namespace
 
 Model build_model(const CaseSpec& spec) {
@@ -356,6 +383,7 @@ Model build_model(const CaseSpec& spec) {
   std::vector<PatchInterface> interfaces;
   const std::vector<BodySpec> bodies = spec.body_list();
   for (const BodySpec& b : bodies) add_body(m, b, patches, interfaces);
+  if (spec.axisymmetric()) revolve(spec, patches);
   try {
     m.body = patches.size() > 1 || !interfaces.empty() ? Body(std::move(patches), interfaces)
                                                        : Body(std::move(patches.front()));
@@ -377,6 +405,8 @@ Model build_model(const CaseSpec& spec) {
   std::vector<DirichletCondition> dc;
   for (const auto& d : spec.dirichlet)
     dc.push_back({resolve_faces(m, d.faces, "dirichlet"), d.component, d.value});
+  if (spec.axisymmetric())  // a point on the axis stays on it (u_r = 0): the hoop strain u_r / r is finite
+    if (std::vector<PatchSide> axis = sides_on_the_axis(m.body); !axis.empty()) dc.push_back({std::move(axis), 0, 0.0});
   for (const auto& p : spec.pressure) resolve_faces(m, p.faces, "pressure");
   for (const auto& p : spec.traction) resolve_faces(m, p.faces, "traction");
   // The same face and component held at two values: the conditions are
@@ -583,6 +613,7 @@ int symmetry_planes(const Model& m) {
 }  // namespace
 
 std::optional<std::string> modelled_part(const Model& m) {
+  if (m.spec.axisymmetric()) return "solid of revolution (forces per full circumference)";
   const bool plane = m.body.space_dim() == 2;
   // The Hertz bodies are a quarter disc and a sphere octant whatever holds
   // them: the pressure on the flat face stands for the other half.

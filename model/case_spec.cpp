@@ -49,10 +49,18 @@ std::optional<Preconditioner> preconditioner_named(std::string_view name) {
 std::optional<ModelKind> model_kind_named(std::string_view name) {
   if (name == "plane_strain") return ModelKind::plane_strain;
   if (name == "plane_stress") return ModelKind::plane_stress;
+  if (name == "axisymmetric") return ModelKind::axisymmetric;
   return std::nullopt;
 }
 
-std::string_view name_of(ModelKind kind) { return kind == ModelKind::plane_stress ? "plane_stress" : "plane_strain"; }
+std::string_view name_of(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::plane_stress: return "plane_stress";
+    case ModelKind::axisymmetric: return "axisymmetric";
+    case ModelKind::plane_strain: break;
+  }
+  return "plane_strain";
+}
 
 std::string_view name_of(SolverType type) { return type == SolverType::petsc ? "petsc" : "direct"; }
 

@@ -118,9 +118,11 @@ std::string_view name_of(Preconditioner preconditioner);
 
 // [model] kind: what a 2D case models in the third direction.  plane_strain
 // (a long body: eps_zz = 0) or plane_stress (a thin plate: sigma_zz = 0, the
-// thickness free; materials/plane_stress.hpp); forces per unit thickness
-// either way.  A 3D case is neither (its kind stays plane_strain, unread).
-enum class ModelKind { plane_strain, plane_stress };
+// thickness free; materials/plane_stress.hpp), forces per unit thickness
+// either way; or axisymmetric (x = r >= 0, y = z the axis: the solid the
+// section sweeps turning about the y axis, hoop strain u_r / r), forces per
+// full circumference.  A 3D case is none (its kind stays plane_strain, unread).
+enum class ModelKind { plane_strain, plane_stress, axisymmetric };
 std::optional<ModelKind> model_kind_named(std::string_view name);
 std::string_view name_of(ModelKind kind);
 
@@ -141,7 +143,8 @@ struct UnitsSpec {
   std::string system;                 // "mm-N-MPa", "SI" or "" (the three given one by one, or none)
   std::string length, force, stress;
   bool declared() const { return !length.empty() || !force.empty() || !stress.empty(); }
-  // A force of the model: per unit thickness in 2D (force / length).
+  // A force of the model: per unit thickness in 2D (force / length); dim 3
+  // for a total force (3D, and 2D axisymmetric: per full circumference).
   std::string force_of_model(int dim) const {
     if (force.empty()) return "";
     return dim == 2 && !length.empty() ? force + "/" + length : force;
@@ -238,6 +241,7 @@ struct CaseSpec : BodySpec {
   LoadingSpec loading;
   ModelKind kind = ModelKind::plane_strain;  // [model] kind (2D)
   bool plane_stress() const { return kind == ModelKind::plane_stress && dim() == 2; }
+  bool axisymmetric() const { return kind == ModelKind::axisymmetric && dim() == 2; }
   // conditions and loads
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;

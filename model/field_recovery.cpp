@@ -56,6 +56,7 @@ double measure(const Eigen::MatrixXd& J) {
 struct ProjectionPoint {
   Eigen::VectorXd R;
   Eigen::Matrix3d grad;
+  double hoop = 0;  // 2D: u_x / x, the hoop strain of the axisymmetric model
   double weight = 0;
 };
 
@@ -107,6 +108,7 @@ Eigen::MatrixXd project_on_elements(const BezierMesh& mesh, int columns, Values&
           J.topLeftCorner(dim, dim).noalias() = el.points.transpose() * dR;     // dX/ds
           G.topLeftCorner(dim, dim).noalias() = el.fields[0].transpose() * dR;  // du/ds
           point.grad.noalias() = G * J.inverse();
+          if (dim == 2) point.hoop = el.fields[0].col(0).dot(point.R) / el.points.col(0).dot(point.R);
           point.weight = rule.weights[size_t(q)] * std::abs(J.determinant());
           values(e, q, point, f);
           M.selfadjointView<Eigen::Lower>().rankUpdate(point.R, point.weight);
@@ -241,6 +243,7 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
     throw std::invalid_argument(fmt::format("volume recovery: a mesh of {} elements for a body of {}",
                                             mesh.num_elements(), quad.num_elements()));
   const bool small = !model.spec.finite_strain();
+  const bool axisymmetric = model.spec.axisymmetric();
   const std::vector<Formulation> formulations = model.patch_formulations();
   const std::vector<LinearElastic> materials = model.patch_materials();
   const std::vector<const HyperelasticLaw*> laws = model.patch_laws();
@@ -266,6 +269,7 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
     G.noalias() = el.fields[0].transpose() * dR;
     Eigen::Matrix3d grad = Eigen::Matrix3d::Zero();
     grad.topLeftCorner(dim, dim) = G * Jm.inverse();
+    if (axisymmetric) grad(2, 2) = el.fields[0].col(0).dot(R) / el.points.col(0).dot(R);
     weight = rule.weights[size_t(q)] * std::abs(Jm.determinant());
     return grad;
   };
@@ -329,9 +333,11 @@ RecoveredFields project_body_fields(const BezierMesh& mesh, const Model& model, 
         const bool mixed = is_mixed(formulations[formulations.size() == 1 ? 0 : size_t(k)]);
         // grad u with its out-of-plane entry: the law's F_33 - 1 in 2D (0 in
         // plane strain; plane stress solves sigma_zz = 0), so the strain, J and
-        // the stress are the plate's.
+        // the stress are the plate's; axisymmetric: the hoop strain u_r / r.
         Eigen::Matrix3d grad = x.grad;
-        if (const HyperelasticLaw* patch_law = per_patch(laws, k); dim == 2 && patch_law)
+        if (axisymmetric)
+          grad(2, 2) = x.hoop;
+        else if (const HyperelasticLaw* patch_law = per_patch(laws, k); dim == 2 && patch_law)
           grad(2, 2) = patch_law->out_of_plane_stretch(Eigen::Matrix2d::Identity() + grad.topLeftCorner<2, 2>()) - 1;
         Eigen::Matrix3d sigma;
         if (with_stress || !mixed) sigma = law(grad);

@@ -36,7 +36,10 @@ namespace {
 Eigen::MatrixXd rigid_motions(const Model& m) {
   const Body& body = m.body;
   const DofMap& dofs = *m.dofs;
-  const int dim = body.space_dim(), n_modes = dim == 2 ? 3 : 6;
+  // axisymmetric: the two translations (a rotation leaves the axis, and a
+  // radial translation is only nearly free, as is the constant of any block)
+  const bool revolved = body.patch(0).revolved();
+  const int dim = body.space_dim(), n_modes = revolved ? 2 : dim == 2 ? 3 : 6;
   // the separate body of each control point, numbered 0, 1, ...
   const std::vector<int> part_of_patch = body.parts();
   std::vector<int> part_index(part_of_patch.size(), -1), part_of_point(body.num_control_points(), 0);
@@ -60,6 +63,7 @@ Eigen::MatrixXd rigid_motions(const Model& m) {
     const int c = i % dim, q = part_of_point[i / dim], o = n_modes * q;
     const Eigen::RowVectorXd x = body.points().row(i / dim) - centre[q];
     M(eq, o + c) = 1.0;
+    if (revolved) continue;
     if (dim == 2) {
       M(eq, o + 2) = c == 0 ? -x[1] : x[0];
     } else {  // rotations about x, y, z (each up to its sign)

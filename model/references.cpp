@@ -20,7 +20,8 @@ std::pair<double, double> in_plane_constants(const CaseSpec& spec) {
 }
 
 // Hertz: a round body of radius R (a quarter disc in 2D, a sphere octant in
-// 3D, or a geometry file that gives its radius) pressed by the sum P of its
+// 3D, or a geometry file that gives its radius; an axisymmetric quarter disc
+// is a hemisphere, the sphere's closed form) pressed by the sum P of its
 // pressure loads onto one rigid plane (contact/pressure.hpp has the formulas).
 std::string hertz_unusable(const CaseSpec& c) {
   const bool round = c.shape == "quarter_disc" || c.shape == "sphere_octant" || (c.shape == "file" && c.radius > 0);
@@ -33,18 +34,38 @@ std::optional<HertzSolution> hertz_pressure(const CaseSpec& spec) {
   double P = 0;
   for (const auto& p : spec.pressure) P += p.value;
   const auto [E, nu] = in_plane_constants(spec);
-  return spec.dim() == 2 ? hertz_cylinder(spec.radius, P, E, nu) : hertz_sphere(spec.radius, P, E, nu);
+  return spec.dim() == 2 && !spec.axisymmetric() ? hertz_cylinder(spec.radius, P, E, nu)
+                                                 : hertz_sphere(spec.radius, P, E, nu);
 }
 
 std::optional<ExactDisplacement> no_displacement(const CaseSpec&) { return std::nullopt; }
 std::optional<HertzSolution> no_pressure(const CaseSpec&) { return std::nullopt; }
 
-// Lame: the thick cylinder (plane strain) or disc (plane stress) (a quarter annulus, or a geometry
+// Lame: the thick cylinder (plane strain), disc (plane stress) or sphere (axisymmetric) (a quarter annulus, or a geometry
 // file that gives both radii) under the pressure on its face "inner".
 std::string lame_unusable(const CaseSpec& c) {
   if (c.shape != "quarter_annulus" && !(c.shape == "file" && c.inner_radius > 0 && c.outer_radius > 0))
     return "lame needs shape = \"quarter_annulus\" (or a geometry file with inner_radius and outer_radius)";
   return {};
+}
+
+// The thick sphere under internal pressure pi (an axisymmetric quarter
+// annulus: the half shell x >= 0 about the y axis, held at y = 0 by
+// symmetry): u_r = pi a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2))
+// (Timoshenko & Goodier, sec. 141), radial in the r-z plane.
+ExactDisplacement lame_sphere(double a, double b, double pi, double E, double nu) {
+  const double c = pi * a * a * a / (E * (b * b * b - a * a * a)), b3 = b * b * b;
+  return [=](const Eigen::VectorXd& X, Eigen::VectorXd& u, Eigen::MatrixXd& g) {
+    const double r = std::hypot(X[0], X[1]);
+    const double ur = c * ((1 - 2 * nu) * r + (1 + nu) * b3 / (2 * r * r));
+    const double dur = c * ((1 - 2 * nu) - (1 + nu) * b3 / (r * r * r));
+    const double ct = X[0] / r, st = X[1] / r;
+    u.resize(2);
+    u << ur * ct, ur * st;
+    g.resize(2, 2);
+    g << dur * ct * ct + ur / r * st * st, (dur - ur / r) * ct * st, (dur - ur / r) * ct * st,
+        dur * st * st + ur / r * ct * ct;
+  };
 }
 
 std::optional<ExactDisplacement> lame_displacement(const CaseSpec& spec) {
@@ -57,6 +78,7 @@ std::optional<ExactDisplacement> lame_displacement(const CaseSpec& spec) {
       if (f == "inner") pi += p.value;
   const auto [E, nu] = in_plane_constants(spec);
   const double a = spec.inner_radius, b = spec.outer_radius;
+  if (spec.axisymmetric()) return lame_sphere(a, b, pi, E, nu);
   const double A = pi * a * a / (b * b - a * a), B = pi * a * a * b * b / (b * b - a * a);
   const double c = (1 + nu) / E;
   return [=](const Eigen::VectorXd& X, Eigen::VectorXd& u, Eigen::MatrixXd& g) {

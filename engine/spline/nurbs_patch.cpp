@@ -170,7 +170,18 @@ NurbsPatch NurbsPatch::face_patch(const Face& f) const {
     P.row(a) = points_.row(cps[a]);
     w[a] = weights_[cps[a]];
   }
-  return NurbsPatch(std::move(k), std::move(P), std::move(w));
+  NurbsPatch face(std::move(k), std::move(P), std::move(w));
+  face.revolved_ = revolved_;
+  return face;
+}
+
+void NurbsPatch::set_revolved(bool revolved) {
+  if (revolved && space_dim() != 2) throw SplineError("only a patch in 2D (r, z) can be revolved about an axis");
+  const double size = points_.rows() > 0 ? (points_.colwise().maxCoeff() - points_.colwise().minCoeff()).norm() : 0;
+  if (revolved && points_.rows() > 0 && points_.col(0).minCoeff() < -1e-10 * size)
+    throw SplineError(fmt::format("a revolved patch lies at r = x >= 0 (a control point is at x = {:.6g})",
+                                  points_.col(0).minCoeff()));
+  revolved_ = revolved;
 }
 
 Eigen::VectorXd face_area_vector(const Face& f, const Eigen::MatrixXd& T) {

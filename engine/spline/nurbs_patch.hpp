@@ -7,10 +7,17 @@
 // Control points are numbered with the first parametric direction fastest:
 // i = i0 + n0 * (i1 + n1 * i2).  The patch owns its knots, points and weights;
 // refinement (refinement.hpp) returns new patches and never changes geometry.
+//
+// A revolved patch (2D, in the plane r = x >= 0, z = y) stands for the solid
+// it sweeps turning once about the y axis (an axisymmetric model): its
+// measures carry the length 2 pi r of the circle a point sweeps
+// (ring_length), so integrals over it and over its faces (which inherit the
+// flag) are over the whole solid of revolution.
 #pragma once
 
 #include <Eigen/Dense>
 #include <array>
+#include <numbers>
 #include <vector>
 
 #include "engine/spline/knot_vector.hpp"
@@ -69,13 +76,24 @@ class NurbsPatch {
 
   // Control point indices lying on a face, in the face's own numbering.
   std::vector<int> face_control_points(const Face& f) const;
-  // The face as a patch of one parametric dimension less.
+  // The face as a patch of one parametric dimension less (revolved if this is).
   NurbsPatch face_patch(const Face& f) const;
+
+  // The axisymmetric model (see the head of this file).  Throws SplineError
+  // unless the patch lies in 2D with every control point at x >= 0 (to 1e-10 of its size).
+  void set_revolved(bool revolved);
+  bool revolved() const { return revolved_; }
+  // The factor a measure at point X carries: 2 pi X_0 when revolved, else 1.
+  template <class Point>
+  double ring_length(const Point& X) const {
+    return revolved_ ? 2 * std::numbers::pi * X[0] : 1.0;
+  }
 
  private:
   std::vector<KnotVector> knots_;
   Eigen::MatrixXd points_;
   Eigen::VectorXd weights_;
+  bool revolved_ = false;
 };
 
 // Outward area vector n dA/dxi_face at a point of a face, from the face

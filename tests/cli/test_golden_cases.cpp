@@ -85,7 +85,7 @@ const fs::path kGolden = kSource / "tests" / "data" / "golden";
 const std::vector<std::string> kFast = {"hertz2d", "hertz2d_from_file", "hertz2d_high_load", "hertz2d_two_patches", "two_blocks",
                                         "roller_on_block", "cattaneo_mindlin", "cattaneo_mindlin_two_bodies",
                                         "hertz2d_neohookean_pressure_study", "hertz3d_study", "lame_cylinder", "cook_membrane",
-                                        "study_lame_cylinder", "press_fit"};
+                                        "study_lame_cylinder", "press_fit", "hertz_axisymmetric"};
 const std::vector<std::string> kSlow = {"hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement",
                                         "oring", "oring_two_plates", "oring_unloading", "oring_rubber", "hertz3d_neohookean", "hertz3d_p3",
                                         "sphere_on_block", "roller_on_block_neohookean", "oring_on_plate",

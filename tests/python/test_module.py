@@ -39,7 +39,7 @@ FAST_CASES = ["hertz2d", "hertz2d_two_patches", "two_blocks", "roller_on_block",
               "cattaneo_mindlin", "oring", "hertz2d_from_file", "hertz2d_high_load", "cattaneo_mindlin_two_bodies",
               "cattaneo_mindlin_cycle", "oring_on_plate", "oring_rubber", "roller_on_block_neohookean",
               "hertz2d_neohookean_pressure", "hertz2d_neohookean_displacement", "oring_two_plates", "oring_unloading",
-              "oring_friction", "cook_membrane", "press_fit"]
+              "oring_friction", "cook_membrane", "press_fit", "hertz_axisymmetric"]
 # Run by the module and the command line at their shipped mesh, 3D and longer
 # (8 to 30 s each on a loaded machine), once each.
 LONG_CASES = ["hertz3d", "hertz3d_high_load", "hertz3d_p3", "hertz3d_neohookean", "sphere_on_block",

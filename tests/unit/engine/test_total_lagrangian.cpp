@@ -147,6 +147,22 @@ TEST(TotalLagrangian, PlaneStressTangentMatchesFiniteDifferences) {
   }
 }
 
+// Axisymmetric (a revolved patch, engine/spline/nurbs_patch.hpp): F_33 =
+// 1 + u_r / r joins F, and the tangent of the assembled force is still its
+// derivative, displacement and mixed (the hoop stretch in J), p = 2 and 3.
+TEST(TotalLagrangian, AxisymmetricTangentMatchesFiniteDifferences) {
+  const MaterialParameters rubber{1.0, 0.49975, {}};  // K / mu = 2000
+  const Geometry g = quarter_disc(1.0);  // the left face (x = 0) is the axis: u_r = 0 there
+  for (int p : {2, 3}) {
+    NurbsPatch patch = refined(g.patch, p, 3);
+    patch.set_revolved(true);
+    EXPECT_LE(tangent_fd_error(patch, quarter_disc_dofs(g, patch), 0.02, 30 + p), kFiniteDifference) << "p = " << p;
+    EXPECT_LE(tangent_fd_error(patch, quarter_disc_dofs(g, patch), 0.02, 40 + p, Formulation::mixed, "neo_hookean", rubber),
+              kFiniteDifference)
+        << "mixed, p = " << p;
+  }
+}
+
 TEST(TotalLagrangian, TangentMatchesFiniteDifferences3D) {
   {  // p = 2, curved, with the collapsed face whose control points share dofs
     const Geometry g = sphere_octant(1.0);
@@ -283,6 +299,9 @@ TEST(TotalLagrangian, LinearLawReproducesLinearElasticity) {
   const Geometry disc = quarter_disc(1.0);
   const NurbsPatch p2 = refined(disc.patch, 2, 4);
   expect_linear_law_is_linear_elasticity<2>(p2, quarter_disc_dofs(disc, p2));
+  NurbsPatch revolved = p2;  // axisymmetric: the hoop terms of both assemblers
+  revolved.set_revolved(true);
+  expect_linear_law_is_linear_elasticity<2>(revolved, quarter_disc_dofs(disc, revolved));
   const Geometry oct = sphere_octant(1.0);
   const NurbsPatch p3 = refined(oct.patch, 2, 2);
   expect_linear_law_is_linear_elasticity<3>(
@@ -388,6 +407,14 @@ TEST(FollowerPressure, LoadStiffnessMatchesFiniteDifferences) {
       for (bool e : {false, true}) all.push_back(Face{d, e});
     const DofMap none(patch, {});
     EXPECT_LE(follower_fd_error(patch, none, all, random_state(patch, none, 0.05, 24)), kFiniteDifference);
+  }
+  {  // axisymmetric: the area of the swept surface carries 2 pi r at the current radius
+    const Geometry g = quarter_disc(1.0);
+    NurbsPatch patch = refined(g.patch, 2, 3);
+    patch.set_revolved(true);
+    const DofMap dofs = quarter_disc_dofs(g, patch);
+    EXPECT_LE(follower_fd_error(patch, dofs, g.faces.at("curved"), random_state(patch, dofs, 0.05, 25)),
+              kFiniteDifference);
   }
 }
 
