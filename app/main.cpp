@@ -221,6 +221,14 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
     }
   }
   if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
+  for (const FluidReport& f : r.fluids) {
+    fmt::print("  fluid         pressure {:.6g} on '{}': wets {} of {} face elements, force ({:.6g})\n", f.pressure,
+               fmt::join(f.faces, "', '"), f.wet_elements, f.elements, fmt::join(f.force, ", "));
+    if (f.pressure > 0 && f.peak_contact_pressure > 0)
+      fmt::print("  seal          peak contact pressure {:.6g} = {:.3g} x the fluid's: {}\n", f.peak_contact_pressure,
+                 f.peak_contact_pressure / f.pressure,
+                 f.peak_contact_pressure > f.pressure ? "the contact holds it" : "below it, the seal leaks");
+  }
   for (const FaceReaction& f : r.dirichlet_reactions)
     fmt::print("  reaction      face '{}': ({:.6g})\n", f.face, fmt::join(f.force, ", "));
   if (r.pressure_error && r.pressure_error->second > 0)

@@ -37,12 +37,18 @@ Eigen::Matrix<double, dim, 1> area_derivative(double sigma, const Eigen::Matrix<
 // pressure, the dead traction t per unit reference area, f += int N_A t |a| dxi.
 void faces_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
                     const Eigen::MatrixXd* u, Eigen::VectorXd& f, Eigen::SparseMatrix<double>* K,
-                    const double* traction = nullptr) {
+                    const double* traction = nullptr, const FaceElementFlags* wet = nullptr) {
   const FaceQuadrature quad(body, faces, gauss_points_for(body.degree()));
+  if (wet && wet->size() != faces.size())
+    throw std::invalid_argument(fmt::format("a pressure's mask has {} sides for {} faces", wet->size(), faces.size()));
   std::vector<int> eq;
   Eigen::VectorXd fe;
   Eigen::MatrixXd Ke;
+  int side = -1, element = 0;  // the element's number in its side
   quad.for_each_element([&](int s, const auto& v) {
+    element = s == side ? element + 1 : 0;
+    side = s;
+    if (wet && !(*wet)[size_t(s)].at(size_t(element))) return;
     constexpr int dim = std::remove_cvref_t<decltype(v)>::space_dim, pd = dim - 1;
     using Vec = Eigen::Matrix<double, dim, 1>;
     const double sigma = face_orientation(quad.side(s).face, dim);
@@ -129,7 +135,8 @@ Eigen::SparseMatrix<double> follower_pressure_pattern(const Body& body, const Do
 }
 
 void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
-                           const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K) {
+                           const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K,
+                           const FaceElementFlags* wet) {
   check_shapes(body, dofs, f_ext);
   const int dim = body.space_dim();
   if (u.rows() != body.num_control_points() || u.cols() != dim)
@@ -140,13 +147,13 @@ void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vect
       throw std::invalid_argument("follower pressure: the tangent is not free x free");
     if (!K->isCompressed()) K->makeCompressed();
   }
-  faces_pressure(body, dofs, faces, p, &u, f_ext, K);
+  faces_pressure(body, dofs, faces, p, &u, f_ext, K, nullptr, wet);
 }
 
 void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
-                       Eigen::VectorXd& f_ext) {
+                       Eigen::VectorXd& f_ext, const FaceElementFlags* wet) {
   check_shapes(body, dofs, f_ext);
-  faces_pressure(body, dofs, faces, p, nullptr, f_ext, nullptr);
+  faces_pressure(body, dofs, faces, p, nullptr, f_ext, nullptr, nullptr, wet);
 }
 
 void add_dead_traction(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces,

@@ -42,6 +42,12 @@
 
 namespace igac {
 
+// Per side of a face list, per face element of it (PatchQuadrature's
+// order): a flag.  As a pressure's `wet` mask: the elements it acts on (a
+// fluid's pressure that reaches only part of the faces,
+// contact/pressure_penetration.hpp); null: every element.
+using FaceElementFlags = std::vector<std::vector<char>>;
+
 // Adds the external force of a follower pressure p on `faces` to f_ext (free
 // numbering; rows of prescribed dofs skipped) and, when K is not null,
 // subtracts the load stiffness d f_ext / du from K, so that K stays the
@@ -50,7 +56,8 @@ namespace igac {
 // compressed if it is not.  Throws std::invalid_argument when u has the wrong
 // shape and std::logic_error when K lacks an entry.
 void add_follower_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
-                           const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K);
+                           const Eigen::MatrixXd& u, Eigen::VectorXd& f_ext, Eigen::SparseMatrix<double>* K,
+                           const FaceElementFlags* wet = nullptr);
 
 // The pattern of the load stiffness of add_follower_pressure on `faces`
 // (free x free, every coupling of two equations of one face element, values
@@ -62,7 +69,7 @@ Eigen::SparseMatrix<double> follower_pressure_pattern(const Body& body, const Do
 // Adds the external force of a dead pressure p (acting on the reference face
 // with its reference normal, independent of u: no load stiffness).
 void add_dead_pressure(const Body& body, const DofMap& dofs, const std::vector<PatchSide>& faces, double p,
-                       Eigen::VectorXd& f_ext);
+                       Eigen::VectorXd& f_ext, const FaceElementFlags* wet = nullptr);
 
 // Adds the external force of a dead traction t (dim components, force per
 // unit reference area of the faces, any direction: a shear load such as

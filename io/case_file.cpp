@@ -41,7 +41,7 @@ const std::set<std::string> kTopKeys{"name", "description", "geometry", "mesh", 
                                      "faces", "solver", "body", "units", "model"};
 const std::set<std::string> kBodyKeys{"name", "geometry", "mesh", "material"};
 const std::set<std::string> kDirichletKeys{"faces", "component", "value", "curve"};
-const std::set<std::string> kPressureKeys{"faces", "value", "curve"};
+const std::set<std::string> kPressureKeys{"faces", "value", "curve", "fluid_entry"};
 const std::set<std::string> kTractionKeys{"faces", "value", "curve"};
 const std::set<std::string> kBodyForceKeys{"value", "curve"};
 const std::set<std::string> kContactKeys{"face",         "obstacle", "master",     "master_motion",
@@ -385,8 +385,14 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
   }
   for (const auto* t : tables(path, root, "pressure")) {
     const Section s(path, "pressure", *t, kPressureKeys);
-    c.pressure.push_back({s.strings("faces"), s.load("value"), {}});
+    c.pressure.push_back({s.strings("faces"), s.load("value"), {}, {}});
     if (s.has("curve")) c.pressure.back().curve = s.curve("curve");
+    if (s.has("fluid_entry")) {
+      c.pressure.back().fluid_entry = s.loads("fluid_entry", size_t(dim));
+      if (!c.finite_strain())
+        s.fail("fluid_entry", "a fluid pressure that follows the contact front is posed in large deformation (a "
+                              "hyperelastic [material] model): the linear solve has no front to follow");
+    }
   }
   for (const auto* t : tables(path, root, "traction")) {
     const Section s(path, "traction", *t, kTractionKeys);

@@ -219,6 +219,17 @@ Json run_summary(const Model& m, const RunResult& r) {
     step["cut_backs"] = 0;
     j["load_steps"] = Json::array({step});
   }
+  if (!r.fluids.empty()) {
+    Json fluids = Json::array();
+    for (const FluidReport& f : r.fluids)
+      fluids.push_back({{"faces", f.faces},
+                        {"pressure", finite_or_null(f.pressure)},
+                        {"wet_elements", f.wet_elements},
+                        {"elements", f.elements},
+                        {"force", std::vector<double>(f.force.data(), f.force.data() + f.force.size())},
+                        {"peak_contact_pressure", finite_or_null(f.peak_contact_pressure)}});
+    j["fluid_pressures"] = fluids;
+  }
   if (!r.contacts.empty()) {
     const std::vector<std::string> files = pressure_file_stems(m);
     const bool several = r.contacts.size() > 1;

@@ -48,6 +48,10 @@ struct PressureSpec {
   std::vector<std::string> faces;
   double value = 0;
   LoadCurve curve;
+  // A fluid's pressure (pressure penetration, contact/pressure_penetration.hpp):
+  // it enters at the face element nearest this point and acts as far as it
+  // reaches without crossing a pressed element.  Empty: on the whole faces.
+  std::vector<double> fluid_entry;
 };
 
 // [[traction]]: a dead traction (force per unit reference area, any

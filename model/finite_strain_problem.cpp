@@ -33,6 +33,9 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
     for (const auto& p : s_.pressures) loaded.insert(loaded.end(), p.faces.begin(), p.faces.end());
     load_stiffness_ = follower_pressure_pattern(*s_.body, *s_.dofs, loaded);
   }
+  wet_.resize(s_.pressures.size());
+  for (size_t i = 0; i < s_.pressures.size(); ++i)  // before any contact: wherever the fluid reaches
+    if (s_.pressures[i].fluid) wet_[i] = s_.pressures[i].fluid->wet(s_.pressures[i].fluid->none());
   if (s_.incompressibility_tolerance > 0) tl_->make_incompressible(s_.incompressibility_tolerance);
   modes_ = free_rigid_modes(*s_.body, *s_.dofs);
   if (s_.body_force.size() > 0 && s_.body_force.norm() > 0)
@@ -219,9 +222,12 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   const Eigen::VectorXd z = x.tail(nz_);
   if (!elasticity(u, f_int, nullptr, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(n_);
-  for (const auto& p : s_.pressures) {
-    if (s_.follower_pressure) add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr);
-    else add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
+  for (size_t i = 0; i < s_.pressures.size(); ++i) {
+    const PressureLoad& p = s_.pressures[i];
+    if (s_.follower_pressure)
+      add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, nullptr, wet(i));
+    else
+      add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext, wet(i));
   }
   add_dead_loads(t, f_ext);
   r.resize(size());
@@ -283,8 +289,10 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
                                   [&](const PressureLoad& p) { return p.curve(t) * p.value != 0; });
   if (load_stiffness_.size() > 0 && loaded) {
     std::fill(load_stiffness_.valuePtr(), load_stiffness_.valuePtr() + load_stiffness_.nonZeros(), 0.0);
-    for (const auto& p : s_.pressures)
-      add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, &load_stiffness_);
+    for (size_t i = 0; i < s_.pressures.size(); ++i) {
+      const PressureLoad& p = s_.pressures[i];
+      add_follower_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, u, f_ext, &load_stiffness_, wet(i));
+    }
     if (J.K_coupling.nonZeros() > 0) J.K_coupling = Eigen::SparseMatrix<double>(J.K_coupling + load_stiffness_);
     else J.K_coupling = load_stiffness_;
   }
@@ -373,6 +381,28 @@ Eigen::VectorXd FiniteStrainProblem::accumulated_slip(double t, const Eigen::Vec
 
 void FiniteStrainProblem::begin_step(double t, const Eigen::VectorXd& x) {
   if (friction_) friction_->begin_step(t, displacement(t, x));
+  update_wet_elements(x);
+}
+
+bool FiniteStrainProblem::augment(double t, const Eigen::VectorXd& x) {
+  const bool multipliers = tl_->augment(displacement(t, x));
+  const bool fluid = update_wet_elements(x);
+  return multipliers || fluid;
+}
+
+bool FiniteStrainProblem::update_wet_elements(const Eigen::VectorXd& x) {
+  bool changed = false;
+  for (size_t i = 0; i < s_.pressures.size(); ++i) {
+    const FluidFront* front = s_.pressures[i].fluid.get();
+    if (!front) continue;
+    FaceElementFlags pressed = front->none();
+    for (size_t k = 0; k < s_.contacts.size(); ++k)
+      mark_pressed(*front, *s_.contacts[k].face, x.segment(n_ + offsets_[k], offsets_[k + 1] - offsets_[k]), pressed);
+    FaceElementFlags wet = front->wet(pressed);
+    if (wet != wet_[i]) changed = true;
+    wet_[i] = std::move(wet);
+  }
+  return changed;
 }
 
 FiniteStrainProblem::History FiniteStrainProblem::history() const {
@@ -387,6 +417,7 @@ void FiniteStrainProblem::restore(const History& h, const Eigen::VectorXd& x_fro
     throw std::invalid_argument("FiniteStrainProblem::restore: the history of another problem");
   if (friction_) friction_->restore(h.friction, displacement(h.friction.from, x_from));
   if (tl_->incompressible()) tl_->restore_multipliers(h.pressure_multipliers);
+  update_wet_elements(x_from);
 }
 
 double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
@@ -394,7 +425,10 @@ double FiniteStrainProblem::force_scale(double t, const Eigen::VectorXd& x) {
   Eigen::VectorXd f_int, f_ext = Eigen::VectorXd::Zero(n_);
   double scale = 0;
   if (elasticity(u, f_int, nullptr)) scale = f_int.cwiseAbs().maxCoeff();
-  for (const auto& p : s_.pressures) add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext);
+  for (size_t i = 0; i < s_.pressures.size(); ++i) {
+    const PressureLoad& p = s_.pressures[i];
+    add_dead_pressure(*s_.body, *s_.dofs, p.faces, p.curve(t) * p.value, f_ext, wet(i));
+  }
   add_dead_loads(t, f_ext);
   if (n_ > 0) scale = std::max(scale, f_ext.cwiseAbs().maxCoeff());
   // At rest with no load the forces are zero, or round-off (the mixed

@@ -43,6 +43,7 @@
 
 #include "contact/finite_strain_friction.hpp"
 #include "contact/finite_strain_mortar.hpp"
+#include "contact/pressure_penetration.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/linear_static.hpp"
 #include "engine/load_curve.hpp"
@@ -56,6 +57,12 @@ struct PressureLoad {
   std::vector<PatchSide> faces;
   double value = 0;
   LoadCurve curve;  // the pressure at t is curve(t) * value (engine/load_curve.hpp; no points: t)
+  // A fluid's pressure (contact/pressure_penetration.hpp): it acts on the
+  // elements of `faces` the fluid reaches from its entry without crossing
+  // a pressed one, the contacts' state at the start of the load step, and
+  // the step is solved again while that set changes (augment).  Null: on
+  // every element.
+  std::shared_ptr<const FluidFront> fluid;
 };
 
 // A dead traction t (force per unit reference area, any direction) on
@@ -152,9 +159,14 @@ class FiniteStrainProblem final : public NonlinearProblem {
   int active_set_size(double t, const Eigen::VectorXd& x) const override;
   std::vector<char> active_set(double t, const Eigen::VectorXd& x) const override;
   double force_scale(double t, const Eigen::VectorXd& x) override;
-  // The incompressible limit's Uzawa update (TotalLagrangianAssembler::augment).
-  bool augment(double t, const Eigen::VectorXd& x) override { return tl_->augment(displacement(t, x)); }
+  // The incompressible limit's Uzawa update (TotalLagrangianAssembler::augment),
+  // and the fluid pressures' wet elements from the converged contact (true:
+  // either changed, the step is solved again).
+  bool augment(double t, const Eigen::VectorXd& x) override;
   void keep_augmentation(bool accepted) override { tl_->keep_multipliers(accepted); }
+  // The elements each pressure acts on (PressureLoad::fluid; empty for a
+  // pressure on whole faces), as the last step left them.
+  const std::vector<FaceElementFlags>& wet_elements() const { return wet_; }
   // The body's assembler (its pressures in the incompressible limit).
   const TotalLagrangianAssembler& assembler() const { return *tl_; }
   // Friction: per multiplier open, stick or slip (FrictionState) at (t, x),
@@ -244,6 +256,11 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // BlockJacobian::K_coupling, so that K stays the symmetric tangent a
   // factorisation uses, without a copy of it.
   Eigen::SparseMatrix<double> load_stiffness_;
+  // per pressure: the elements it acts on (empty: every element), and their
+  // update from the contact state x (true when they change)
+  std::vector<FaceElementFlags> wet_;
+  bool update_wet_elements(const Eigen::VectorXd& x);
+  const FaceElementFlags* wet(size_t pressure) const { return wet_[pressure].empty() ? nullptr : &wet_[pressure]; }
   std::vector<ContactQuadrature> contact_quadratures_;  // per contact: tabulated once
   mutable std::vector<MortarPointCache> mortar_points_;  // per contact: its last state's mortar points
   std::vector<int> offsets_;         // first multiplier of each contact

@@ -50,7 +50,8 @@ ReactionEvaluator::ReactionEvaluator(const Model& m) : model_(m), all_free_(m.bo
 }
 
 std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u, double t,
-                                                        const Eigen::VectorXd& contact_forces) const {
+                                                        const Eigen::VectorXd& contact_forces,
+                                                        const std::vector<FaceElementFlags>& wet) const {
   std::vector<FaceReaction> out;
   if (faces_.empty()) return out;
   const Model& m = model_;
@@ -66,10 +67,11 @@ std::vector<FaceReaction> ReactionEvaluator::operator()(const Eigen::MatrixXd& u
   Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(all_free_.num_free());
   for (size_t i = 0; i < pressure_faces_.size(); ++i) {
     const double p = m.spec.pressure[i].curve(t) * m.spec.pressure[i].value;
+    const FaceElementFlags* mask = i < wet.size() && !wet[i].empty() ? &wet[i] : nullptr;
     if (m.spec.finite_strain() && m.spec.loading.follower_pressure)
-      add_follower_pressure(m.body, all_free_, pressure_faces_[i], p, u, f_ext, nullptr);
+      add_follower_pressure(m.body, all_free_, pressure_faces_[i], p, u, f_ext, nullptr, mask);
     else
-      add_dead_pressure(m.body, all_free_, pressure_faces_[i], p, f_ext);
+      add_dead_pressure(m.body, all_free_, pressure_faces_[i], p, f_ext, mask);
   }
   add_traction_loads(m, all_free_, t, f_ext);
   if (!m.spec.body_force.empty())  // dead, per unit reference volume, in both kinematics

@@ -27,6 +27,7 @@
 
 #include <Eigen/Dense>
 
+#include "engine/follower_pressure.hpp"  // FaceElementFlags
 #include "engine/total_lagrangian.hpp"
 #include "model/model.hpp"
 #include "model/run_result.hpp"
@@ -42,9 +43,10 @@ class ReactionEvaluator {
   // contact_forces: what the contacts add to the residual on every dof, in
   // dof order (each dof of a collapsed point holding its equation's force;
   // empty: none), which a support carries where it holds a dof the contact
-  // pushes.
-  std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t,
-                                       const Eigen::VectorXd& contact_forces = {}) const;
+  // pushes.  wet: per [[pressure]], the elements a fluid's pressure acts on
+  // (FiniteStrainProblem::wet_elements; empty, or an empty entry: every element).
+  std::vector<FaceReaction> operator()(const Eigen::MatrixXd& u, double t, const Eigen::VectorXd& contact_forces = {},
+                                       const std::vector<FaceElementFlags>& wet = {}) const;
   // The incompressible limit: f_int depends on the element pressures of the
   // solve's assembler too; take them (before each call).
   void take_element_pressures(const TotalLagrangianAssembler& solve_assembler) {

@@ -118,6 +118,19 @@ struct LinearSolverRecord {
   double condition_estimate = 0;
 };
 
+// A fluid's pressure (PressureSpec::fluid_entry, contact/pressure_penetration.hpp)
+// at the end of the run: how many of its faces' elements it wets, the force
+// it puts on the body (on the deformed faces), and the highest contact
+// pressure (Cauchy) of the contacts on those faces, the seal's criterion:
+// the fluid is held where the contact presses harder than it.
+struct FluidReport {
+  std::vector<std::string> faces;  // the [[pressure]] faces, as the case names them
+  double pressure = 0;             // at the end of the run
+  int wet_elements = 0, elements = 0;
+  Eigen::VectorXd force;
+  double peak_contact_pressure = 0;
+};
+
 struct RunResult {
   // Moved, never copied (the contacts own their pressures); said so that a
   // std::vector<RunResult> moves its elements.
@@ -143,6 +156,7 @@ struct RunResult {
   std::optional<std::pair<double, double>> pressure_error;  // against Hertz: (error, norm)
   double applied_force = 0;  // resultant of the pressure loads, or the driven reaction (model/reactions.hpp)
   std::vector<FaceReaction> dirichlet_reactions;            // every [[dirichlet]] face set's
+  std::vector<FluidReport> fluids;                          // every fluid pressure's, in case order
   std::optional<LoadSteppingSummary> load_steps;            // large deformation only
   std::vector<LoadCurvePoint> load_curve;
   std::optional<StepState> step_state;  // a step handed to the StepObserver: what a restart needs of it

@@ -23,6 +23,43 @@
 namespace igac {
 namespace {
 
+// Each fluid pressure's report (RunResult::fluids) at the end of the run:
+// its wet elements, its resultant on the deformed faces (every dof free, so
+// that the held ones count too), the highest Cauchy pressure of the
+// contacts whose face shares a side with it.
+std::vector<FluidReport> fluid_reports(const Model& m, const FiniteStrainSetup& setup,
+                                       const std::vector<FaceElementFlags>& wet, double t, const RunResult& r) {
+  std::vector<FluidReport> out;
+  const int dim = m.body.space_dim();
+  for (size_t i = 0; i < setup.pressures.size(); ++i) {
+    const PressureLoad& p = setup.pressures[i];
+    if (!p.fluid) continue;
+    FluidReport f;
+    f.faces = m.spec.pressure[i].faces;
+    f.pressure = p.curve(t) * p.value;
+    for (const std::vector<char>& side : wet[i]) {
+      f.elements += int(side.size());
+      f.wet_elements += int(std::count(side.begin(), side.end(), char(1)));
+    }
+    const DofMap every(m.body, {});
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(every.num_free());
+    if (setup.follower_pressure) add_follower_pressure(m.body, every, p.faces, f.pressure, r.u, force, nullptr, &wet[i]);
+    else add_dead_pressure(m.body, every, p.faces, f.pressure, force, &wet[i]);
+    f.force = Eigen::VectorXd::Zero(dim);
+    for (int dof = 0; dof < every.num_dofs(); ++dof)  // each equation once (a collapsed point's dofs share one)
+      if (const int eq = every.equation(dof); eq >= 0 && force[eq] != 0) {
+        f.force[dof % dim] += force[eq];
+        force[eq] = 0;
+      }
+    for (size_t k = 0; k < setup.contacts.size() && k < r.contacts.size(); ++k)
+      for (const ContactSide& side : setup.contacts[k].face->sides)
+        if (std::find(p.faces.begin(), p.faces.end(), side.side) != p.faces.end())
+          f.peak_contact_pressure = std::max(f.peak_contact_pressure, r.contacts[k].max_pressure_cauchy);
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 // The deformed extent and the Cauchy peak of contact `c` (face `cf`) for
 // the displacement u (n_cp x dim).
 void deformed_report(const Model& m, const ContactFace& cf, const Eigen::VectorXd& lambda, const Eigen::MatrixXd& u,
@@ -129,7 +166,12 @@ FiniteStrainSetup finite_strain_setup(const Model& m) {
     setup.patch_formulations = m.patch_formulations();
     setup.patch_laws = m.patch_laws();
   }
-  for (const auto& p : m.spec.pressure) setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve});
+  for (const auto& p : m.spec.pressure) {
+    setup.pressures.push_back({resolve_faces(m, p.faces, "pressure"), p.value, p.curve, nullptr});
+    if (!p.fluid_entry.empty())
+      setup.pressures.back().fluid = std::make_shared<const FluidFront>(
+          body, setup.pressures.back().faces, Eigen::Map<const Eigen::VectorXd>(p.fluid_entry.data(), Eigen::Index(p.fluid_entry.size())));
+  }
   for (const auto& l : m.spec.traction)
     setup.tractions.push_back({resolve_faces(m, l.faces, "traction"),
                                Eigen::Map<const Eigen::VectorXd>(l.value.data(), Eigen::Index(l.value.size())), l.curve});
@@ -241,7 +283,7 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
     p.face_displacement = probe.face_displacement(body, out.u);
     p.obstacle_displacement = probe.obstacle_displacement(t);
     reactions.take_element_pressures(problem.assembler());
-    p.dirichlet_reactions = reactions(out.u, t, problem.contact_forces_on_every_dof(t, xs));
+    p.dirichlet_reactions = reactions(out.u, t, problem.contact_forces_on_every_dof(t, xs), problem.wet_elements());
     out.dirichlet_reactions = p.dirichlet_reactions;
     return p;
   };
@@ -333,8 +375,11 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
   if (!r.contacts.empty() && setup.follower_pressure && !setup.pressures.empty()) {
     // the follower load's resultant along the obstacle normal, on the deformed faces
     Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(problem.num_displacements());
-    for (const auto& p : setup.pressures)
-      add_follower_pressure(body, *m.dofs, p.faces, p.curve(t_final) * p.value, r.u, f_ext, nullptr);
+    for (size_t i = 0; i < setup.pressures.size(); ++i) {
+      const PressureLoad& p = setup.pressures[i];
+      const FaceElementFlags& wet = problem.wet_elements()[i];
+      add_follower_pressure(body, *m.dofs, p.faces, p.curve(t_final) * p.value, r.u, f_ext, nullptr, wet.empty() ? nullptr : &wet);
+    }
     const int dim = body.space_dim();
     std::vector<int> component(problem.num_displacements(), 0);
     for (int i = 0; i < m.dofs->num_dofs(); ++i)
@@ -344,6 +389,7 @@ RunResult solve_finite_strain(const Model& m, const RunControl& control) {
     r.applied_force = std::abs(resultant.dot(r.contacts.front().normal));
   }
   if (r.applied_force == 0) r.applied_force = driven_reaction(m, r.dirichlet_reactions);
+  r.fluids = fluid_reports(m, setup, problem.wet_elements(), t_final, r);
   compare_with_reference(m, r);
   r.timing.total = t_start.seconds();
   return r;
