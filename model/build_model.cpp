@@ -353,7 +353,7 @@ void revolve(const CaseSpec& spec, std::vector<NurbsPatch>& patches) {
   for (NurbsPatch& p : patches) try {
       p.set_revolved(true);
     } catch (const SplineError& e) {
-      throw InputError(fmt::format("{}: kind = \"axisymmetric\": {}: move the section to x >= 0 (x is the radius, the "
+      throw InputError(fmt::format("{}: [model] kind = \"axisymmetric\": {}: move the section to x >= 0 (x is the radius, the "
                                    "y axis the axis of revolution)",
                                    spec.where({.table = "model", .key = "kind"}), e.what()));
     }

@@ -49,16 +49,15 @@ std::string lame_unusable(const CaseSpec& c) {
   return {};
 }
 
-// The thick sphere under internal pressure pi (an axisymmetric quarter
-// annulus: the half shell x >= 0 about the y axis, held at y = 0 by
-// symmetry): u_r = pi a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2))
-// (Timoshenko & Goodier, sec. 141), radial in the r-z plane.
-ExactDisplacement lame_sphere(double a, double b, double pi, double E, double nu) {
-  const double c = pi * a * a * a / (E * (b * b * b - a * a * a)), b3 = b * b * b;
+// A radial displacement u_r(r) about the origin as a field of the plane (of
+// the r-z section in the axisymmetric model, where r = |X| is the sphere's
+// radius): u = u_r e_r, grad u = u_r' e_r e_r^T + (u_r / r) e_t e_t^T.
+// radial(r) gives (u_r, u_r').
+template <class Radial>
+ExactDisplacement radial_displacement(Radial radial) {
   return [=](const Eigen::VectorXd& X, Eigen::VectorXd& u, Eigen::MatrixXd& g) {
     const double r = std::hypot(X[0], X[1]);
-    const double ur = c * ((1 - 2 * nu) * r + (1 + nu) * b3 / (2 * r * r));
-    const double dur = c * ((1 - 2 * nu) - (1 + nu) * b3 / (r * r * r));
+    const auto [ur, dur] = radial(r);
     const double ct = X[0] / r, st = X[1] / r;
     u.resize(2);
     u << ur * ct, ur * st;
@@ -69,30 +68,30 @@ ExactDisplacement lame_sphere(double a, double b, double pi, double E, double nu
 }
 
 std::optional<ExactDisplacement> lame_displacement(const CaseSpec& spec) {
-  // Plane strain thick cylinder (plane stress: in_plane_constants), internal pressure pi on r = a, free at r = b:
-  // sigma_rr = A - B/r^2, A = pi a^2/(b^2-a^2), B = pi a^2 b^2/(b^2-a^2),
-  // u_r = (1+nu)/E ((1-2nu) A r + B/r).
   double pi = 0;
   for (const auto& p : spec.pressure)
     for (const auto& f : p.faces)
       if (f == "inner") pi += p.value;
   const auto [E, nu] = in_plane_constants(spec);
   const double a = spec.inner_radius, b = spec.outer_radius;
-  if (spec.axisymmetric()) return lame_sphere(a, b, pi, E, nu);
+  if (spec.axisymmetric()) {
+    // The thick sphere (an axisymmetric quarter annulus: the half shell
+    // x >= 0 about the y axis, held at y = 0 by symmetry), internal
+    // pressure pi on r = a (Timoshenko & Goodier, sec. 141):
+    // u_r = pi a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2)).
+    const double c = pi * a * a * a / (E * (b * b * b - a * a * a)), b3 = b * b * b;
+    return radial_displacement([=](double r) {
+      return std::pair{c * ((1 - 2 * nu) * r + (1 + nu) * b3 / (2 * r * r)), c * ((1 - 2 * nu) - (1 + nu) * b3 / (r * r * r))};
+    });
+  }
+  // Plane strain thick cylinder (plane stress: in_plane_constants), internal pressure pi on r = a, free at r = b:
+  // sigma_rr = A - B/r^2, A = pi a^2/(b^2-a^2), B = pi a^2 b^2/(b^2-a^2),
+  // u_r = (1+nu)/E ((1-2nu) A r + B/r).
   const double A = pi * a * a / (b * b - a * a), B = pi * a * a * b * b / (b * b - a * a);
   const double c = (1 + nu) / E;
-  return [=](const Eigen::VectorXd& X, Eigen::VectorXd& u, Eigen::MatrixXd& g) {
-    const double r = std::hypot(X[0], X[1]);
-    const double ur = c * ((1 - 2 * nu) * A * r + B / r);
-    const double dur = c * ((1 - 2 * nu) * A - B / (r * r));
-    const double ct = X[0] / r, st = X[1] / r;
-    u.resize(2);
-    u << ur * ct, ur * st;
-    // grad u = dur e_r e_r^T + (ur / r) e_t e_t^T
-    g.resize(2, 2);
-    g << dur * ct * ct + ur / r * st * st, (dur - ur / r) * ct * st, (dur - ur / r) * ct * st,
-        dur * st * st + ur / r * ct * ct;
-  };
+  return radial_displacement([=](double r) {
+    return std::pair{c * ((1 - 2 * nu) * A * r + B / r), c * ((1 - 2 * nu) * A - B / (r * r))};
+  });
 }
 
 const ReferenceSolution kReferences[] = {

@@ -90,7 +90,7 @@ const std::vector<std::string> kSlow = {"hertz2d_neohookean_pressure", "hertz2d_
                                         "oring", "oring_two_plates", "oring_unloading", "oring_rubber", "hertz3d_neohookean", "hertz3d_p3",
                                         "sphere_on_block", "roller_on_block_neohookean", "oring_on_plate",
                                         "indented_block", "hertz3d", "hertz3d_high_load", "cattaneo_mindlin_cycle", "oring_friction",
-                                        "ironing",
+                                        "ironing", "seal",
                                         "study_hertz2d_neohookean_pressure_study"};
 
 class GoldenCase : public ::testing::TestWithParam<std::string> {};

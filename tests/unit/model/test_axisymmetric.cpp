@@ -19,9 +19,7 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <numbers>
-#include <sstream>
 #include <string>
 
 #include "contact/pressure.hpp"
@@ -29,6 +27,7 @@
 #include "model/field_recovery.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "tests/support/two_d_models.hpp"
 
 namespace igac {
 namespace {
@@ -42,13 +41,6 @@ std::string cylinder_case(const std::string& model, double load, const std::stri
          "\"\nE = 2.0\nnu = 0.3\n" + extra + "[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"y\"\n"
          "[[traction]]\nfaces = [\"top\"]\nvalue = [0.0, " + std::to_string(load) +
          "]\n[loading]\nsteps = 4\n[output]\nvtk = false\n";
-}
-
-std::string shipped(const std::string& name) {
-  std::ifstream in(std::string(IGAC_SOURCE_DIR) + "/cases/" + name);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 double reaction_y(const RunResult& r, const std::string& face) {
@@ -78,29 +70,12 @@ TEST(Axisymmetric, SmallStrainCylinderIsTheUniaxialStressState) {
   }
 }
 
-// (l1, l2) of the Neo-Hookean uniaxial stress P_11 = T, P_22 = P_33 = 0
-// with l3 = l2: mu (l1 - 1/l1) + lambda ln J / l1 = T, mu (l2 - 1/l2) +
-// lambda ln J / l2 = 0, J = l1 l2^2.
-Eigen::Vector2d uniaxial_stress_stretches(double T) {
-  const double mu = kE / (2 * (1 + kNu)), lambda = kE * kNu / ((1 + kNu) * (1 - 2 * kNu));
-  Eigen::Vector2d l(1, 1);
-  for (int it = 0; it < 50; ++it) {
-    const double a = l[0], b = l[1], lnJ = std::log(a * b * b);
-    const Eigen::Vector2d res(mu * (a - 1 / a) + lambda * lnJ / a - T, mu * (b - 1 / b) + lambda * lnJ / b);
-    Eigen::Matrix2d J;
-    J << mu * (1 + 1 / (a * a)) + lambda * (1 - lnJ) / (a * a), 2 * lambda / (a * b),  //
-        lambda / (a * b), mu * (1 + 1 / (b * b)) + lambda * (2 - lnJ) / (b * b);
-    l -= J.partialPivLu().solve(res);
-  }
-  return l;
-}
-
 TEST(Axisymmetric, NeoHookeanCylinderMatchesTheUniaxialStressClosedForm) {
   constexpr double T = 0.6;  // a stretch of 1.3 along the axis
   const Model m = build_model(read_case_text(cylinder_case("neo_hookean", T), "axisymmetric_cylinder.toml"));
   const RunResult r = solve_model(m, quiet_run());
   ASSERT_TRUE(r.status.is_converged()) << r.status.text();
-  const Eigen::Vector2d l = uniaxial_stress_stretches(T);
+  const Eigen::Vector2d l = igac_test::neo_hookean_uniaxial_stretches(kE, kNu, T);
   double error = 0;
   for (int a = 0; a < m.body.num_control_points(); ++a) {
     const Eigen::RowVector2d X = m.body.points().row(a);
@@ -116,21 +91,7 @@ TEST(Axisymmetric, NeoHookeanCylinderMatchesTheUniaxialStressClosedForm) {
 }
 
 TEST(Axisymmetric, LameSphereConvergesAtTheSplineRate) {
-  const std::string text = shipped("lame_cylinder.toml") + "\n[model]\nkind = \"axisymmetric\"\n";
-  double previous = 0;
-  for (int refine : {1, 2, 3}) {
-    CaseSpec spec = read_case_text(text, std::string(IGAC_SOURCE_DIR) + "/cases/lame_sphere.toml");
-    apply_overrides(spec, std::nullopt, refine);
-    const RunResult r = solve_model(build_model(spec), quiet_run());
-    ASSERT_TRUE(r.displacement_errors);
-    const double e = r.displacement_errors->l2 / r.displacement_errors->ref_l2;
-    std::printf("  axisymmetric Lame sphere, refine %d: relative L2 error %.3e\n", refine, e);
-    if (previous > 0) {
-      EXPECT_GT(std::log2(previous / e), 2.7) << "p = 2: L2 rate 3";
-    }
-    previous = e;
-  }
-  EXPECT_LT(previous, 2e-5);
+  igac_test::expect_lame_converges_at_the_spline_rate("axisymmetric", 2e-5);
 }
 
 // A hub (a <= r <= b) shrunk onto a shaft of radius a + delta, both long
@@ -166,7 +127,7 @@ TEST(Axisymmetric, PressFitMatchesLame) {
 }
 
 TEST(Axisymmetric, HertzSphereOnTheSection) {
-  const Model m = build_model(read_case_text(shipped("hertz_axisymmetric.toml"),
+  const Model m = build_model(read_case_text(igac_test::shipped_case("hertz_axisymmetric.toml"),
                                              std::string(IGAC_SOURCE_DIR) + "/cases/hertz_axisymmetric.toml"));
   const RunResult r = solve_model(m, quiet_run());
   ASSERT_TRUE(r.hertz && r.pressure_error);
@@ -184,24 +145,12 @@ TEST(Axisymmetric, HertzSphereOnTheSection) {
   EXPECT_LT(rel, 0.05) << "cases/hertz3d.toml: 9.3 %";
 }
 
-void expect_refused(const std::string& text, const std::string& why, bool when_built = false) {
-  try {
-    const CaseSpec spec = read_case_text(text, "axisymmetric_cylinder.toml");
-    if (when_built) build_model(spec);
-    ADD_FAILURE() << "accepted; expected: " << why;
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(why), std::string::npos) << message;
-    EXPECT_NE(message.find("kind"), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
-  }
-}
-
 TEST(Axisymmetric, ASectionAcrossTheAxisAnd3DAreRefusedInOneLine) {
   std::string across = cylinder_case("linear_elastic", 0.01);
   across.replace(across.find("size = [1.0, 2.0]\n"), 18, "size = [1.0, 2.0]\ntranslate = [-0.5, 0.0]\n");
-  expect_refused(across, "x >= 0", true);
-  expect_refused(shipped("hertz3d.toml") + "\n[model]\nkind = \"axisymmetric\"\n", "a 2D model");
+  igac_test::expect_kind_refused(across, "axisymmetric_cylinder.toml", "x >= 0", true);
+  igac_test::expect_kind_refused(igac_test::shipped_case("hertz3d.toml") + "\n[model]\nkind = \"axisymmetric\"\n",
+                                 "hertz3d.toml", "a 2D model");
 }
 
 }  // namespace

@@ -20,8 +20,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "contact/pressure.hpp"
@@ -29,6 +27,7 @@
 #include "model/field_recovery.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "tests/support/two_d_models.hpp"
 
 namespace igac {
 namespace {
@@ -41,13 +40,6 @@ std::string block_case(const std::string& model, const std::string& load, const 
          "[[dirichlet]]\nfaces = [\"left\"]\ncomponent = \"x\"\n[[dirichlet]]\nfaces = [\"bottom\"]\ncomponent = \"y\"\n"
          "[[traction]]\nfaces = [\"right\"]\nvalue = [" + load + ", 0.0]\n[loading]\nsteps = 4\n[output]\nvtk = false\n"
          "[model]\nkind = \"plane_stress\"\n" + extra;
-}
-
-std::string shipped(const std::string& name) {
-  std::ifstream in(std::string(IGAC_SOURCE_DIR) + "/cases/" + name);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 double left_reaction(const RunResult& r) {
@@ -76,29 +68,12 @@ TEST(PlaneStress, SmallStrainBlockIsTheUniaxialStressState) {
   EXPECT_GT(n, 0);
 }
 
-// (l1, l2) of the Neo-Hookean uniaxial stress P_11 = T, P_22 = P_33 = 0
-// with l3 = l2: mu (l1 - 1/l1) + lambda ln J / l1 = T, mu (l2 - 1/l2) +
-// lambda ln J / l2 = 0, J = l1 l2^2.
-Eigen::Vector2d uniaxial_stress_stretches(double T) {
-  const double mu = kE / (2 * (1 + kNu)), lambda = kE * kNu / ((1 + kNu) * (1 - 2 * kNu));
-  Eigen::Vector2d l(1, 1);
-  for (int it = 0; it < 50; ++it) {
-    const double a = l[0], b = l[1], lnJ = std::log(a * b * b);
-    const Eigen::Vector2d r(mu * (a - 1 / a) + lambda * lnJ / a - T, mu * (b - 1 / b) + lambda * lnJ / b);
-    Eigen::Matrix2d J;
-    J << mu * (1 + 1 / (a * a)) + lambda * (1 - lnJ) / (a * a), 2 * lambda / (a * b),  //
-        lambda / (a * b), mu * (1 + 1 / (b * b)) + lambda * (2 - lnJ) / (b * b);
-    l -= J.partialPivLu().solve(r);
-  }
-  return l;
-}
-
 TEST(PlaneStress, NeoHookeanBlockMatchesTheUniaxialStressClosedForm) {
   constexpr double T = 0.6;  // a stretch of 1.3 along x
   const Model m = build_model(read_case_text(block_case("neo_hookean", "0.6"), "plane_stress_block.toml"));
   const RunResult r = solve_model(m, quiet_run());
   ASSERT_TRUE(r.status.is_converged()) << r.status.text();
-  const Eigen::Vector2d l = uniaxial_stress_stretches(T);
+  const Eigen::Vector2d l = igac_test::neo_hookean_uniaxial_stretches(kE, kNu, T);
   double error = 0;
   for (int a = 0; a < m.body.num_control_points(); ++a) {
     const Eigen::RowVector2d X = m.body.points().row(a);
@@ -116,23 +91,11 @@ TEST(PlaneStress, NeoHookeanBlockMatchesTheUniaxialStressClosedForm) {
 }
 
 TEST(PlaneStress, LameDiscConvergesAtTheSplineRate) {
-  const std::string text = shipped("lame_cylinder.toml") + "\n[model]\nkind = \"plane_stress\"\n";
-  double previous = 0;
-  for (int refine : {1, 2, 3}) {
-    CaseSpec spec = read_case_text(text, std::string(IGAC_SOURCE_DIR) + "/cases/lame_ps.toml");
-    apply_overrides(spec, std::nullopt, refine);
-    const RunResult r = solve_model(build_model(spec), quiet_run());
-    ASSERT_TRUE(r.displacement_errors);
-    const double e = r.displacement_errors->l2 / r.displacement_errors->ref_l2;
-    std::printf("  plane stress Lame disc, refine %d: relative L2 error %.3e\n", refine, e);
-    if (previous > 0) EXPECT_GT(std::log2(previous / e), 2.7) << "p = 2: L2 rate 3";
-    previous = e;
-  }
-  EXPECT_LT(previous, 1e-5);
+  igac_test::expect_lame_converges_at_the_spline_rate("plane_stress", 1e-5);
 }
 
 TEST(PlaneStress, HertzTakesThePlaneStressModulus) {
-  const std::string text = shipped("hertz2d.toml") + "\n[model]\nkind = \"plane_stress\"\n";
+  const std::string text = igac_test::shipped_case("hertz2d.toml") + "\n[model]\nkind = \"plane_stress\"\n";
   const Model m = build_model(read_case_text(text, std::string(IGAC_SOURCE_DIR) + "/cases/hertz2d_ps.toml"));
   const RunResult r = solve_model(m, quiet_run());
   ASSERT_TRUE(r.hertz && r.pressure_error);
@@ -148,30 +111,18 @@ TEST(PlaneStress, HertzTakesThePlaneStressModulus) {
   EXPECT_LT(rel, 0.03) << "cases/hertz2d.toml in plane strain: 2.4 %";
 }
 
-void expect_refused(const std::string& text, const std::string& why) {
-  try {
-    read_case_text(text, "plane_stress_block.toml");
-    ADD_FAILURE() << "accepted; expected: " << why;
-  } catch (const InputError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find(why), std::string::npos) << message;
-    EXPECT_NE(message.find("[model] kind"), std::string::npos) << message;
-    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
-  }
-}
-
 TEST(PlaneStress, WhatItDoesNotRunIsRefusedInOneLine) {
   std::string misspelt = block_case("linear_elastic", "0.01");
   misspelt.replace(misspelt.find("plane_stress\"\n"), 12, "plain_stress");
-  expect_refused(misspelt, "unknown kind 'plain_stress'");
+  igac_test::expect_kind_refused(misspelt, "plane_stress_block.toml", "unknown kind 'plain_stress'");
   std::string mixed = block_case("neo_hookean", "0.1");
   mixed.replace(mixed.find("nu = 0.3\n"), 9, "nu = 0.3\nformulation = \"mixed\"\n");
-  expect_refused(mixed, "no mixed formulation");
+  igac_test::expect_kind_refused(mixed, "plane_stress_block.toml", "no mixed formulation");
   std::string follower = block_case("neo_hookean", "0.1");
   follower += "[[pressure]]\nfaces = [\"top\"]\nvalue = 0.01\n";
-  expect_refused(follower, "pressure = \"dead\"");
-  const std::string three_d = shipped("hertz3d.toml") + "\n[model]\nkind = \"plane_stress\"\n";
-  expect_refused(three_d, "a 2D model");
+  igac_test::expect_kind_refused(follower, "plane_stress_block.toml", "pressure = \"dead\"");
+  const std::string three_d = igac_test::shipped_case("hertz3d.toml") + "\n[model]\nkind = \"plane_stress\"\n";
+  igac_test::expect_kind_refused(three_d, "plane_stress_block.toml", "a 2D model");
   // a dead pressure runs
   std::string dead = follower;
   dead.replace(dead.find("steps = 4\n"), 10, "steps = 4\npressure = \"dead\"\n");
