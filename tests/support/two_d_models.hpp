@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -35,6 +36,18 @@ inline Eigen::Vector2d neo_hookean_uniaxial_stretches(double E, double nu, doubl
     l -= J.partialPivLu().solve(r);
   }
   return l;
+}
+
+// max over the control points of |u_A - G X_A|: how far a run's
+// displacement is from the homogeneous field u = G X (one in the spline
+// space, so a solve reproduces it up to its own tolerance).
+inline double homogeneous_field_error(const igac::Body& body, const Eigen::MatrixXd& u, const Eigen::Matrix2d& G) {
+  double error = 0;
+  for (int a = 0; a < body.num_control_points(); ++a) {
+    const Eigen::Vector2d X = body.points().row(a).transpose();
+    error = std::max(error, (u.row(a).transpose() - G * X).norm());
+  }
+  return error;
 }
 
 // The text of cases/NAME.
