@@ -205,6 +205,41 @@ bool has_control_character(std::string_view text) {
   return std::any_of(text.begin(), text.end(), [](unsigned char ch) { return ch < 32 || ch == 127; });
 }
 
+// [faces.NAME] side = "...", range = [from, to] (2D) or [[from, to], [from,
+// to]] (3D: the side's two directions in the patch's order): fractions of
+// the side's parameter range, 0 <= from < to <= 1.
+PartialFaceSpec read_partial_face(const std::string& path, const std::string& name, const toml::table& t, int dim) {
+  const Section s(path, "faces." + name, t, {"side", "range"});
+  PartialFaceSpec out{name, s.string("side"), {}};
+  const char* form = dim == 2 ? "must be [from, to], fractions of the side's parameter range, e.g. [0.25, 0.75]"
+                              : "must be [[from, to], [from, to]], fractions of the side's two parameter ranges "
+                                "in the patch's order, e.g. [[0, 0.5], [0, 1]]";
+  const auto* range = s.node("range");
+  if (!range) s.fail("range", form);
+  const auto pair_of = [&](const toml::node& n) {
+    const auto* a = n.as_array();
+    if (!a || a->size() != 2) s.fail("range", form);
+    std::array<double, 2> r{};
+    for (size_t i = 0; i < 2; ++i) {
+      const auto v = (*a)[i].value<double>();
+      if (!v) s.fail("range", form);
+      r[i] = *v;
+    }
+    if (!(r[0] >= 0 && r[0] < r[1] && r[1] <= 1))
+      s.fail("range", fmt::format("[{:g}, {:g}] must satisfy 0 <= from < to <= 1 (fractions of the side's parameter "
+                                  "range)", r[0], r[1]));
+    return r;
+  };
+  if (dim == 2) {
+    out.range.push_back(pair_of(*range));
+  } else {
+    const auto* a = range->as_array();
+    if (!a || a->size() != 2) s.fail("range", form);
+    for (const auto& n : *a) out.range.push_back(pair_of(n));
+  }
+  return out;
+}
+
 // A case with load curves: what they do not run with, one line; then every
 // load without a curve of its own ramps to its value over [0, 1] and keeps it.
 void check_load_curves(CaseSpec& c) {
@@ -371,7 +406,12 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
         top.fail("faces", fmt::format("the name {:?} holds a control character", std::string(k.str())), &v);
     }
     const Section faces(path, "faces", ft, keys);
-    for (const auto& k : keys) c.face_sets[k] = faces.strings(k);
+    for (const auto& k : keys) {
+      if (const auto* part = ft.get(k)->as_table())
+        c.partial_faces.push_back(read_partial_face(path, k, *part, dim));
+      else
+        c.face_sets[k] = faces.strings(k);
+    }
   }
 
   for (const auto* t : tables(path, root, "dirichlet")) {
@@ -645,6 +685,8 @@ std::vector<std::string> declared_case_keys() {
   for (const std::string& law : law_names())
     for (const LawParameter& p : law_parameters(law)) out.insert("material." + std::string(p.key));
   out.insert("faces.*");  // names of one's own
+  out.insert("faces.*.side");
+  out.insert("faces.*.range");
   add("dirichlet", kDirichletKeys);
   add("pressure", kPressureKeys);
   add("traction", kTractionKeys);

@@ -21,18 +21,11 @@
 #include "contact/mortar_gap.hpp"
 #include "materials/plane_stress.hpp"
 #include "model/case_body.hpp"
+#include "model/partial_faces.hpp"
 
 namespace igac {
 
 namespace {
-
-// A side as the file names it ("1:west"): a reoriented patch runs its first
-// direction backwards, so its u sides swap names.
-PatchSide side_in_file(const Model& m, PatchSide s) {
-  if (s.face.direction == 0 && std::count(m.reoriented_patches.begin(), m.reoriented_patches.end(), s.patch))
-    s.face.at_end = !s.face.at_end;
-  return s;
-}
 
 }  // namespace
 
@@ -193,8 +186,7 @@ void join_coincident_sides(MultiPatch& coarse, Model& m, const BodySpec& body, i
   for (const ContactSpec& cs : spec.contacts) {
     if (cs.master.empty()) continue;
     for (const std::string& name : {cs.face, cs.master}) {
-      auto set = spec.face_sets.find(name);
-      for (const std::string& member : set != spec.face_sets.end() ? set->second : std::vector<std::string>{name}) {
+      for (const std::string& member : spec.face_members(name)) {
         if (!member.starts_with(prefix)) continue;
         if (auto side = parametric_side(member.substr(prefix.size()), int(coarse.patches.size()),
                                         coarse.patches[0].param_dim())) {
@@ -238,17 +230,19 @@ std::optional<std::vector<PatchSide>> find_faces(const Model& m, const std::stri
   if (auto it = m.faces.find(name); it != m.faces.end()) return it->second;
   // (A reoriented patch runs its first direction backwards: the file's west
   // is its east, and side_in_file swaps them back.)
+  // (A patch cut for a partial face is its pieces: sides_of_pieces.)
   if (!named_bodies(m)) {
-    if (auto side = parametric_side(name, m.body.num_patches(), m.body.param_dim()))
-      return std::vector<PatchSide>{side_in_file(m, *side)};
+    if (auto side = parametric_side(name, m.parts.empty() ? m.body.num_patches() : m.parts.front().file_patches,
+                                    m.spec.dim()))
+      return sides_of_pieces(m, side_in_file(m, *side));
     return std::nullopt;
   }
   // [[body]] tables: "NAME:PATCH:SIDE" (or "NAME:SIDE" of a one-patch body).
   for (const Model::Part& part : m.parts)
     if (name.starts_with(part.name + ":"))
-      if (auto side = parametric_side(name.substr(part.name.size() + 1), part.num_patches, m.body.param_dim())) {
+      if (auto side = parametric_side(name.substr(part.name.size() + 1), part.file_patches, m.spec.dim())) {
         side->patch += part.first_patch;
-        return std::vector<PatchSide>{side_in_file(m, *side)};
+        return sides_of_pieces(m, side_in_file(m, *side));
       }
   return std::nullopt;
 }
@@ -257,11 +251,13 @@ std::vector<std::string> face_names(const Model& m) {
   std::vector<std::string> out;
   for (const auto& [k, v] : m.faces) out.push_back(k);
   if (!named_bodies(m)) {
-    for (auto& n : parametric_side_names(m.body.num_patches(), m.body.param_dim())) out.push_back(std::move(n));
+    for (auto& n : parametric_side_names(m.parts.empty() ? m.body.num_patches() : m.parts.front().file_patches,
+                                         m.spec.dim()))
+      out.push_back(std::move(n));
     return out;
   }
   for (const Model::Part& part : m.parts)
-    for (auto& n : parametric_side_names(part.num_patches, m.body.param_dim())) out.push_back(part.name + ":" + n);
+    for (auto& n : parametric_side_names(part.file_patches, m.spec.dim())) out.push_back(part.name + ":" + n);
   return out;
 }
 
@@ -337,14 +333,16 @@ void add_body(Model& m, const BodySpec& b, std::vector<NurbsPatch>& patches, std
     knots.patch += offset;
     m.interface_knots.push_back(knots);
   }
+  const int file_patches = int(coarse.patches.size());
+  cut_partial_faces(m, b, offset, file_patches, own, coarse.interfaces);
   for (const PatchInterface& itf : coarse.interfaces) {
     PatchInterface shifted = itf;
     shifted.first.patch += offset;
     shifted.second.patch += offset;
     interfaces.push_back(shifted);
   }
+  m.parts.push_back({b.body_name, offset, int(own.size()), file_patches, LinearElastic{1.0, 0.0}, nullptr, b.formulation});
   for (auto& p : own) patches.push_back(std::move(p));
-  m.parts.push_back({b.body_name, offset, int(coarse.patches.size()), LinearElastic{1.0, 0.0}, nullptr, b.formulation});
 }
 
 // The axisymmetric model: every patch is the section (x = r >= 0) of a
@@ -383,6 +381,7 @@ Model build_model(const CaseSpec& spec) {
   std::vector<PatchInterface> interfaces;
   const std::vector<BodySpec> bodies = spec.body_list();
   for (const BodySpec& b : bodies) add_body(m, b, patches, interfaces);
+  check_partial_faces_found(m);
   if (spec.axisymmetric()) revolve(spec, patches);
   try {
     m.body = patches.size() > 1 || !interfaces.empty() ? Body(std::move(patches), interfaces)

@@ -37,6 +37,15 @@ struct GradingSpec {
 // motion) is its value times the factor its curve gives at the time t
 // (engine/load_curve.hpp): without curves in the case, t itself, ramped from
 // 0 to 1; with curves, a load without one follows LoadCurve::ramp_and_hold().
+// [faces.NAME] side = "...", range = ...: part of one side, a parameter
+// range along it (fractions of the side's range, one [from, to] pair per
+// direction along the side); the model cuts the patch where the range ends
+// (engine/geometry/patch_partition.hpp).
+struct PartialFaceSpec {
+  std::string name, side;
+  std::vector<std::array<double, 2>> range;
+};
+
 struct DirichletSpec {
   std::vector<std::string> faces;
   int component = 0;
@@ -242,6 +251,21 @@ struct CaseSpec : BodySpec {
   std::string path, name, description;
   std::vector<BodySpec> bodies;  // [[body]] tables; empty: the case is one body
   std::map<std::string, std::vector<std::string>> face_sets;  // [faces] NAME = ["0:south", ...]
+  std::vector<PartialFaceSpec> partial_faces;                 // [faces.NAME] side = ..., range = ...
+  // The face names a name stands for: a [faces] set's members, the side a
+  // partial face lies on, else the name itself.
+  std::vector<std::string> face_members(const std::string& name) const {
+    const auto side_of = [&](const std::string& n) {
+      for (const PartialFaceSpec& pf : partial_faces)
+        if (pf.name == n) return pf.side;
+      return n;
+    };
+    const auto set = face_sets.find(name);
+    if (set == face_sets.end()) return {side_of(name)};
+    std::vector<std::string> out;
+    for (const std::string& member : set->second) out.push_back(side_of(member));
+    return out;
+  }
   LoadingSpec loading;
   ModelKind kind = ModelKind::plane_strain;  // [model] kind (2D)
   bool plane_stress() const { return kind == ModelKind::plane_stress && dim() == 2; }

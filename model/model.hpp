@@ -18,6 +18,7 @@
 #include "contact/pressure.hpp"
 #include "contact/weighted_gap.hpp"
 #include "engine/geometry/conforming_interfaces.hpp"
+#include "engine/geometry/patch_partition.hpp"
 #include "engine/body.hpp"
 #include "engine/discretisation.hpp"
 #include "materials/hyperelastic.hpp"
@@ -41,6 +42,7 @@ struct Model {
   struct Part {
     std::string name;
     int first_patch = 0, num_patches = 0;
+    int file_patches = 0;  // as the shape or the file gives them (num_patches counts the pieces of cut patches)
     LinearElastic material{1.0, 0.0};
     std::shared_ptr<const HyperelasticLaw> law;
     Formulation formulation = Formulation::displacement;
@@ -106,6 +108,9 @@ struct Model {
   // and run with their first direction backwards; their faces keep the
   // file's names.
   std::vector<int> reoriented_patches;
+  // Patches cut where a [faces.NAME] range ends (model/partial_faces.hpp):
+  // the pieces of each, by the number of its first piece (the patch's own).
+  std::map<int, std::vector<PatchPiece>> cut_patches;
   // Sides of a geometry file that coincide and that its topology did not
   // join (a closed seam, a file without <interfaces>), joined by igac; in
   // the file's side names.
