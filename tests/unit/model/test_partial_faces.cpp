@@ -32,9 +32,9 @@ namespace {
 
 const std::string kPath = std::string(IGAC_SOURCE_DIR) + "/cases/partial.toml";
 
-// A 2 x 1 block (plane strain, E = 1, nu = 0.3) on rollers (bottom: y held,
-// left: x held), 8 x 4 elements of degree 2, with `extra` appended.
-std::string block(const std::string& extra) {
+// A 2 x 1 block (plane strain, E = 1, nu = 0.3), 8 x 4 elements of degree
+// 2, with `rest` (its supports and loads) appended.
+std::string free_block(const std::string& rest) {
   return R"(
 [geometry]
 shape = "rectangle"
@@ -46,13 +46,19 @@ elements = [8, 4]
 model = "linear_elastic"
 E = 1.0
 nu = 0.3
+)" + rest;
+}
+
+// The block on rollers (bottom: y held, left: x held), with `extra` appended.
+std::string block(const std::string& extra) {
+  return free_block(R"(
 [[dirichlet]]
 faces = ["bottom"]
 component = "y"
 [[dirichlet]]
 faces = ["left"]
 component = "x"
-)" + extra;
+)" + extra);
 }
 
 struct SolvedCase {
@@ -122,17 +128,7 @@ TEST(PartialFaces, ASupportOnPartOfASideHoldsOnlyThatPart) {
   // The block pulled up by a traction on its top, held in y on the middle
   // half of its bottom only: the control points of the bottom's other
   // pieces move, the held ones do not, and the support carries the load.
-  const SolvedCase r = run(R"(
-[geometry]
-shape = "rectangle"
-size = [2.0, 1.0]
-[mesh]
-degree = 2
-elements = [8, 4]
-[material]
-model = "linear_elastic"
-E = 1.0
-nu = 0.3
+  const SolvedCase r = run(free_block(R"(
 [faces.foot]
 side = "bottom"
 range = [0.25, 0.75]
@@ -145,7 +141,7 @@ component = "x"
 [[traction]]
 faces = ["top"]
 value = [0.0, 0.01]
-)");
+)"));
   EXPECT_NEAR(reaction(r, "foot")[1], -0.02, 1e-14);
   double held = 0, moved = 0;
   for (int a = 0; a < r.model.body.num_control_points(); ++a) {
