@@ -219,6 +219,9 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
                  r.reactions[i].tangential_force.norm(), m.contacts[i].friction * r.reactions[i].normal_force,
                  std::count(first, last, char(kStick)), std::count(first, last, char(kSlip)));
     }
+    if (i < r.reactions.size() && r.reactions[i].extrusion)
+      fmt::print("  {}extrusion     {:.6g}{} past the edge, over its second face\n", in, *r.reactions[i].extrusion,
+                 m.spec.units.length.empty() ? "" : " " + m.spec.units.length);
   }
   if (several && r.applied_force > 0) fmt::print("  applied force {:.10g}\n", r.applied_force);
   for (const FluidReport& f : r.fluids) {

@@ -13,6 +13,7 @@ const ObstacleType* const kObstacleTypes[] = {
     &plane_obstacle(),
     &sphere_obstacle(),
     &cylinder_obstacle(),
+    &edge_obstacle(),
 };
 }  // namespace
 

@@ -3,12 +3,13 @@
 // obstacle gives the signed normal gap g_n (positive when x is outside it)
 // and its own outward unit normal n (docs/design.md, "Gap and sign convention": g_n = (x - x_obstacle) . n).
 // The types (contact/obstacles/): plane, sphere (a circle in 2D), cylinder
-// (3D, infinite).
+// (3D, infinite), edge (two faces meeting at a rounded edge).
 #pragma once
 
 #include <Eigen/Dense>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,10 @@ class Obstacle {
   // For a point on the obstacle's surface, its tangent directions are those
   // orthogonal to the normal there: the "horizontal" distance used for r.
   virtual std::string describe() const = 0;
+  // An obstacle with an edge (contact/obstacles/edge.hpp): how far the
+  // point x lies past the edge (the extrusion into a gap there; 0 for a
+  // point that is not past it); none for obstacles without an edge.
+  virtual std::optional<double> reach_past_edge(const Eigen::VectorXd& /*x*/) const { return std::nullopt; }
 };
 
 // The obstacle moved rigidly by `shift`: g(x) = g_base(x - shift).  A moving
@@ -45,6 +50,9 @@ class TranslatedObstacle final : public Obstacle {
       : owned_(std::move(base)), base_(owned_.get()), shift_(std::move(shift)) {}
   ObstacleProbe probe(const Eigen::VectorXd& x, bool with_derivative = false) const override {
     return base_->probe(x - shift_, with_derivative);
+  }
+  std::optional<double> reach_past_edge(const Eigen::VectorXd& x) const override {
+    return base_->reach_past_edge(x - shift_);
   }
   std::string describe() const override;
 
@@ -79,5 +87,6 @@ const ObstacleType* find_obstacle_type(std::string_view name);
 }  // namespace igac
 
 #include "contact/obstacles/cylinder.hpp"
+#include "contact/obstacles/edge.hpp"
 #include "contact/obstacles/plane.hpp"
 #include "contact/obstacles/sphere.hpp"

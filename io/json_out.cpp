@@ -261,6 +261,7 @@ Json run_summary(const Model& m, const RunResult& r) {
       if (rr.tangential_force.size())  // friction: along the obstacle's tangents, and its size
         o["tangential_force"] = {{"components", std::vector<double>(rr.tangential_force.begin(), rr.tangential_force.end())},
                                  {"magnitude", finite_or_null(rr.tangential_force.norm())}};
+      if (rr.extrusion) o["extrusion"] = finite_or_null(*rr.extrusion);  // against an edge: the reach past it
       obstacles.push_back(o);
     }
     j["obstacles"] = obstacles;

@@ -244,6 +244,7 @@ RunResult solve_small_strain_history(const Model& m, const RunControl& control) 
       step.u = expand(c.solution.u, t);
       add_master_motions(m, step.u, t);
       step.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active, c.solution.lambda_t);
+      add_extrusions(m, step.u, t, step.reactions);
       step.contacts = report_contacts(m, c);
     }
     clock.restart();

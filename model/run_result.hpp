@@ -59,6 +59,10 @@ struct ObstacleReaction {
   // Friction: -sum_K lambda_t,K K_K along the obstacle's tangents (one in
   // 2D, two in 3D: docs/design.md, "Friction"); empty without.
   Eigen::VectorXd tangential_force;
+  // Against an edge (contact/obstacles/edge.hpp): how far the deformed face
+  // reaches past it, over its second face (the extrusion into a gap
+  // there); 0 when no point is past it, none against other obstacles.
+  std::optional<double> extrusion;
 };
 
 // The force the supports of a [[dirichlet]] face set exert on the body

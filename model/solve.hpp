@@ -86,6 +86,12 @@ Eigen::VectorXd contact_forces_on_every_dof(const Model& model, const ContactSol
 std::vector<ObstacleReaction> obstacle_reactions(const Model& model, const Eigen::VectorXd& lambda,
                                                 const Eigen::VectorXd& weights, const std::vector<char>& active,
                                                 const Eigen::VectorXd& lambda_t = {});
+// Each reaction's extrusion (ObstacleReaction::extrusion): the largest
+// reach of contact i's deformed face (displacement u, load time t) past its
+// obstacle's edge, sampled at p + 2 points a direction of each face
+// element, its ends included.  Contacts
+// against an obstacle without an edge, or a body, keep none.
+void add_extrusions(const Model& model, const Eigen::MatrixXd& u, double t, std::vector<ObstacleReaction>& reactions);
 // Every contact's pressure and report (RunResult::contacts, case order:
 // the pressure files, the reports, ParaView), from the stacked s.solution
 // and s.op.weights.

@@ -118,6 +118,7 @@ void fill_contact(const Model& m, FiniteStrainProblem& problem, double t, const 
   c.solution.converged = true;
   c.op.weights = problem.multiplier_weights();
   r.reactions = obstacle_reactions(m, c.solution.lambda, c.op.weights, c.solution.active, c.solution.lambda_t);
+  add_extrusions(m, r.u, t, r.reactions);
   r.contacts = report_contacts(m, c);
   const std::vector<Eigen::VectorXd> resultants = problem.contact_resultants(t, x);
   for (size_t i = 0; i < r.contacts.size(); ++i) {

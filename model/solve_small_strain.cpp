@@ -403,6 +403,7 @@ RunResult solve_model(const Model& m, const RunControl& control) {
       if (auto w = contact_hold_warning(m, c->op, c->solution, modes)) r.warnings.push_back(std::move(*w));
     }
     r.reactions = obstacle_reactions(m, c->solution.lambda, c->op.weights, c->solution.active, c->solution.lambda_t);
+    add_extrusions(m, r.u, 1.0, r.reactions);
     r.contacts = report_contacts(m, *c);
     // A unilateral partner can only push: a net pull on the body (tensile
     // multipliers) is a wrong result, never a converged one; a tie pulls.

@@ -26,7 +26,7 @@ const std::string kSource = IGAC_SOURCE_DIR;
 TEST(ObstacleRegistry, ListsEveryTypeOnceAndFindsIt) {
   std::vector<std::string> names;
   for (const ObstacleType* t : obstacle_types()) names.emplace_back(t->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"plane", "sphere", "cylinder"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"plane", "sphere", "cylinder", "edge"}));
   for (const auto& n : names) EXPECT_EQ(find_obstacle_type(n)->name, n);
   EXPECT_EQ(find_obstacle_type("torus"), nullptr);
 }
@@ -203,10 +203,13 @@ TEST_P(ObstacleBadInput, OneLineNamingTheKey) {
 INSTANTIATE_TEST_SUITE_P(
     Obstacle, ObstacleBadInput,
     ::testing::Values(
-        BadObstacle{"unknown_type", "type = \"torus\"", {"[contact.obstacle] type:", "plane, sphere, cylinder"}},
+        BadObstacle{"unknown_type", "type = \"torus\"", {"[contact.obstacle] type:", "plane, sphere, cylinder, edge"}},
         BadObstacle{"cylinder_in_2d", "type = \"cylinder\"\npoint = [0, 0]\naxis = [0, 1]\nradius = 1",
                     {"[contact.obstacle] type:", "3D body"}},
         BadObstacle{"zero_normal", "type = \"plane\"\npoint = [0, -1]\nnormal = [0, 0]", {"[contact.obstacle] normal:", "zero"}},
+        BadObstacle{"edge_parallel_normals",
+                    "type = \"edge\"\npoint = [0, -1]\nnormal = [0, 1]\nsecond_normal = [0, -2]\nradius = 0.1",
+                    {"[contact.obstacle]", "parallel"}},
         BadObstacle{"sphere_radius", "type = \"sphere\"\ncentre = [0, -3]\nradius = -1",
                     {"[contact.obstacle] radius:", "positive"}},
         BadObstacle{"key_of_another_type", "type = \"plane\"\npoint = [0, -1]\nnormal = [0, 1]\nradius = 2",

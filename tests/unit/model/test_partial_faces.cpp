@@ -25,6 +25,7 @@
 #include "io/case_file.hpp"
 #include "model/model.hpp"
 #include "model/solve.hpp"
+#include "tests/support/case_texts.hpp"
 #include "tests/support/two_d_models.hpp"
 
 namespace igac {
@@ -34,20 +35,7 @@ const std::string kPath = std::string(IGAC_SOURCE_DIR) + "/cases/partial.toml";
 
 // A 2 x 1 block (plane strain, E = 1, nu = 0.3), 8 x 4 elements of degree
 // 2, with `rest` (its supports and loads) appended.
-std::string free_block(const std::string& rest) {
-  return R"(
-[geometry]
-shape = "rectangle"
-size = [2.0, 1.0]
-[mesh]
-degree = 2
-elements = [8, 4]
-[material]
-model = "linear_elastic"
-E = 1.0
-nu = 0.3
-)" + rest;
-}
+std::string free_block(const std::string& rest) { return igac_test::rectangle_case(2.0, 1.0, 8, 4) + rest; }
 
 // The block on rollers (bottom: y held, left: x held), with `extra` appended.
 std::string block(const std::string& extra) {
