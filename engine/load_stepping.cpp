@@ -106,7 +106,7 @@ LoadSteppingSummary run_load_steps(NonlinearProblem& problem, Eigen::VectorXd& x
       while (ok && problem.augment(t_new, x_try)) {
         if (record.augmentations == opt.max_augmentations) {
           ok = false;
-          failure = fmt::format("the constraint is not met after {} augmentations", opt.max_augmentations);
+          failure = fmt::format("{} after {} augmentations", problem.unsettled_augmentation(), opt.max_augmentations);
           break;
         }
         ++record.augmentations;

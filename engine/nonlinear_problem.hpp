@@ -6,6 +6,8 @@
 // the hooks of an augmented Lagrangian and of a path-dependent problem.
 #pragma once
 
+#include <string>
+
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <vector>
@@ -66,6 +68,9 @@ class NonlinearProblem {
     return false;
   }
   virtual void keep_augmentation(bool accepted) { static_cast<void>(accepted); }
+  // What the last augment() that returned true left unsettled, for the
+  // message of a step that runs out of augmentations.
+  virtual std::string unsettled_augmentation() const { return "the constraint is not met"; }
   // The converged state (t, x) the next step starts from (t = 0: the
   // initial state), told before that step is tried, and again before each
   // retry after a cut-back: what a path-dependent problem (friction's slip

@@ -387,6 +387,9 @@ void FiniteStrainProblem::begin_step(double t, const Eigen::VectorXd& x) {
 bool FiniteStrainProblem::augment(double t, const Eigen::VectorXd& x) {
   const bool multipliers = tl_->augment(displacement(t, x));
   const bool fluid = update_wet_elements(x);
+  unsettled_ = multipliers && fluid ? "the incompressibility constraint is not met and the fluid's wet faces still change"
+               : multipliers        ? "the incompressibility constraint is not met"
+                                    : "the fluid's wet faces still change with the contact front";
   return multipliers || fluid;
 }
 

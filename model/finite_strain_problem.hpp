@@ -164,6 +164,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // either changed, the step is solved again).
   bool augment(double t, const Eigen::VectorXd& x) override;
   void keep_augmentation(bool accepted) override { tl_->keep_multipliers(accepted); }
+  std::string unsettled_augmentation() const override { return unsettled_; }
   // The elements each pressure acts on (PressureLoad::fluid; empty for a
   // pressure on whole faces), as the last step left them.
   const std::vector<FaceElementFlags>& wet_elements() const { return wet_; }
@@ -260,6 +261,7 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // update from the contact state x (true when they change)
   std::vector<FaceElementFlags> wet_;
   bool update_wet_elements(const Eigen::VectorXd& x);
+  std::string unsettled_;  // what the last augment() that asked for another solve left unsettled
   const FaceElementFlags* wet(size_t pressure) const { return wet_[pressure].empty() ? nullptr : &wet_[pressure]; }
   std::vector<ContactQuadrature> contact_quadratures_;  // per contact: tabulated once
   mutable std::vector<MortarPointCache> mortar_points_;  // per contact: its last state's mortar points
