@@ -37,6 +37,8 @@ void add_extrusions(const Model& m, const Eigen::MatrixXd& u, double t, std::vec
     Eigen::VectorXd shift = Eigen::VectorXd::Zero(m.body.space_dim());
     if (c.motion.size() > 0) shift = (c.curve(t) - (m.spec.finite_strain() ? 0.0 : 1.0)) * c.motion;
     const TranslatedObstacle obstacle(*c.obstacle, shift);
+    // An obstacle without an edge has no reach anywhere: sample nothing.
+    if (!obstacle.reach_past_edge(Eigen::VectorXd::Zero(m.body.space_dim()))) continue;
     std::optional<double> reach;
     for (const ContactSide& side : c.face->sides) {
       Eigen::MatrixXd uf(side.face_cps.size(), m.body.space_dim());

@@ -27,4 +27,16 @@ nu = 0.3
                      lx, ly, nx, ny, model);
 }
 
+// Rollers for a rectangle_case: its bottom held in y, its left side in x.
+inline std::string rollers() {
+  return R"(
+[[dirichlet]]
+faces = ["bottom"]
+component = "y"
+[[dirichlet]]
+faces = ["left"]
+component = "x"
+)";
+}
+
 }  // namespace igac_test

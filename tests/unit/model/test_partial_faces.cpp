@@ -39,14 +39,7 @@ std::string free_block(const std::string& rest) { return igac_test::rectangle_ca
 
 // The block on rollers (bottom: y held, left: x held), with `extra` appended.
 std::string block(const std::string& extra) {
-  return free_block(R"(
-[[dirichlet]]
-faces = ["bottom"]
-component = "y"
-[[dirichlet]]
-faces = ["left"]
-component = "x"
-)" + extra);
+  return free_block(igac_test::rollers() + extra);
 }
 
 struct SolvedCase {
