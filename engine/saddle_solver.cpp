@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/saddle_solver.hpp"
 
+#include <Eigen/SVD>
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
@@ -28,7 +29,7 @@ constexpr double kBackwardError = 1e-13;
 
 struct SaddleSolver::Impl {
   const BlockJacobian* J = nullptr;
-  int n = 0, m = 0, k = 0;
+  int n = 0, m = 0, k = 0;  // k: the rigid modes the active rows hold (hold_rigid_modes)
   // the symmetric part, in K's pattern, and where K's transpose entries sit
   Eigen::SparseMatrix<double> Ks;
   std::vector<int> transpose_of;
@@ -43,7 +44,10 @@ struct SaddleSolver::Impl {
   std::vector<int> active, inactive;
   SparseCholesky::Reach reach;
   Eigen::MatrixXd Y;   // L^-1 P B_A^T on reach.rows
-  Eigen::MatrixXd BR;  // B_A R
+  Eigen::MatrixXd BR;  // B_A R_h
+  // R_h: the combinations of the rigid modes R the active rows hold (all of
+  // R but for the motions no active row's gap changes along, held_modes)
+  Eigen::MatrixXd held_modes;
   BorderedSpdSolver M;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   Eigen::SparseMatrix<double> full;
@@ -101,7 +105,7 @@ struct SaddleSolver::Impl {
     for (size_t i = 0; i < reach.rows.size(); ++i) yr[i] = y[reach.rows[i]];
     rhs.head(na).noalias() = Y.transpose() * yr;
     for (int i = 0; i < na; ++i) rhs[i] -= b[n + active[i]] / J->s[active[i]];
-    if (k > 0) rhs.tail(k).noalias() = J->rigid_modes.transpose() * f;
+    if (k > 0) rhs.tail(k).noalias() = held_modes.transpose() * f;
     Eigen::VectorXd lambda_A, c;
     M.solve(rhs.head(na), rhs.tail(k), lambda_A, c);
     if (na > 0) {
@@ -109,7 +113,7 @@ struct SaddleSolver::Impl {
       for (size_t i = 0; i < reach.rows.size(); ++i) y[reach.rows[i]] -= yr[i];
     }
     x.head(n) = chol().backward_full(y);
-    if (k > 0) x.head(n).noalias() += J->rigid_modes * c;
+    if (k > 0) x.head(n).noalias() += held_modes * c;
     for (int i = 0; i < na; ++i) lambda[active[i]] = lambda_A[i];
     x.tail(m) = lambda;
   }
@@ -148,8 +152,9 @@ struct SaddleSolver::Impl {
           H(i, j) = V.col(i).dot(w);
           w -= H(i, j) * V.col(i);
         }
-        H(j + 1, j) = w.norm();
-        if (H(j + 1, j) > 0) V.col(j + 1) = w / H(j + 1, j);
+        const double h_next = w.norm();  // 0: the Krylov space holds the solution (happy breakdown)
+        H(j + 1, j) = h_next;
+        if (h_next > 0) V.col(j + 1) = w / h_next;
         for (int i = 0; i < j; ++i) {  // earlier rotations
           const double a = H(i, j), c = H(i + 1, j);
           H(i, j) = cs[i] * a + sn[i] * c;
@@ -164,13 +169,49 @@ struct SaddleSolver::Impl {
         g[j] *= cs[j];
         ++j;
         ++iterations;
-        if (std::abs(g[j]) <= target || H(j, j - 1) == 0) break;
+        if (std::abs(g[j]) <= target || h_next == 0) break;
       }
       const Eigen::VectorXd yk = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
       x.noalias() += Z.leftCols(j) * yk;
       r = b - apply_J(x);
     }
     return done(r);
+  }
+
+  // held_modes and BR from the rigid modes R and the active rows: the
+  // combinations of R along which some active row's gap changes (the right
+  // singular vectors of B_A R with a singular value above round-off of the
+  // rows' size).  A motion no active row holds (a ring between two
+  // frictionless planes sliding along them) is absent from J's range too:
+  // its amplitude is left at 0, the pinned equations' values, instead of
+  // letting an LU of the singular J pick one (an arbitrary drift, and a
+  // full factorisation every iteration).
+  void hold_rigid_modes(const BlockJacobian& Jac) {
+    const int na = int(active.size()), all = int(Jac.rigid_modes.cols());
+    Eigen::MatrixXd BR_all(na, all);
+    double row_scale = 0;
+    for (int i = 0; i < na; ++i) {
+      BR_all.row(i) = Jac.B.row(active[i]) * Jac.rigid_modes;
+      row_scale = std::max(row_scale, Jac.B.row(active[i]).norm());
+    }
+    if (na == 0 || all == 0) {
+      held_modes.resize(n, 0);
+      BR.resize(na, 0);
+      k = 0;
+      return;
+    }
+    constexpr double kHeldTolerance = 1e-12;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(BR_all, Eigen::ComputeFullV);
+    int held = 0;
+    while (held < int(svd.singularValues().size()) && svd.singularValues()[held] > kHeldTolerance * row_scale) ++held;
+    if (held == all) {
+      held_modes = Jac.rigid_modes;
+      BR = std::move(BR_all);
+    } else {
+      held_modes = Jac.rigid_modes * svd.matrixV().leftCols(held);
+      BR = BR_all * svd.matrixV().leftCols(held);
+    }
+    k = held;
   }
 
   bool factor_full(std::string& why) {
@@ -285,7 +326,7 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
     if (J.s[k] != 0.0) I.active.push_back(k);
     else I.inactive.push_back(k);
   }
-  const int na = int(I.active.size()), k = I.k;
+  const int na = int(I.active.size());
   {
     std::vector<Eigen::Triplet<double>> t;
     std::vector<int> eqs;
@@ -300,8 +341,7 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
     I.reach = I.chol().reach(eqs);
     I.Y = I.chol().forward(I.reach, C);
   }
-  I.BR.resize(na, k);
-  for (int i = 0; i < na; ++i) I.BR.row(i) = J.B.row(I.active[i]) * J.rigid_modes;
+  I.hold_rigid_modes(J);
   const Eigen::MatrixXd S = dense::gram(I.Y);  // Y^T Y on OpenBLAS (engine/dense_kernels.hpp)
   if (!I.M.compute(S, I.BR)) {  // dependent constraints: let LU on J decide
     const bool ok = I.factor_full(why_);

@@ -15,6 +15,10 @@
 //      [ S_AA       -B_A R ] [l_A]   [ B_A K_s^-1 f - b_A / s_A ]
 //      [ -R^T B_A^T    0   ] [ c ] = [ -R^T f                   ],
 //    then du = K_s^-1 (f - B_A^T l_A) + R c (one forward, one backward solve);
+//    R is cut to the combinations some active row holds (B_A R's right
+//    singular vectors above round-off): along a motion none holds (a body
+//    between frictionless planes sliding along them) J is singular, and the
+//    step leaves the body where its pinned equations are;
 //  - J is not symmetric when a follower pressure acts (its load stiffness,
 //    handed over beside K as K_coupling, which keeps K_s R = 0): the solve
 //    of the symmetric-part system preconditions GMRES on J (right

@@ -13,7 +13,7 @@ std::vector<ObstacleReaction> obstacle_reactions(const Model& m, const Eigen::Ve
   int offset = 0;
   const int nt = lambda.size() ? int(lambda_t.size() / lambda.size()) : 0;
   for (const auto& c : m.contacts) {
-    ObstacleReaction rr{c.face_name, c.obstacle->describe(), 0.0, 0, {}};
+    ObstacleReaction rr{.face = c.face_name, .obstacle = c.obstacle->describe()};
     if (nt > 0) rr.tangential_force = Eigen::VectorXd::Zero(nt);
     for (int K = offset; K < offset + c.face->num_multipliers(); ++K) {
       rr.normal_force -= lambda[K] * weights[K];
