@@ -9,6 +9,9 @@
 //    force (the plates carry none), to the solve's tolerance; a pressure
 //    on the whole closed face instead pushes nowhere;
 //  - the same ring axisymmetric (a seal's ring) converges with the front;
+//  - in 3D a block squeezed between two plates and pushed by the fluid
+//    against a wall: the front crosses the edges between sides, stops at
+//    the pressed plates, and the wall carries the fluid's force;
 //  - a linear (small-deformation) case refuses it in one line.
 #include <gtest/gtest.h>
 
@@ -111,6 +114,66 @@ TEST(PressurePenetration, AxisymmetricRingConverges) {
   EXPECT_LT(f.wet_elements, f.elements / 2);
   EXPECT_GT(f.force[0], 0.0) << "the fluid pushes the ring outward";
   EXPECT_GT(f.peak_contact_pressure, f.pressure);
+}
+
+// A block 1 x 0.5 x 1 (x, y, z), y held on its front face (a symmetry
+// plane), on a floor (2e-3 of declared interference), a plate above moved
+// down by 0.1 over time 0 -> 1, a wall touching its right face, and a fluid
+// pressure of 0.05 on its left, bottom and top faces rising over 1 -> 2,
+// entering at the middle of the left face.
+std::string block_case() {
+  return "name = \"fluid_block\"\n[geometry]\nshape = \"box\"\nsize = [1.0, 0.5, 1.0]\n"
+         "[mesh]\ndegree = 2\nelements = [4, 2, 4]\n[material]\nmodel = \"neo_hookean\"\nE = 1.0\nnu = 0.3\n"
+         "[loading]\nsteps = 4\nmax_increment = 0.5\nmax_newton_iterations = 25\n"
+         "[[dirichlet]]\nfaces = [\"front\"]\ncomponent = \"y\"\n"
+         "[[contact]]\nface = \"bottom\"\ninterference = true\n[contact.obstacle]\ntype = \"plane\"\n"
+         "point = [0.0, 0.0, 0.002]\nnormal = [0.0, 0.0, 1.0]\n"
+         "[[contact]]\nface = \"top\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [0.0, 0.0, 1.0]\n"
+         "normal = [0.0, 0.0, -1.0]\nmotion = [0.0, 0.0, -0.1]\ncurve = [[0, 0], [1, 1], [2, 1]]\n"
+         "[[contact]]\nface = \"right\"\n[contact.obstacle]\ntype = \"plane\"\npoint = [1.0, 0.0, 0.0]\n"
+         "normal = [-1.0, 0.0, 0.0]\n"
+         "[[pressure]]\nfaces = [\"left\", \"bottom\", \"top\"]\nvalue = 0.05\ncurve = [[0, 0], [1, 0], [2, 1]]\n"
+         "fluid_entry = [0.0, 0.25, 0.5]\n[output]\nvtk = false\n";
+}
+
+TEST(PressurePenetration, InThreeDimensionsTheFluidCrossesEdgesBetweenSides) {
+  const Model m = build_model(read_case_text(block_case(), "fluid_block.toml"));
+  std::vector<PatchSide> faces;
+  for (const char* name : {"left", "bottom", "top"}) faces.push_back(m.faces.at(name).at(0));
+  const FluidFront front(m.body, faces, Eigen::Vector3d(0.0, 0.25, 0.5));
+  EXPECT_EQ(front.entry_side(), 0);
+  FaceElementFlags pressed = front.none();
+  ASSERT_EQ(count(front.wet(pressed)), 8 + 8 + 8) << "nothing pressed: the left face and, across its edges, both others";
+  pressed[2].assign(pressed[2].size(), 1);  // the top pressed
+  EXPECT_EQ(count(front.wet(pressed)), 16);
+  pressed[1].assign(pressed[1].size(), 1);  // and the bottom
+  EXPECT_EQ(count(front.wet(pressed)), 8);
+  // one bottom element not pressed: the fluid reaches it when it shares an
+  // edge with the left face (the row of 2 along it), else not
+  int reached = 0;
+  for (size_t e = 0; e < pressed[1].size(); ++e) {
+    pressed[1][e] = 0;
+    const int wet = count(front.wet(pressed));
+    EXPECT_TRUE(wet == 8 || wet == 9) << wet;
+    reached += wet == 9;
+    pressed[1][e] = 1;
+  }
+  EXPECT_EQ(reached, 2);
+}
+
+TEST(PressurePenetration, InThreeDimensionsTheWallCarriesTheFluidsForce) {
+  const RunResult r = solve_model(build_model(read_case_text(block_case(), "fluid_block.toml")), quiet_run());
+  ASSERT_TRUE(r.status.is_converged()) << r.status.text();
+  ASSERT_EQ(r.fluids.size(), 1u);
+  const FluidReport& f = r.fluids.front();
+  ASSERT_EQ(r.contacts.size(), 3u);
+  const double wall = r.contacts[2].report.total_force;
+  std::printf("  3D: fluid on %d of %d elements, its force (%.9g, %.3g, %.3g), the wall's %.9g\n", f.wet_elements,
+              f.elements, f.force[0], f.force[1], f.force[2], wall);
+  EXPECT_EQ(f.wet_elements, 8) << "the plates press the whole top and bottom: the fluid stops at the left face";
+  EXPECT_NEAR(f.force[0], wall, 1e-8 * wall) << "frictionless plates carry no horizontal force";
+  EXPECT_NEAR(f.force[2], 0.0, 1e-8 * wall);
+  EXPECT_GT(wall, 0.9 * 0.05 * 0.5 * 1.0) << "p times about the left face's area";
 }
 
 TEST(PressurePenetration, ALinearCaseRefusesItInOneLine) {
