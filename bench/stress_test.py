@@ -67,6 +67,8 @@ def set_plane_y(c, y):
 
 def set_grading(c, span, rng):
     g = c["mesh"]["grading"]
+    if isinstance(g, list):  # [[mesh.grading]] tables: the first grades the contact face
+        g = g[0]
     g["span_fraction"] = span
     g["range_fraction"] = rng
     return c
@@ -120,10 +122,78 @@ def variants():
                   set_plane_y(base_linear(), y), [], True))
         v.append((f"nh_P0.01_{where}", "offset", f"Neo-Hookean P = 0.01, body starting {gap} the plane (y = {y:g})",
                   set_plane_y(base_neohookean(0.01), y), [], True))
+    v += newer_variants()
     disp = load_case("hertz2d_neohookean_displacement.toml")
     disp["mesh"]["elements"] = list(COARSE_2D)
     v.append(("nh_displacement", "displacement", "Neo-Hookean, top face displaced u_y = -0.4",
               disp, [], True))
+    return v
+
+
+def shipped(name, **mesh):
+    """A shipped case with its geometry file's path made absolute."""
+    c = load_case(name)
+    for g in [c.get("geometry", {})] + [b.get("geometry", {}) for b in c.get("body", [])]:
+        if "file" in g:
+            g["file"] = str(ROOT / "cases" / g["file"])
+    return c
+
+
+def oring_coarse(name):
+    c = shipped(name)
+    c["mesh"]["elements"] = [16, 8]
+    return c
+
+
+def floating_ring(friction):
+    """The whole O-ring section without supports in a groove of four planes."""
+    def plane(point, normal, motion=None):
+        o = {"type": "plane", "point": point, "normal": normal}
+        if motion:
+            o["motion"] = motion
+        return {"face": "arcs", "friction": friction, "obstacle": o}
+    c = oring_coarse("oring.toml")
+    c["geometry"]["file"] = str(ROOT / "cases" / "oring_full.xml")
+    c["faces"] = {"arcs": ["0:south", "1:south", "2:south", "3:south"]}
+    c["mesh"]["elements"] = [8, 4]
+    c.pop("dirichlet", None)
+    c["loading"] = {"steps": 10, "max_increment": 0.1, "max_newton_iterations": 25}
+    c["contact"] = [plane([0.0, -2.665], [0.0, 1.0], [0.0, 0.66625]), plane([0.0, 2.665], [0.0, -1.0], [0.0, -0.66625]),
+                    plane([-3.2, 0.0], [1.0, 0.0]), plane([3.2, 0.0], [-1.0, 0.0])]
+    return c
+
+
+def newer_variants():
+    """The features added after the Hertz variants: friction, real rubber, bodies held by contact alone,
+    two deformable bodies, interference fits."""
+    v = []
+    for f in (0.1, 0.5, 1.0):
+        c = oring_coarse("oring_friction.toml")
+        c["contact"]["friction"] = f
+        c["loading"].update({"steps": 10, "max_increment": 0.1})
+        v.append((f"oring_friction{f:g}", "friction", f"O-ring squeezed 25 %, friction {f:g}, ten fixed steps", c, [],
+                  f == 1.0))
+    c = oring_coarse("oring_rubber.toml")
+    c["contact"]["obstacle"]["motion"] = [0.0, 1.066]
+    v.append(("oring_rubber_squeeze40", "rubber", "O-ring, K/G = 2000, mixed, squeezed 40 %", c, [], True))
+    for f in (0.0, 0.3):
+        v.append((f"floating_ring_f{f:g}", "held by contact", f"whole O-ring, no support, groove of four planes, "
+                  f"friction {f:g}", floating_ring(f), [], f == 0.0))
+    c = shipped("roller_on_block_neohookean.toml")
+    c["pressure"][0]["value"] = 0.3
+    v.append(("roller_on_block_P0.3", "two bodies", "Neo-Hookean roller on a Neo-Hookean block, P = 0.3", c, [], False))
+    for interference in (0.01, 0.05):
+        c = shipped("press_fit.toml")
+        c["body"][0]["geometry"]["radius"] = 1.0 + interference
+        v.append((f"press_fit_{interference:g}", "interference", f"disc on a shaft, plane stress, "
+                  f"{100 * interference:g} % interference", c, [], interference == 0.05))
+        c = shipped("press_fit.toml")
+        c["body"][0]["geometry"]["radius"] = 1.0 + interference
+        for b in c["body"]:
+            b["material"] = {"model": "neo_hookean", "E": 1.0, "nu": 0.3}
+        c["loading"] = {"steps": 5}
+        v.append((f"press_fit_{interference:g}_neohookean", "interference", f"disc on a shaft, plane stress, "
+                  f"Neo-Hookean, {100 * interference:g} % interference", c, [], False))
     return v
 
 
@@ -165,6 +235,13 @@ def scan_nonfinite(folder):
     return nonfinite, nulls, files
 
 
+def material_model(case):
+    """The law's name ("a / b" for several bodies of different laws)."""
+    models = [case["material"].get("model", "linear_elastic")] if "material" in case else \
+        [b.get("material", {}).get("model", "linear_elastic") for b in case.get("body", [])]
+    return " / ".join(dict.fromkeys(models))
+
+
 def fmt(x, spec=".4g"):
     if x is None or x == "":
         return ""
@@ -200,19 +277,23 @@ def run_one(igac, tmp, name, group, what, case, extra, timeout):
     steps = summary.get("load_steps", [])
     contact = summary.get("contact", {})
     large = "newton_seconds" in summary or any(s.get("newton_iterations", 0) for s in steps) or \
-        case["material"]["model"] != "linear_elastic"
+        material_model(case) != "linear_elastic"
     if large:
         iterations = sum(s.get("newton_iterations", 0) for s in steps)
     else:
         iterations = contact.get("active_set_iterations", sum(len(s.get("active_set_sizes", [])) for s in steps))
     total, applied = contact.get("total_force"), contact.get("applied_force")
+    if isinstance(contact.get("resultant_along_normal"), (int, float)):
+        # against a deformed or curved partner the pressure turns with its normal: the
+        # resultant, not the integral of p, balances the load
+        total = contact["resultant_along_normal"]
     rel = abs(total - applied) / abs(applied) if isinstance(total, (int, float)) and \
         isinstance(applied, (int, float)) and applied else None
     status = summary.get("status", "")
     if not status:
         status = (stderr.strip().splitlines() or ["(no summary.json)"])[-1]
     row.update({
-        "model": case["material"]["model"],
+        "model": material_model(case),
         "degree": summary.get("degree", ""),
         "dofs": summary.get("dofs", ""),
         "multipliers": summary.get("multipliers", ""),
@@ -268,7 +349,8 @@ def write_markdown(rows, path, quick, elapsed, igac):
         "",
         "Iterations: Newton iterations summed over the load steps (Neo-Hookean), active-set iterations (linear). "
         "Force: |total contact force - applied force| / applied force (the follower load's resultant on the "
-        "deformed face; for the displacement-driven case there is no applied force). vs Hertz: max pressure against Hertz's p0 for the same P and nu (linear cases; Hertz assumes a half space, the coarse [32, 8] mesh sits about 0.5 % below). Solve: `timing_s.total` of summary.json; wall: the whole process, with writing the CSV files and the SVG plots. NaN: non-finite tokens in "
+        "deformed face; against a deformable partner the contact force's resultant along the normal; for the "
+        "displacement-driven case there is no applied force). vs Hertz: max pressure against Hertz's p0 for the same P and nu (linear cases; Hertz assumes a half space, the coarse [32, 8] mesh sits about 0.5 % below). Solve: `timing_s.total` of summary.json; wall: the whole process, with writing the CSV files and the SVG plots. NaN: non-finite tokens in "
         "summary.json, pressure.csv, load_curve.csv and the SVG plots, plus `null` values in summary.json.",
         "",
         "| run | variant | p | dofs | exit | status | steps | iterations | cut-backs | max pressure | vs Hertz | force rel. diff | solve (s) | wall (s) | NaN |",

@@ -92,6 +92,7 @@ TEST(TwoBodies, AgainstACurvedMasterTheResultantBalancesTheLoad) {
   ASSERT_TRUE(contact.contains("resultant")) << contact;
   const double applied = contact["applied_force"], integral = contact["total_force"];
   EXPECT_NEAR(contact["resultant"][1].get<double>(), applied, kBalance * applied);
+  EXPECT_NEAR(contact["resultant_along_normal"].get<double>(), applied, kBalance * applied) << "the console's number";
   EXPECT_GT(integral - applied, 1e-6 * applied) << "the pressure turns with the curved master";
 }
 
