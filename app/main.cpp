@@ -193,12 +193,12 @@ void print_summary(const Model& m, const RunResult& r, const std::string& out, d
       fmt::print("    total force   {:.10g}\n", rep.total_force);
     else if (m.contacts[i].self_contact)  // the load does not pass through it to another body
       fmt::print("  total force   {:.10g}  (self-contact: the body presses on itself)\n", rep.total_force);
-    else if (r.applied_force > 0 && c.resultant.size() == c.normal.size() &&
-             std::abs(std::abs(c.resultant.dot(c.normal)) - std::abs(rep.total_force)) > 1e-9 * std::abs(rep.total_force)) {
+    else if (const std::optional<double> along_normal = c.resultant_along_normal();
+             r.applied_force > 0 && along_normal &&
+             std::abs(*along_normal - rep.total_force) > 1e-9 * std::abs(rep.total_force)) {
       // against a curved or deformed partner the pressure turns with its
       // normal: the resultant, not the integral of p, balances the load
-      // (signed as the total force: a tie that pulls has both negative)
-      const double along = std::copysign(std::abs(c.resultant.dot(c.normal)), rep.total_force);
+      const double along = *along_normal;
       fmt::print("  total force   {:.10g}, resultant along the normal {:.10g}  (applied {:.10g}, relative "
                  "difference {:.2e})\n", rep.total_force, along, r.applied_force,
                  std::abs(std::abs(along) - r.applied_force) / r.applied_force);

@@ -45,9 +45,11 @@ struct SaddleSolver::Impl {
   SparseCholesky::Reach reach;
   Eigen::MatrixXd Y;   // L^-1 P B_A^T on reach.rows
   Eigen::MatrixXd BR;  // B_A R_h
-  // R_h: the combinations of the rigid modes R the active rows hold (all of
-  // R but for the motions no active row's gap changes along, held_modes)
-  Eigen::MatrixXd held_modes;
+  // R_h: the combinations of the rigid modes R the active rows hold
+  // (hold_rigid_modes): J's own R when they hold all of it, else
+  // reduced_modes
+  const Eigen::MatrixXd* held_modes = nullptr;
+  Eigen::MatrixXd reduced_modes;
   BorderedSpdSolver M;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   Eigen::SparseMatrix<double> full;
@@ -105,7 +107,7 @@ struct SaddleSolver::Impl {
     for (size_t i = 0; i < reach.rows.size(); ++i) yr[i] = y[reach.rows[i]];
     rhs.head(na).noalias() = Y.transpose() * yr;
     for (int i = 0; i < na; ++i) rhs[i] -= b[n + active[i]] / J->s[active[i]];
-    if (k > 0) rhs.tail(k).noalias() = held_modes.transpose() * f;
+    if (k > 0) rhs.tail(k).noalias() = held_modes->transpose() * f;
     Eigen::VectorXd lambda_A, c;
     M.solve(rhs.head(na), rhs.tail(k), lambda_A, c);
     if (na > 0) {
@@ -113,7 +115,7 @@ struct SaddleSolver::Impl {
       for (size_t i = 0; i < reach.rows.size(); ++i) y[reach.rows[i]] -= yr[i];
     }
     x.head(n) = chol().backward_full(y);
-    if (k > 0) x.head(n).noalias() += held_modes * c;
+    if (k > 0) x.head(n).noalias() += *held_modes * c;
     for (int i = 0; i < na; ++i) lambda[active[i]] = lambda_A[i];
     x.tail(m) = lambda;
   }
@@ -195,7 +197,6 @@ struct SaddleSolver::Impl {
       row_scale = std::max(row_scale, Jac.B.row(active[i]).norm());
     }
     if (na == 0 || all == 0) {
-      held_modes.resize(n, 0);
       BR.resize(na, 0);
       k = 0;
       return;
@@ -205,10 +206,11 @@ struct SaddleSolver::Impl {
     int held = 0;
     while (held < int(svd.singularValues().size()) && svd.singularValues()[held] > kHeldTolerance * row_scale) ++held;
     if (held == all) {
-      held_modes = Jac.rigid_modes;
+      held_modes = &Jac.rigid_modes;
       BR = std::move(BR_all);
     } else {
-      held_modes = Jac.rigid_modes * svd.matrixV().leftCols(held);
+      reduced_modes = Jac.rigid_modes * svd.matrixV().leftCols(held);
+      held_modes = &reduced_modes;
       BR = BR_all * svd.matrixV().leftCols(held);
     }
     k = held;

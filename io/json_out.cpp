@@ -106,11 +106,8 @@ Json contact_numbers(const RunResult& r, const ContactResult& cr) {
     Json f = Json::array();
     for (int i = 0; i < cr.resultant.size(); ++i) f.push_back(finite_or_null(cr.resultant[i]));
     c["resultant"] = f;
-    // what balances the load along the contact's normal, signed as total_force
-    // (the console's "resultant along the normal")
-    if (cr.normal.size() == cr.resultant.size())
-      c["resultant_along_normal"] =
-          finite_or_null(std::copysign(std::abs(cr.resultant.dot(cr.normal)), rep.total_force));
+    if (const std::optional<double> along = cr.resultant_along_normal())
+      c["resultant_along_normal"] = finite_or_null(*along);
   }
   return c;
 }

@@ -4,6 +4,7 @@
 // model/solve fills it, io's writers (json_out, vtk_output) put it in files.
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
@@ -48,6 +49,13 @@ struct ContactResult {
   // on a plane total_force along the normal; against a curved obstacle or a
   // second body the resultant, what balances the loads.
   Eigen::VectorXd resultant;
+  // The resultant's component along the contact normal, signed as
+  // report.total_force (a tie that pulls has both negative); none without
+  // a resultant.  The console and summary.json report it.
+  std::optional<double> resultant_along_normal() const {
+    if (resultant.size() == 0 || resultant.size() != normal.size()) return std::nullopt;
+    return std::copysign(std::abs(resultant.dot(normal)), report.total_force);
+  }
 };
 
 // The force each obstacle exerts on the body: -sum_K lambda_K K_K over its
