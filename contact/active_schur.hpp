@@ -91,8 +91,9 @@ class ActiveSchur {
     all.insert(all.end(), fresh.begin(), fresh.end());
     SparseCholesky::Reach zone = chol_.reach(equations_of(all));
     // the old columns, laid out on the new rows (zero on the rows added)
-    Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(Eigen::Index(zone.rows.size()), Eigen::Index(all.size()));
-    {
+    Eigen::MatrixXd Y;
+    if (!ever_.empty()) {
+      Y = Eigen::MatrixXd::Zero(Eigen::Index(zone.rows.size()), Eigen::Index(all.size()));
       std::vector<int> at(chol_.size(), -1);
       for (size_t i = 0; i < zone.rows.size(); ++i) at[zone.rows[i]] = int(i);
       for (size_t i = 0; i < zone_.rows.size(); ++i) Y.row(at[zone_.rows[i]]).head(Y_.cols()) = Y_.row(i);
@@ -104,17 +105,23 @@ class ActiveSchur {
         for (RowSparse::InnerIterator it(Gp_, fresh[j]); it; ++it) t.emplace_back(it.col(), int(j), it.value());
       C.setFromTriplets(t.begin(), t.end());
     }
-    Y.rightCols(Eigen::Index(fresh.size())) = chol_.forward(zone, C);
+    // the new columns in the order of their first row (forward_by_start)
+    SparseCholesky::ColumnsByStart added = chol_.forward_by_start(zone, C);
+    if (ever_.empty())
+      Y = std::move(added.Y);
+    else
+      Y.rightCols(Eigen::Index(fresh.size())) = added.Y;
+    for (size_t j = 0; j < fresh.size(); ++j) all[ever_.size() + j] = fresh[added.order[j]];
     const Eigen::Index old = Y_.cols(), total = Eigen::Index(all.size());
     Eigen::MatrixXd S(total, total);
     S.topLeftCorner(old, old) = S_;
     if (old == 0) {
-      S = dense::gram(Y);
+      S = dense::gram(Y, added.start);
     } else {
       dense::gemm(1.0, Y, true, Y.rightCols(total - old), false, 0.0, S.rightCols(total - old));
       S.bottomLeftCorner(total - old, old) = S.topRightCorner(old, total - old).transpose();
     }
-    for (size_t j = 0; j < fresh.size(); ++j) slot_[fresh[j]] = int(old + j);
+    for (Eigen::Index j = old; j < total; ++j) slot_[all[j]] = int(j);
     S_ = std::move(S);
     Y_ = std::move(Y);
     zone_ = std::move(zone);

@@ -278,31 +278,79 @@ Supernode supernode(const cholmod_factor* L, int k) {
 using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
 }  // namespace
 
-Eigen::MatrixXd SparseCholesky::forward(const Reach& R, const Eigen::SparseMatrix<double>& C) const {
+namespace {
+// Y = L^{-1} C on a reach, C given as dense columns on the reach's rows
+// (`local` rows), each zero above start[j] and the starts ascending: a
+// supernode updates only the prefix of the columns that have started, so
+// the zeros above each column's start are never multiplied.
+void forward_started(const cholmod_factor* L, const SparseCholesky::Reach& R, const std::vector<int>& local,
+                     const std::vector<int>& start, Eigen::MatrixXd& Y) {
+  // Within a supernode (the trailing one of a contact face holds thousands
+  // of rows) the started columns go in chunks, each from the chunk's first
+  // start down: the triangle's zeros inside the supernode are skipped too.
+  constexpr int kChunk = 256;
+  Eigen::MatrixXd W;
+  for (int k : R.supernodes) {
+    const Supernode sn = supernode(L, k);
+    const Block Lk(sn.x, sn.nsrow, sn.nscol, Eigen::OuterStride<>(sn.nsrow));
+    const int first = local[sn.k1];
+    const int started = int(std::upper_bound(start.begin(), start.end(), first + sn.nscol - 1) - start.begin());
+    const int below = sn.nsrow - sn.nscol;
+    for (int c0 = 0; c0 < started; c0 += kChunk) {
+      const int width = std::min(kChunk, started - c0);
+      const int skip = std::max(0, start[c0] - first);  // rows of this supernode above the chunk's columns
+      auto Xk = Y.block(first + skip, c0, sn.nscol - skip, width);
+      dense::lower_solve_in_place(Lk.block(skip, skip, sn.nscol - skip, sn.nscol - skip), Xk);
+      if (below == 0) continue;
+      W.resize(below, width);
+      dense::gemm(1.0, Lk.block(sn.nscol, skip, below, sn.nscol - skip), false, Xk, false, 0.0, W);
+      for (int r = 0; r < below; ++r) Y.row(local[sn.rows[sn.nscol + r]]).segment(c0, width) -= W.row(r);
+    }
+  }
+}
+}  // namespace
+
+SparseCholesky::ColumnsByStart SparseCholesky::forward_by_start(const Reach& R,
+                                                                const Eigen::SparseMatrix<double>& C) const {
   const auto& I = *impl_;
   if (!I.L || !I.L->x) throw std::logic_error("SparseCholesky::forward before factorize");
+  const int nz = int(R.rows.size()), nc = int(C.cols());
   std::vector<int> local(I.L->n, -1);
-  for (size_t i = 0; i < R.rows.size(); ++i) local[R.rows[i]] = int(i);
-  Eigen::MatrixXd Y = Eigen::MatrixXd::Zero(Eigen::Index(R.rows.size()), C.cols());
+  for (int i = 0; i < nz; ++i) local[R.rows[i]] = i;
+  // A column of L^{-1} P C is zero above its first nonzero (the reach rows
+  // ascend with the factor's positions).  The columns are solved in the
+  // order of that row, each from it down (forward_started).
+  std::vector<int> first(nc, nz);
   for (int j = 0; j < C.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(C, j); it; ++it) {
       const int l = local[I.position[it.row()]];
       if (l < 0) throw std::logic_error("SparseCholesky::forward: a column reaches outside the reach");
-      Y(l, j) = it.value();
+      first[j] = std::min(first[j], l);
     }
-  Eigen::MatrixXd W;
-  for (int k : R.supernodes) {
-    const Supernode sn = supernode(I.L, k);
-    const Block Lk(sn.x, sn.nsrow, sn.nscol, Eigen::OuterStride<>(sn.nsrow));
-    auto Xk = Y.middleRows(local[sn.k1], sn.nscol);
-    dense::lower_solve_in_place(Lk.topRows(sn.nscol), Xk);
-    const int below = sn.nsrow - sn.nscol;
-    if (below == 0) continue;
-    W.resize(below, Xk.cols());
-    dense::gemm(1.0, Lk.bottomRows(below), false, Xk, false, 0.0, W);
-    for (int r = 0; r < below; ++r) Y.row(local[sn.rows[sn.nscol + r]]) -= W.row(r);
+  ColumnsByStart out;
+  out.order.resize(nc);
+  for (int j = 0; j < nc; ++j) out.order[j] = j;
+  std::stable_sort(out.order.begin(), out.order.end(), [&](int a, int b) { return first[a] < first[b]; });
+  out.start.resize(nc);
+  std::vector<int> column_of(nc);
+  for (int i = 0; i < nc; ++i) {
+    out.start[i] = first[out.order[i]];
+    column_of[out.order[i]] = i;
   }
-  return Y;
+  out.Y = Eigen::MatrixXd::Zero(nz, nc);
+  for (int j = 0; j < C.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(C, j); it; ++it)
+      out.Y(local[I.position[it.row()]], column_of[j]) = it.value();
+  forward_started(I.L, R, local, out.start, out.Y);
+  return out;
+}
+
+Eigen::MatrixXd SparseCholesky::forward(const Reach& R, const Eigen::SparseMatrix<double>& C) const {
+  ColumnsByStart sorted = forward_by_start(R, C);
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic> back(Eigen::Index(sorted.order.size()));
+  for (std::size_t i = 0; i < sorted.order.size(); ++i) back.indices()[sorted.order[i]] = int(i);
+  sorted.Y = sorted.Y * back;  // column j is C's column j again
+  return std::move(sorted.Y);
 }
 
 Eigen::VectorXd SparseCholesky::backward(const Reach& R, const Eigen::VectorXd& y) const {

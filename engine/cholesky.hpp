@@ -12,8 +12,9 @@
 // outside the REACH of those equations: their supernodes and all ancestors
 // in the supernodal elimination tree (Gilbert & Peierls; Davis, Direct
 // Methods for Sparse Linear Systems, ch. 3).  forward() computes Y = L^{-1}
-// P C only on such a reach, as dense blocks (one triangular solve and one
-// product per supernode, all columns at once); backward() computes
+// P C only on such a reach, as dense blocks (per supernode one triangular
+// solve and one product for the columns that have started there, a column
+// being zero above its first nonzero row); backward() computes
 // x = L^{-T} y on a reach from y on the same reach, which is all a caller
 // needs for the entries of K^{-1} b at the reach's equations.  The contact
 // solvers form G_A K^{-1} G_A^T = Y_A^T Y_A for the active multipliers only;
@@ -54,6 +55,16 @@ class SparseCholesky {
   // Y = (L^{-1} P C) restricted to reach.rows (rows of Y in that order).
   // Throws std::logic_error when C has a nonzero outside the reach.
   Eigen::MatrixXd forward(const Reach& reach, const Eigen::SparseMatrix<double>& C) const;
+  // The same with Y's columns in the order of their first nonzero row:
+  // column i is C's column order[i], zero above row start[i] (ascending).
+  // Each column is solved from that row down (on the contact face's
+  // trailing supernode, about half the flops of all rows), and
+  // dense::gram(Y, start) skips the same zeros.
+  struct ColumnsByStart {
+    Eigen::MatrixXd Y;
+    std::vector<int> order, start;
+  };
+  ColumnsByStart forward_by_start(const Reach& reach, const Eigen::SparseMatrix<double>& C) const;
   // x = L^{-T} y restricted to reach.rows, from y given on reach.rows.
   Eigen::VectorXd backward(const Reach& reach, const Eigen::VectorXd& y) const;
   // Factor position of an original equation; the number of equations.

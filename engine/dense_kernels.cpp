@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "engine/dense_kernels.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -46,6 +47,27 @@ Eigen::MatrixXd gram(const ConstBlock& Y) {
   const double one = 1, zero = 0;
   const int lda = ld(Y.outerStride(), Y.rows()), ldc = std::max(n, 1);
   dsyrk_("L", "T", &n, &k, &one, Y.data(), &lda, &zero, S.data(), &ldc);
+  S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
+  return S;
+}
+
+Eigen::MatrixXd gram(const ConstBlock& Y, const std::vector<int>& start) {
+  const int n = int(Y.cols()), rows = int(Y.rows());
+  if (int(start.size()) != n || !std::is_sorted(start.begin(), start.end()))
+    throw std::invalid_argument("dense::gram: the column starts are not one ascending list per column");
+  // Blocks of columns; S(I, J) for I before J needs the rows from J's first
+  // start down (every column of I or J is zero above it).
+  constexpr int kBlock = 256;
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
+  for (int j0 = 0; j0 < n; j0 += kBlock) {
+    const int nj = std::min(kBlock, n - j0), r0 = std::min(start[j0], rows), k = rows - r0;
+    if (k == 0) continue;
+    const auto YJ = Y.block(r0, j0, k, nj);
+    const double one = 1, zero = 0;
+    const int lda = ld(Y.outerStride(), Y.rows()), ldc = ld(S.outerStride(), S.rows());
+    dsyrk_("L", "T", &nj, &k, &one, YJ.data(), &lda, &zero, S.data() + j0 + Eigen::Index(j0) * ldc, &ldc);
+    if (j0 > 0) gemm(1.0, Y.block(r0, j0, k, nj), true, Y.block(r0, 0, k, j0), false, 0.0, S.block(j0, 0, nj, j0));
+  }
   S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
   return S;
 }

@@ -21,6 +21,9 @@ void gemm(double alpha, const ConstBlock& A, bool transpose_A, const ConstBlock&
           Block C);
 // Y^T Y, both triangles.
 Eigen::MatrixXd gram(const ConstBlock& Y);
+// Y^T Y where column j of Y is zero above row start[j] (ascending): the
+// products of column blocks skip the rows where one of them is zero.
+Eigen::MatrixXd gram(const ConstBlock& Y, const std::vector<int>& start);
 // X <- L^-1 X for L lower triangular (its upper part is not read).
 void lower_solve_in_place(const ConstBlock& L, Block X);
 

@@ -329,6 +329,7 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
     else I.inactive.push_back(k);
   }
   const int na = int(I.active.size());
+  std::vector<int> start;
   {
     std::vector<Eigen::Triplet<double>> t;
     std::vector<int> eqs;
@@ -341,10 +342,16 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
     Eigen::SparseMatrix<double> C(I.n, na);
     C.setFromTriplets(t.begin(), t.end());
     I.reach = I.chol().reach(eqs);
-    I.Y = I.chol().forward(I.reach, C);
+    // Y's columns, and so the active rows, in the order of their first
+    // row: both the solve and the Gram matrix skip the zeros above it.
+    SparseCholesky::ColumnsByStart columns = I.chol().forward_by_start(I.reach, C);
+    I.Y = std::move(columns.Y);
+    start = std::move(columns.start);
+    const std::vector<int> by_row = I.active;
+    for (int i = 0; i < na; ++i) I.active[i] = by_row[columns.order[i]];
   }
   I.hold_rigid_modes(J);
-  const Eigen::MatrixXd S = dense::gram(I.Y);  // Y^T Y on OpenBLAS (engine/dense_kernels.hpp)
+  const Eigen::MatrixXd S = dense::gram(I.Y, start);  // Y^T Y on OpenBLAS (engine/dense_kernels.hpp)
   if (!I.M.compute(S, I.BR)) {  // dependent constraints: let LU on J decide
     const bool ok = I.factor_full(why_);
     stats_.schur_s += schur_clock.seconds();

@@ -9,6 +9,7 @@
 // nearly singular along some motion has one pivot far below its diagonal.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -76,6 +77,68 @@ std::string written_to(int fd, Body body) {
   for (int c; (c = std::fgetc(capture)) != EOF;) written.push_back(char(c));
   std::fclose(capture);
   return written;
+}
+
+// The 3D Laplacian on an m^3 grid.
+Eigen::SparseMatrix<double> laplacian_3d(int m) {
+  const int n = m * m * m;
+  auto id = [m](int i, int j, int k) { return (k * m + j) * m + i; };
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        const int a = id(i, j, k);
+        t.emplace_back(a, a, 6.0);
+        if (i > 0) t.emplace_back(a, id(i - 1, j, k), -1.0), t.emplace_back(id(i - 1, j, k), a, -1.0);
+        if (j > 0) t.emplace_back(a, id(i, j - 1, k), -1.0), t.emplace_back(id(i, j - 1, k), a, -1.0);
+        if (k > 0) t.emplace_back(a, id(i, j, k - 1), -1.0), t.emplace_back(id(i, j, k - 1), a, -1.0);
+      }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+// forward_by_start on a reach whose last supernode is a contact face's
+// dense trailing block (the top layer of a 3D grid ordered last, 400
+// equations), for 600 columns of a few entries each (more than one chunk
+// of 256 starting inside that supernode): each column of Y is L^-1 P c of
+// its column c of C on the reach's rows, zero above its start, the starts
+// ascend; forward() gives the same columns in C's order.
+TEST(CholeskyForward, ColumnsSolvedFromTheirFirstRowAreTheFullForwardSolve) {
+  const int m = 20;
+  const Eigen::SparseMatrix<double> A = laplacian_3d(m);
+  std::vector<int> top;
+  for (int i = 0; i < m * m; ++i) top.push_back((m - 1) * m * m + i);
+  SparseCholesky chol;
+  chol.analyze(A, top);
+  chol.factorize(A);
+  const int cols = 600;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < cols; ++j)
+    for (int e = 0; e < 3; ++e) t.emplace_back(top[(7 * j + 131 * e) % top.size()], j, 1.0 + 0.25 * e + 1e-3 * j);
+  Eigen::SparseMatrix<double> C(A.rows(), cols);
+  C.setFromTriplets(t.begin(), t.end());
+  const SparseCholesky::Reach reach = chol.reach(top);
+  const SparseCholesky::ColumnsByStart sorted = chol.forward_by_start(reach, C);
+  const Eigen::MatrixXd Y = chol.forward(reach, C);
+  ASSERT_EQ(sorted.Y.rows(), Eigen::Index(reach.rows.size()));
+  ASSERT_EQ(sorted.Y.cols(), cols);
+  EXPECT_TRUE(std::is_sorted(sorted.start.begin(), sorted.start.end()));
+  double worst = 0, worst_in_order = 0;
+  for (int i = 0; i < cols; ++i) {
+    const int j = sorted.order[i];
+    const Eigen::VectorXd full = chol.forward_full(Eigen::VectorXd(C.col(j)));
+    Eigen::VectorXd expected(reach.rows.size());
+    for (std::size_t r = 0; r < reach.rows.size(); ++r) expected[r] = full[reach.rows[r]];
+    worst = std::max(worst, (sorted.Y.col(i) - expected).norm() / expected.norm());
+    worst_in_order = std::max(worst_in_order, (Y.col(j) - expected).norm() / expected.norm());
+    EXPECT_EQ(sorted.Y.col(i).head(sorted.start[i]).norm(), 0.0) << "column " << i;
+    EXPECT_NE(sorted.Y(sorted.start[i], i), 0.0) << "column " << i;
+  }
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_LT(worst_in_order, 1e-13);
+  // the columns do start inside the trailing supernode, not all at its top
+  EXPECT_GT(sorted.start.back() - sorted.start.front(), 200);
 }
 
 TEST(CholeskyThreads, IndefiniteMatrixIsAnExceptionAndNothingIsPrinted) {

@@ -3,7 +3,8 @@
 // against Eigen's, and the bordered solvers (engine/bordered_spd) against
 // a dense LU of the whole bordered system:
 //  - gemm (every transpose), gram and the lower-triangular solve on blocks
-//    with an outer stride, to round-off;
+//    with an outer stride, to round-off; the gram of columns zero above
+//    ascending rows;
 //  - Lu solves as Eigen's partial-pivoting LU and calls a matrix with a
 //    dependent row singular;
 //  - BorderedLuSolver with different borders solves the whole system, and
@@ -53,6 +54,24 @@ TEST(DenseKernels, GramIsYTransposeY) {
   const Eigen::MatrixXd S = dense::gram(Y.middleRows(10, 150));
   EXPECT_LT(relative(S, Y.middleRows(10, 150).transpose() * Y.middleRows(10, 150)), kRoundOff);
   EXPECT_EQ((S - S.transpose()).norm(), 0.0);
+}
+
+// Columns zero above ascending starts (the forward solve's on a contact
+// face), more than one block of 256 of them: the Gram matrix that skips the
+// zeros is Y^T Y.  Starts that do not ascend are refused.
+TEST(DenseKernels, GramOfColumnsStartingLowerIsYTransposeY) {
+  const int rows = 700, cols = 600;
+  Eigen::MatrixXd Y = random(rows, cols, 21);
+  std::vector<int> start(cols);
+  for (int j = 0; j < cols; ++j) {
+    start[j] = j * rows / cols;
+    Y.col(j).head(start[j]).setZero();
+  }
+  const Eigen::MatrixXd S = dense::gram(Y, start);
+  EXPECT_LT(relative(S, Y.transpose() * Y), kRoundOff);
+  EXPECT_EQ((S - S.transpose()).norm(), 0.0);
+  std::swap(start[3], start[400]);
+  EXPECT_THROW(dense::gram(Y, start), std::invalid_argument);
 }
 
 TEST(DenseKernels, LowerSolveInPlace) {
