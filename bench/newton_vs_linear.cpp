@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   if (refines.empty()) refines.push_back(0);
   std::string csv =
       "case,refine,dofs,multipliers,status,load_steps,newton_iterations,cut_backs,newton_s,residual_s,jacobian_s,"
-      "factorize_s,schur_s,solve_s,gmres_iterations,lu_fallbacks,linear_assembly_s,linear_factorize_s,"
+      "factorize_s,schur_s,solve_s,gmres_iterations,lu_fallbacks,shifted_factors,linear_assembly_s,linear_factorize_s,"
       "newton_iteration_s,ratio\n";
   fmt::print("{}", csv);  // the header first: stdout is the same CSV as --csv FILE
   for (int refine : refines) {
@@ -78,10 +78,10 @@ int main(int argc, char** argv) {
     // per Newton iteration: every Jacobian set up (incl. the predictor's)
     const double per_iteration = s.newton_seconds / std::max(s.linear.setups, 1);
     const std::string row = fmt::format(
-        "{},{},{},{},\"{}\",{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{:.4f},{:.4f},{:.4f},{:.3f}\n",
+        "{},{},{},{},\"{}\",{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{},{:.4f},{:.4f},{:.4f},{:.3f}\n",
         spec.name, refine, m.dofs->num_free(), m.num_multipliers(), r.status, s.steps.size(), iterations, cut_backs,
         s.newton_seconds, s.residual_seconds, s.jacobian_seconds, s.linear.factorize_s, s.linear.schur_s, s.linear.solve_s,
-        s.linear.krylov_iterations, s.linear.fallbacks, best_assembly, best_factor, per_iteration,
+        s.linear.krylov_iterations, s.linear.fallbacks, s.linear.shifted, best_assembly, best_factor, per_iteration,
         per_iteration / (best_assembly + best_factor));
     fmt::print("{}", row);
     csv += row;

@@ -205,10 +205,14 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& A_in) {
   auto& I = *impl_;
   const BlasOwnsTheCores blas(I.flops);
   cholmod_factorize(&a, I.L, &I.c);
-  if (I.c.status == CHOLMOD_NOT_POSDEF || I.L->minor < I.L->n)
+  indefinite_at_ = -1;
+  if (I.c.status == CHOLMOD_NOT_POSDEF || I.L->minor < I.L->n) {
+    const int* perm = static_cast<const int*>(I.L->Perm);
+    if (I.L->minor < I.L->n) indefinite_at_ = perm ? perm[I.L->minor] : int(I.L->minor);
     throw std::runtime_error(
         "the stiffness matrix is not positive definite: the body can move rigidly "
         "(add Dirichlet conditions or contact) or the data are singular");
+  }
   if (I.c.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorisation failed (status {})", I.c.status));
   norm1_ = norm1(A);
   factorize_s_ = clock.seconds();

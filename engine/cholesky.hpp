@@ -78,6 +78,10 @@ class SparseCholesky {
   // kappa_1 of the last factorised matrix, estimated from about ten solves
   // (engine/condition_estimate.hpp); the factor must exist.
   double condition_estimate() const;
+  // After factorize() threw for a matrix not positive definite: the
+  // (original) equation whose pivot was not positive, the first in the
+  // factor's order; -1 otherwise.
+  int indefinite_at() const { return indefinite_at_; }
 
   // The pivots L_jj^2 of the factor per original equation: what is left of
   // the equation's own stiffness A_ii once every equation before it in the
@@ -96,6 +100,7 @@ class SparseCholesky {
   std::unique_ptr<Impl> impl_;
   double analyze_s_ = 0, factorize_s_ = 0;
   double norm1_ = 0;  // ||A||_1 of the last factorised matrix
+  int indefinite_at_ = -1;
 };
 
 }  // namespace igac

@@ -5,6 +5,7 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "engine/bordered_spd.hpp"
@@ -216,6 +217,53 @@ struct SaddleSolver::Impl {
     k = held;
   }
 
+  // K_s is the preconditioner's, not J's.  Where it is indefinite (a soft
+  // mode made negative by stress, e.g. in a Neo-Hookean sphere octant
+  // pressed on another body, or a mixed tangent deep in a rubber squeeze)
+  // the factor is that of K_s + D, D diagonal and nonzero only at
+  // equations whose pivot was not positive: each failure adds |K_s,ii| at
+  // CHOLMOD's first such equation i (again if it fails there again) and
+  // factorises anew.  D is of low rank, so GMRES, which multiplies by J
+  // itself, absorbs it in a few more iterations.  The next setup starts
+  // from this one's D (the soft modes stay where they were).  False when
+  // D would need more than kMaxShifts entries: then the LU of J.
+  static constexpr int kMaxShifts = 8;
+  std::map<int, int> shifts;  // equation -> how many times |K_s,ii| is added
+  bool factorize_shifted() {
+    const int n_eq = int(Ks.outerSize());
+    std::vector<int> diagonal(n_eq, -1);  // where K_s's diagonal entries sit
+    for (int c = 0; c < n_eq; ++c)
+      for (int p = Ks.outerIndexPtr()[c]; p < Ks.outerIndexPtr()[c + 1]; ++p)
+        if (Ks.innerIndexPtr()[p] == c) diagonal[c] = p;
+    double largest = 0;
+    for (int c = 0; c < n_eq; ++c)
+      if (diagonal[c] >= 0) largest = std::max(largest, std::abs(Ks.valuePtr()[diagonal[c]]));
+    std::map<int, double> kept;  // K_s's own values where D is not zero
+    const auto shift = [&](int eq, int times) {
+      double& v = Ks.valuePtr()[diagonal[eq]];
+      if (!kept.count(eq)) kept[eq] = v;
+      const double own = kept[eq];
+      v = own + times * (own != 0 ? std::abs(own) : largest);
+    };
+    for (auto it = shifts.begin(); it != shifts.end();)  // (a pattern of another size: none kept)
+      it = it->first < n_eq && diagonal[it->first] >= 0 ? std::next(it) : shifts.erase(it);
+    for (const auto& [eq, times] : shifts) shift(eq, times);
+    bool positive = false;
+    for (int attempt = 0; attempt <= 2 * kMaxShifts; ++attempt) {
+      try {
+        chol().factorize(Ks);
+        positive = true;
+      } catch (const std::runtime_error&) {
+      }
+      const int eq = positive ? -1 : chol().indefinite_at();
+      if (positive || eq < 0 || diagonal[eq] < 0 || int(shifts.size()) + (shifts.count(eq) ? 0 : 1) > kMaxShifts) break;
+      shift(eq, ++shifts[eq]);
+    }
+    for (const auto& [eq, v] : kept) Ks.valuePtr()[diagonal[eq]] = v;  // K_s as it was
+    if (!positive) shifts.clear();
+    return positive;
+  }
+
   bool factor_full(std::string& why) {
     full = assemble_condensed(*J);
     lu.compute(full);
@@ -287,6 +335,7 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
     for (int c = 0; c < I.Ks.outerSize(); ++c)
       for (Eigen::SparseMatrix<double>::InnerIterator it(I.Ks, c); it; ++it)
         if (I.pinned[it.row()] || I.pinned[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+  bool analysed = true;
   try {
     if (!I.chol().analyzed()) {
       std::vector<int> last;  // the equations B touches, ordered last
@@ -298,13 +347,16 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
         if (touched[i]) last.push_back(i);
       I.chol().analyze(I.Ks, last);
     }
-    I.chol().factorize(I.Ks);
-  } catch (const std::runtime_error&) {  // not positive definite: this iteration by LU
+  } catch (const std::runtime_error&) {
+    analysed = false;
+  }
+  if (!analysed || !I.factorize_shifted()) {  // indefinite beyond kMaxShifts local shifts: this iteration by LU
     const bool ok = I.factor_full(why_);
     stats_.factorize_s += factorize_clock.seconds();
     stats_.fallbacks += ok;
     return ok;
   }
+  stats_.shifted += !I.shifts.empty();
   stats_.factorize_s += factorize_clock.seconds();
   I.factorised = true;
   return schur_of_active_rows(J);
@@ -378,6 +430,20 @@ double SaddleSolver::condition_estimate() const {
     return norm1(I.full) * inverse_norm1_estimate(int(I.full.rows()), solve, solve);
   }
   if (!I.chol_owner || !I.chol().analyzed()) return 0;
+  if (!I.shifts.empty() && I.J) {
+    // The factor is of K_s shifted, no matrix of the problem: kappa_1 of J
+    // itself, J^-1 by the preconditioned GMRES of solve() (the same lower
+    // bound as the LU's above).
+    const Eigen::SparseMatrix<double> full = assemble_condensed(*I.J);
+    const VectorSolve solve = [&I](const Eigen::VectorXd& b) -> Eigen::VectorXd {
+      Eigen::VectorXd x;
+      I.precondition(b, x);
+      int iterations = 0;
+      I.gmres(b, x, 0.0, iterations);
+      return x;
+    };
+    return norm1(full) * inverse_norm1_estimate(int(full.rows()), solve, solve);
+  }
   return I.chol().condition_estimate();
 }
 

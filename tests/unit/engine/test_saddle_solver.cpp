@@ -8,10 +8,15 @@
 //    planes sliding along them) leaves J singular along it: the step is
 //    one exact solution, the one that does not move the body along that
 //    motion (its pinned equation keeps its value), found without an LU
-//    of the singular J.
+//    of the singular J;
+//  - a K_s that is indefinite (a soft mode made negative by stress) is
+//    factorised with a shift at the equations whose pivot failed, and GMRES
+//    absorbs the shift: no LU of J while a few shifts do; beyond
+//    kMaxShifts of them, the LU of J, with the same answer.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -103,4 +108,68 @@ TEST(SaddleSolver, AMotionNoActiveRowHoldsIsLeftAlone) {
   EXPECT_EQ(x[n], 0.0);                            // the free chain's pinned node
   EXPECT_GT(std::abs(x[2 * n - 1] - x[n + 2]), 0);  // it did stretch
   EXPECT_NEAR(x[2 * n], b.head(n).sum(), 1e-12 * b.head(n).sum());  // the stop holds the first chain's load
+}
+
+namespace {
+// A chain of n springs held at its first node by a spring of 5 to the
+// ground and pressed at its last node by an active stop, with the springs
+// after the nodes in `negative` of stiffness -0.3 (softened by stress): K
+// is indefinite, J (the stop holding the chain's end) is not singular.
+BlockJacobian chain_with_negative_springs(int n, const std::vector<int>& negative) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i + 1 < n; ++i) {
+    const bool soft = std::find(negative.begin(), negative.end(), i) != negative.end();
+    const double k = soft ? -0.3 : 1.0 + 0.01 * i;
+    t.emplace_back(i, i, k), t.emplace_back(i + 1, i + 1, k), t.emplace_back(i, i + 1, -k), t.emplace_back(i + 1, i, -k);
+  }
+  t.emplace_back(0, 0, 5.0);
+  BlockJacobian J;
+  J.K.resize(n, n);
+  J.K.setFromTriplets(t.begin(), t.end());
+  J.B.resize(1, n);
+  J.B.insert(0, n - 1) = 1.0;
+  J.s = Eigen::VectorXd::Constant(1, 2.0);
+  J.d = Eigen::VectorXd::Zero(1);
+  return J;
+}
+}  // namespace
+
+TEST(SaddleSolver, AnIndefiniteStiffnessIsShiftedWhereItsPivotFailsAndGmresAbsorbsTheShift) {
+  const int n = 30;
+  const BlockJacobian J = chain_with_negative_springs(n, {14});
+  ASSERT_LT(Eigen::MatrixXd(J.K).selfadjointView<Eigen::Lower>().eigenvalues().minCoeff(), 0.0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n + 1, 1.0, -0.5);
+  SaddleSolver solver;
+  ASSERT_TRUE(solver.setup(J));
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(b, x));
+  EXPECT_EQ(solver.stats().fallbacks, 0);
+  EXPECT_EQ(solver.stats().shifted, 1);
+  EXPECT_LE(solver.stats().krylov_iterations, 10);
+  EXPECT_LE(relative_residual(J, x, b), 1e-12);
+  // kappa_1 of J itself (not of the shifted factor), against the dense one
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(assemble_condensed(J));
+  const double kappa = dense.cwiseAbs().colwise().sum().maxCoeff() * dense.inverse().cwiseAbs().colwise().sum().maxCoeff();
+  EXPECT_GT(solver.condition_estimate(), 0.3 * kappa);  // (an estimate: a lower bound, usually within 3x)
+  EXPECT_LE(solver.condition_estimate(), kappa * (1 + 1e-8));
+  // the next setup of the same matrix starts from the shift: no new failure
+  ASSERT_TRUE(solver.setup(J));
+  ASSERT_TRUE(solver.solve(b, x));
+  EXPECT_EQ(solver.stats().fallbacks, 0);
+  EXPECT_LE(relative_residual(J, x, b), 1e-12);
+}
+
+TEST(SaddleSolver, MoreNegativeModesThanShiftsTakeTheLuOfJ) {
+  const int n = 60;
+  std::vector<int> negative;
+  for (int i = 2; i < n - 2; i += 5) negative.push_back(i);  // 12 negative springs, more than kMaxShifts
+  const BlockJacobian J = chain_with_negative_springs(n, negative);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n + 1, 1.0, -0.5);
+  SaddleSolver solver;
+  ASSERT_TRUE(solver.setup(J));
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(b, x));
+  EXPECT_EQ(solver.stats().fallbacks, 1);
+  EXPECT_EQ(solver.stats().shifted, 0);
+  EXPECT_LE(relative_residual(J, x, b), 1e-12);
 }
