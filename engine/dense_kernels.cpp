@@ -40,17 +40,6 @@ void gemm(double alpha, const ConstBlock& A, bool transpose_A, const ConstBlock&
   dgemm_(&ta, &tb, &m, &n, &k, &alpha, A.data(), &lda, B.data(), &ldb, &beta, C.data(), &ldc);
 }
 
-Eigen::MatrixXd gram(const ConstBlock& Y) {
-  const int n = int(Y.cols()), k = int(Y.rows());
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
-  if (n == 0 || k == 0) return S;
-  const double one = 1, zero = 0;
-  const int lda = ld(Y.outerStride(), Y.rows()), ldc = std::max(n, 1);
-  dsyrk_("L", "T", &n, &k, &one, Y.data(), &lda, &zero, S.data(), &ldc);
-  S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
-  return S;
-}
-
 Eigen::MatrixXd gram(const ConstBlock& Y, const std::vector<int>& start) {
   const int n = int(Y.cols()), rows = int(Y.rows());
   if (int(start.size()) != n || !std::is_sorted(start.begin(), start.end()))
@@ -71,6 +60,8 @@ Eigen::MatrixXd gram(const ConstBlock& Y, const std::vector<int>& start) {
   S.triangularView<Eigen::StrictlyUpper>() = S.transpose();
   return S;
 }
+
+Eigen::MatrixXd gram(const ConstBlock& Y) { return gram(Y, std::vector<int>(std::size_t(Y.cols()), 0)); }
 
 void lower_solve_in_place(const ConstBlock& L, Block X) {
   const int m = int(X.rows()), n = int(X.cols());
