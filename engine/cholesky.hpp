@@ -57,8 +57,8 @@ class SparseCholesky {
   Eigen::MatrixXd forward(const Reach& reach, const Eigen::SparseMatrix<double>& C) const;
   // The same with Y's columns in the order of their first nonzero row:
   // column i is C's column order[i], zero above row start[i] (ascending).
-  // Each column is solved from that row down (on the contact face's
-  // trailing supernode, about half the flops of all rows), and
+  // Each column is solved from that row down (measured on the contact
+  // face's trailing supernode: docs/benchmarks.md, "Friction in 3D"), and
   // dense::gram(Y, start) skips the same zeros.
   struct ColumnsByStart {
     Eigen::MatrixXd Y;

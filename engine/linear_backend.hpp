@@ -21,8 +21,9 @@
 namespace igac {
 
 struct LinearSolveStats {
-  // shifted: setups whose preconditioner factorised K_s + tau diag|K_s|
-  // (K_s indefinite; engine/saddle_solver.cpp); fallbacks: LU of the whole J
+  // shifted: setups whose preconditioner factorised K_s plus |K_ii| at the
+  // equations whose pivot failed (K_s indefinite; engine/saddle_solver.cpp);
+  // fallbacks: LU of the whole J
   int setups = 0, solves = 0, krylov_iterations = 0, fallbacks = 0, shifted = 0;
   double factorize_s = 0, schur_s = 0, solve_s = 0;
 };
