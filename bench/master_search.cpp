@@ -52,8 +52,9 @@ int main(int argc, char** argv) {
     auto t0 = clock::now();
     long visited = 0;
     for (const auto& x : points) {
-      master.project(x);
-      visited += master.last_candidates();
+      int candidates = 0;
+      master.project(x, &candidates);
+      visited += candidates;
     }
     const double tree = std::chrono::duration<double>(clock::now() - t0).count() / queries;
     double brute = 0;

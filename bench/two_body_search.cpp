@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   for (const auto& c : m.contacts)
     if (c.master) {
       master_elements += c.master->num_elements();
-      const MasterSurface::SearchCounters& s = c.master->counters();
+      const MasterSurface::SearchCounters s = c.master->counters();
       search.queries += s.queries;
       search.candidates += s.candidates;
       search.seconds += s.seconds;

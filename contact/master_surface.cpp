@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
 #include <limits>
 #include <numeric>
 
@@ -19,21 +21,62 @@ constexpr int kNewtonIterations = 60;
 constexpr int kGaussNewtonIterations = 6;
 
 // Adds the seconds of its lifetime to the search's counters.
+template <class Counters>
 class Clock {
  public:
-  explicit Clock(MasterSurface::SearchCounters& c) : c_(c) {}
+  explicit Clock(Counters& c) : c_(c) {}
   ~Clock() { c_.seconds += watch_.seconds(); }
   Clock(const Clock&) = delete;
   Clock& operator=(const Clock&) = delete;
 
  private:
-  MasterSurface::SearchCounters& c_;
+  Counters& c_;
   Stopwatch watch_;
 };
 
 // Distance from x to the box [lo, hi] (0 inside).
 double box_distance(const Eigen::VectorXd& x, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
   return (x - x.cwiseMax(lo).cwiseMin(hi)).norm();
+}
+
+// The rational Bezier element's point S and tangents dS/ds at Bezier
+// coordinates s, from its homogeneous control points (w x, w y, w z, w),
+// first direction fastest.
+template <int N, int SD>
+void evaluate_bezier(const std::array<int, 2>& degree, const std::vector<std::array<double, 4>>& homogeneous,
+                     const Eigen::Matrix<double, N, 1>& s, Eigen::Matrix<double, SD, 1>& S,
+                     Eigen::Matrix<double, SD, N>& dS) {
+  std::array<std::array<double, 32>, 2> B{}, dB{};
+  for (int d = 0; d < N; ++d) bernstein(degree[d], s[d], B[d].data(), dB[d].data());
+  if constexpr (N == 1) B[1][0] = 1, dB[1][0] = 0;
+  const int n0 = degree[0] + 1, n1 = N > 1 ? degree[1] + 1 : 1;
+  // Homogeneous sums sum B (w x, w) and their derivatives along s_0, s_1.
+  std::array<double, 4> h{}, h0{}, h1{};
+  for (int j = 0; j < n1; ++j)
+    for (int i = 0; i < n0; ++i) {
+      const std::array<double, 4>& p = homogeneous[size_t(i + n0 * j)];
+      const double b = B[0][i] * B[1][j], b0 = dB[0][i] * B[1][j], b1 = B[0][i] * dB[1][j];
+      for (int c = 0; c < 4; ++c) {
+        h[c] += b * p[c];
+        h0[c] += b0 * p[c];
+        h1[c] += b1 * p[c];
+      }
+    }
+  for (int c = 0; c < SD; ++c) {
+    S[c] = h[c] / h[3];
+    dS(c, 0) = (h0[c] - S[c] * h0[3]) / h[3];
+    if constexpr (N > 1) dS(c, 1) = (h1[c] - S[c] * h1[3]) / h[3];
+  }
+}
+
+// The Newton step -H^-1 g (Eigen's LDLT), or the Gauss-Newton one -JJ^-1 g
+// where H is not positive definite.
+template <int M>
+Eigen::Matrix<double, M, 1> newton_step(const Eigen::Matrix<double, M, M>& H, const Eigen::Matrix<double, M, M>& JJ,
+                                        const Eigen::Matrix<double, M, 1>& g) {
+  Eigen::LDLT<Eigen::Matrix<double, M, M>> ldlt(H);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0) ldlt.compute(JJ);
+  return -ldlt.solve(g);
 }
 
 }  // namespace
@@ -87,33 +130,6 @@ void MasterSurface::build_elements() {
   if (!elements_.empty()) build_tree(0, int(elements_.size()));
 }
 
-void MasterSurface::evaluate(const Element& e, const Params& s, Point& S, Tangents& dS) const {
-  const int n = int(s.size()), sd = int(e.points.cols());
-  std::array<std::array<double, 32>, 2> B{}, dB{};
-  for (int d = 0; d < n; ++d) bernstein(e.degree[d], s[d], B[d].data(), dB[d].data());
-  if (n == 1) B[1][0] = 1, dB[1][0] = 0;
-  const int n0 = e.degree[0] + 1, n1 = n > 1 ? e.degree[1] + 1 : 1;
-  // Homogeneous sums sum B (w x, w) and their derivatives along s_0, s_1.
-  std::array<double, 4> h{}, h0{}, h1{};
-  for (int j = 0; j < n1; ++j)
-    for (int i = 0; i < n0; ++i) {
-      const std::array<double, 4>& p = e.homogeneous[size_t(i + n0 * j)];
-      const double b = B[0][i] * B[1][j], b0 = dB[0][i] * B[1][j], b1 = B[0][i] * dB[1][j];
-      for (int c = 0; c < 4; ++c) {
-        h[c] += b * p[c];
-        h0[c] += b0 * p[c];
-        h1[c] += b1 * p[c];
-      }
-    }
-  S.resize(sd);
-  dS.resize(sd, n);
-  for (int c = 0; c < sd; ++c) {
-    S[c] = h[c] / h[3];
-    dS(c, 0) = (h0[c] - S[c] * h0[3]) / h[3];
-    if (n > 1) dS(c, 1) = (h1[c] - S[c] * h1[3]) / h[3];
-  }
-}
-
 int MasterSurface::build_tree(int first, int count) {
   const int id = int(nodes_.size());
   nodes_.emplace_back();
@@ -145,16 +161,25 @@ int MasterSurface::build_tree(int first, int count) {
   return id;
 }
 
-MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::VectorXd& x_query) const {
-  using Hessian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
-  const Side& side = sides_[e.side];
-  const int n = int(e.lo.size());
+struct MasterSurface::OnElement {
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1> s;                   // Bezier coordinates in [0, 1]^N
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> S;                   // the point
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 2> J;      // dS/ds
+  double distance = 0;                                                   // from the query
+};
+
+template <int N, int SD>
+MasterSurface::OnElement MasterSurface::nearest_on_element(const Element& e, const Eigen::VectorXd& x_query) const {
+  using Params = Eigen::Matrix<double, N, 1>;
+  using Point = Eigen::Matrix<double, SD, 1>;
+  using Tangents = Eigen::Matrix<double, SD, N>;
+  using Hessian = Eigen::Matrix<double, N, N>;
   const Point x = x_query;
   auto inside = [&](const Params& s) { return Params(s.cwiseMax(0.0).cwiseMin(1.0)); };
-  Params s = Params::Constant(n, 0.5);
+  Params s = Params::Constant(0.5);
   Point S, Sn, Sa, Sb;
   Tangents J, Jn, Ja, Jb;
-  evaluate(e, s, S, J);
+  evaluate_bezier<N, SD>(e.degree, e.homogeneous, s, S, J);
   double f = 0.5 * (S - x).squaredNorm();
   constexpr double h = 1e-6;
   // Gauss-Newton first (cheap, and fast for the points near the master that
@@ -162,7 +187,7 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
   // stalls or goes uphill (far from a curved master it diverges): the
   // Hessian by central differences of the exact gradient J^T (S - x).  J^T J
   // where that Hessian is not positive; a halving line search; kept inside
-  // the element, in its Bezier coordinates s in [0, 1]^n.
+  // the element, in its Bezier coordinates s in [0, 1]^N.
   bool curvature = false;
   for (int it = 0; it < kNewtonIterations; ++it) {
     const Params g = J.transpose() * (S - x);
@@ -171,12 +196,12 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
     const Hessian JJ = J.transpose() * J;
     Hessian H = JJ;
     if (curvature) {
-      for (int j = 0; j < n; ++j) {
+      for (int j = 0; j < N; ++j) {
         Params a = s, b = s;
         a[j] += h;
         b[j] -= h;
-        evaluate(e, a, Sa, Ja);
-        evaluate(e, b, Sb, Jb);
+        evaluate_bezier<N, SD>(e.degree, e.homogeneous, a, Sa, Ja);
+        evaluate_bezier<N, SD>(e.degree, e.homogeneous, b, Sb, Jb);
         H.col(j) = (Ja.transpose() * (Sa - x) - Jb.transpose() * (Sb - x)) / (2 * h);
       }
       H = (H + H.transpose()).eval() / 2;
@@ -185,33 +210,30 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
     // outward stay there; Newton runs on the others.
     std::array<int, 2> free{};
     int m = 0;
-    for (int j = 0; j < n; ++j)
+    for (int j = 0; j < N; ++j)
       if (!((s[j] <= 0 && g[j] > 0) || (s[j] >= 1 && g[j] < 0))) free[m++] = j;
     if (m == 0) break;  // a corner of the element is the nearest point
-    Hessian Hf(m, m), JtJ(m, m);
-    Params gf(m);
-    for (int a = 0; a < m; ++a) {
-      gf[a] = g[free[a]];
-      for (int b = 0; b < m; ++b) Hf(a, b) = H(free[a], free[b]), JtJ(a, b) = JJ(free[a], free[b]);
+    Params step = Params::Zero();
+    if (m == N) {
+      step = newton_step<N>(H, JJ, g);
+    } else {  // (N = 2, one coordinate free)
+      const int j = free[0];
+      step[j] = newton_step<1>(Eigen::Matrix<double, 1, 1>(H(j, j)), Eigen::Matrix<double, 1, 1>(JJ(j, j)),
+                               Eigen::Matrix<double, 1, 1>(g[j]))[0];
     }
-    Eigen::LDLT<Hessian> ldlt(Hf);
-    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0) ldlt.compute(JtJ);
-    const Params sf = -ldlt.solve(gf);
-    if (!sf.allFinite()) break;
-    Params step = Params::Zero(n);
-    for (int a = 0; a < m; ++a) step[free[a]] = sf[a];
+    if (!step.allFinite()) break;
     // Converged: a step below round-off of the coordinates (the gradient
     // itself stalls at round-off of the coordinates, far above 0 when the
     // point is away from the surface).
-    if (sf.norm() <= 1e-13) break;  // (|step| = |sf|)
+    if (step.norm() <= 1e-13) break;
     double t = 1;
     Params next = inside(s + step);
-    evaluate(e, next, Sn, Jn);
+    evaluate_bezier<N, SD>(e.degree, e.homogeneous, next, Sn, Jn);
     while (0.5 * (Sn - x).squaredNorm() > f * (1 + 1e-13) && t > 1e-6) {  // (round-off of f tolerated)
       curvature = true;
       t /= 2;
       next = inside(s + t * step);
-      evaluate(e, next, Sn, Jn);
+      evaluate_bezier<N, SD>(e.degree, e.homogeneous, next, Sn, Jn);
     }
     const double moved = (next - s).norm();
     s = next;
@@ -220,25 +242,42 @@ MasterPoint MasterSurface::project_on_element(const Element& e, const Eigen::Vec
     f = 0.5 * (S - x).squaredNorm();
     if (moved <= 1e-13) break;
   }
+  OnElement out;
+  out.s = s;
+  out.S = S;
+  out.J = J;
+  out.distance = (x - S).norm();
+  return out;
+}
+
+MasterSurface::OnElement MasterSurface::nearest_on_element(const Element& e, const Eigen::VectorXd& x) const {
+  const int n = int(e.lo.size()), sd = int(x.size());
+  if (n == 1 && sd == 2) return nearest_on_element<1, 2>(e, x);
+  if (n == 2 && sd == 3) return nearest_on_element<2, 3>(e, x);
+  throw std::invalid_argument(
+      fmt::format("a master surface of parametric dimension {} in {}D space cannot be searched", n, sd));
+}
+
+MasterPoint MasterSurface::master_point(const Element& e, const OnElement& nearest, const Eigen::VectorXd& x) const {
   MasterPoint mp;
   mp.side = e.side;
   mp.element = e.index;
-  mp.xi = e.lo + s.cwiseProduct(e.hi - e.lo);
-  mp.x = S;
+  mp.xi = e.lo + nearest.s.cwiseProduct(e.hi - e.lo);
+  mp.x = nearest.S;
   // (dS/ds is dS/dxi with each column scaled by a positive span length: the
   // same outward direction.)
-  mp.normal = face_area_vector(side.side.face, J).normalized();
-  mp.distance = (x - S).norm();
-  mp.gap = (x - S).dot(mp.normal);
+  mp.normal = face_area_vector(sides_[e.side].side.face, nearest.J).normalized();
+  mp.distance = nearest.distance;
+  mp.gap = (x - mp.x).dot(mp.normal);
   return mp;
 }
 
-std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) const {
+std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x, int* candidates) const {
   const Clock clock(counters_);
   ++counters_.queries;
-  last_candidates_ = 0;
   if (nodes_.empty()) return std::nullopt;
-  std::optional<MasterPoint> best;
+  const Element* best_element = nullptr;
+  OnElement best;
   double bound = std::numeric_limits<double>::infinity();
   // A point on the surface to round-off: no other element can be nearer.
   const double on_surface = 1e-14 * (nodes_[0].hi - nodes_[0].lo).norm();
@@ -254,13 +293,14 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) cons
       for (int i = node.first; i < node.first + node.count; ++i) {
         const Element& e = elements_[order_[i]];
         if (box_distance(x, e.box_lo, e.box_hi) >= bound) continue;
-        ++last_candidates_;
         ++counters_.candidates;
-        MasterPoint mp = project_on_element(e, x);
-        if (mp.distance < bound) {
-          bound = mp.distance;
-          best = std::move(mp);
-          if (bound <= on_surface) return best;
+        if (candidates) ++*candidates;
+        OnElement nearest = nearest_on_element(e, x);
+        if (nearest.distance < bound) {
+          bound = nearest.distance;
+          best = std::move(nearest);
+          best_element = &e;
+          if (bound <= on_surface) return master_point(e, best, x);
         }
       }
       continue;
@@ -272,16 +312,18 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x) cons
     stack[pending++] = left_first ? node.right : node.left;
     stack[pending++] = left_first ? node.left : node.right;
   }
-  return best;
+  return master_point(*best_element, best, x);
 }
 
 std::optional<MasterPoint> MasterSurface::project_by_every_element(const Eigen::VectorXd& x) const {
-  std::optional<MasterPoint> best;
+  const Element* best_element = nullptr;
+  OnElement best;
   for (const Element& e : elements_) {
-    MasterPoint mp = project_on_element(e, x);
-    if (!best || mp.distance < best->distance) best = std::move(mp);
+    OnElement nearest = nearest_on_element(e, x);
+    if (!best_element || nearest.distance < best.distance) best = std::move(nearest), best_element = &e;
   }
-  return best;
+  if (!best_element) return std::nullopt;
+  return master_point(*best_element, best, x);
 }
 
 }  // namespace igac

@@ -22,6 +22,7 @@
 
 #include <Eigen/Dense>
 #include <array>
+#include <atomic>
 #include <optional>
 #include <vector>
 
@@ -50,7 +51,9 @@ class MasterSurface {
   void update(const Eigen::MatrixXd& u);
 
   // The master point nearest to `x` (nullopt only for an empty surface).
-  std::optional<MasterPoint> project(const Eigen::VectorXd& x) const;
+  // `candidates`: += the elements it ran Newton on (the search's cost).
+  // Safe to call from several threads at once.
+  std::optional<MasterPoint> project(const Eigen::VectorXd& x, int* candidates = nullptr) const;
   // The same by trying every element: the reference the tree is checked against.
   std::optional<MasterPoint> project_by_every_element(const Eigen::VectorXd& x) const;
 
@@ -58,16 +61,14 @@ class MasterSurface {
   // Body numbers of side s's control points, in its face patch's numbering.
   const std::vector<int>& side_control_points(int s) const { return sides_[s].cps; }
   const NurbsPatch& side_patch(int s) const { return sides_[s].current; }
-  // Elements the last project() call ran Newton on (the search's cost).
-  int last_candidates() const { return last_candidates_; }
   // What the search has cost since construction (or reset): project()
-  // calls, the elements they ran Newton on, and the seconds spent in them
-  // (bench/two_body_search).
+  // calls, the elements they ran Newton on, and the seconds spent in them,
+  // summed over threads (bench/two_body_search).
   struct SearchCounters {
     long queries = 0, candidates = 0;
     double seconds = 0;
   };
-  const SearchCounters& counters() const { return counters_; }
+  SearchCounters counters() const { return {counters_.queries, counters_.candidates, counters_.seconds}; }
   void reset_counters() { counters_ = {}; }
 
  private:
@@ -87,13 +88,6 @@ class MasterSurface {
     // 2D), w; what evaluate() sums, in fixed-width loops.
     std::vector<std::array<double, 4>> homogeneous;
   };
-  // Sizes bounded by 3 space and 2 parameter dimensions: the projection's
-  // inner loop (most of a two-body run's contact time) allocates nothing.
-  using Point = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
-  using Params = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
-  using Tangents = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 2>;
-  // The element's point S and tangents dS/ds at Bezier coordinates s.
-  void evaluate(const Element& e, const Params& s, Point& S, Tangents& dS) const;
   struct Node {
     Eigen::VectorXd lo, hi;
     int left = -1, right = -1;           // children, or -1 for a leaf
@@ -101,14 +95,30 @@ class MasterSurface {
   };
   void build_elements();
   int build_tree(int first, int count);
-  MasterPoint project_on_element(const Element& e, const Eigen::VectorXd& x) const;
+  // Newton on one element (param_dim N, space_dim SD known at compile time:
+  // the projection is most of a two-body run's contact time).
+  struct OnElement;
+  template <int N, int SD>
+  OnElement nearest_on_element(const Element& e, const Eigen::VectorXd& x) const;
+  OnElement nearest_on_element(const Element& e, const Eigen::VectorXd& x) const;
+  MasterPoint master_point(const Element& e, const OnElement& nearest, const Eigen::VectorXd& x) const;
 
   std::vector<Side> sides_;
   std::vector<Element> elements_;
   std::vector<int> order_;  // element indices, grouped by leaf
   std::vector<Node> nodes_;
-  mutable int last_candidates_ = 0;
-  mutable SearchCounters counters_;
+  // SearchCounters, added to by concurrent queries.
+  struct AtomicCounters {
+    std::atomic<long> queries{0}, candidates{0};
+    std::atomic<double> seconds{0};
+    AtomicCounters() = default;
+    AtomicCounters(const AtomicCounters& o) : queries(o.queries.load()), candidates(o.candidates.load()), seconds(o.seconds.load()) {}
+    AtomicCounters& operator=(const AtomicCounters& o) {
+      queries = o.queries.load(), candidates = o.candidates.load(), seconds = o.seconds.load();
+      return *this;
+    }
+  };
+  mutable AtomicCounters counters_;
 };
 
 }  // namespace igac
