@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "engine/free_cores.hpp"
 #include "engine/sparsity.hpp"
 
 namespace igac {
@@ -13,11 +14,15 @@ const std::vector<MortarPointCache::Point>& MortarPointCache::at(const ContactFa
   if (valid_ && u_.rows() == u.rows() && u_.cols() == u.cols() && u_ == u) return points_;
   valid_ = false;  // until filled: a search that throws leaves no stale points behind
   points_.clear();
+  if (master.num_elements() == 0) throw std::invalid_argument("a contact's master surface has no elements");
   for_each_mortar_point(slave, master, integration, &u, [&](const MortarSlavePoint& sp) {
-    std::optional<MasterPoint> mp = master.project(sp.x);
-    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
-    points_.push_back({sp, std::move(*mp)});
+    points_.push_back({sp, MasterPoint{}});
   }, &tabulated);
+  // The closest-point searches, independent of one another: on the free
+  // cores (each point's projection is the same on any thread).
+  const int n = int(points_.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(free_cores()) if (n >= 256)
+  for (int i = 0; i < n; ++i) points_[size_t(i)].master = *master.project(points_[size_t(i)].slave.x);
   u_ = u;
   valid_ = true;
   return points_;
@@ -42,7 +47,7 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
       lambda_B += lambda[sp.K[k]] * bw;
     }
     if (out.resultant) *out.resultant -= lambda_B * mp->normal;
-    if (!out.G) continue;
+    if (!out.G && (!out.force || lambda_B == 0.0)) continue;
     const NurbsPatch& face = master.side_patch(mp->side);
     face.rational_basis(mp->xi, master_local, R, dR);
     const std::vector<int>& side_cps = master.side_control_points(mp->side);
@@ -52,6 +57,15 @@ void add_finite_strain_mortar(const DofMap& dofs, const ContactFace& slave, Mast
     dofs.element_equations(master_cps, eq_m);
     const Eigen::VectorXd& n = mp->normal;
     const int ns = int(sp.cps.size()), nm = int(master_cps.size());
+    if (out.force) {  // sum_K lambda_K d gamma_K / d u at this point: lambda_B (N_a n on the slave, -R_b n on the master)
+      for (int a = 0; a < ns; ++a)
+        for (int i = 0; i < dim; ++i)
+          if (eq_s[a * dim + i] >= 0) (*out.force)[eq_s[a * dim + i]] += lambda_B * sp.N[a] * n[i];
+      for (int b = 0; b < nm; ++b)
+        for (int i = 0; i < dim; ++i)
+          if (eq_m[b * dim + i] >= 0) (*out.force)[eq_m[b * dim + i]] -= lambda_B * R[b] * n[i];
+    }
+    if (!out.G) continue;
     // delta g = (delta x_s - delta x_m) . n
     for (size_t k = 0; k < sp.K.size(); ++k) {
       const double bw = sp.B[k] * sp.JxW;

@@ -40,7 +40,8 @@ namespace igac {
 // What one contact adds to the large-deformation problem at displacement u.
 struct FiniteStrainMortarTerms {
   Eigen::VectorXd* gamma = nullptr;                      // += int B_K g, rows offset + K
-  std::vector<Eigen::Triplet<double>>* G = nullptr;      // (offset + K, free eq, d gamma_K / d u); null: gaps only
+  std::vector<Eigen::Triplet<double>>* G = nullptr;      // (offset + K, free eq, d gamma_K / d u); null: not asked
+  Eigen::VectorXd* force = nullptr;                      // += G^T lambda (free equations), without G; null: not asked
   Eigen::SparseMatrix<double>* K = nullptr;              // += the in-pattern curvature blocks (null: none)
   std::vector<Eigen::Triplet<double>>* K_coupling = nullptr;  // the slave-master blocks (free x free)
   // += the force on the slave face, -int lambda n dGamma_0 (minus the force on the master); null: not asked

@@ -62,7 +62,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (std::any_of(laws_.begin(), laws_.end(), [](const InterfaceLaw* l) { return l->bilateral(); })) {
     ContactEval start;
     evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.dofs->num_dofs() / s_.dofs->dim(), s_.dofs->dim()),
-                     Eigen::VectorXd(), nullptr, start, false);
+                     Eigen::VectorXd(), nullptr, start, ContactTerms::gaps);
     gamma_start_ = Eigen::VectorXd::Zero(m_);
     for (int K = 0; K < m_; ++K)
       if (laws_[size_t(K)]->bilateral()) gamma_start_[K] = start.gamma[K];
@@ -73,7 +73,7 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (std::any_of(s_.contacts.begin(), s_.contacts.end(), [](const auto& c) { return c.interference; })) {
     ContactEval start;
     evaluate_contact(0.0, Eigen::MatrixXd::Zero(s_.dofs->num_dofs() / s_.dofs->dim(), s_.dofs->dim()),
-                     Eigen::VectorXd(), nullptr, start, false);
+                     Eigen::VectorXd(), nullptr, start, ContactTerms::gaps);
     Eigen::VectorXd overlap = Eigen::VectorXd::Zero(m_);
     for (size_t k = 0; k < s_.contacts.size(); ++k)
       if (s_.contacts[k].interference)
@@ -131,12 +131,14 @@ Eigen::MatrixXd FiniteStrainProblem::displacement(double t, const Eigen::VectorX
 }
 
 void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                                           Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling,
+                                           Eigen::SparseMatrix<double>* K, ContactEval& out, ContactTerms terms,
                                            std::vector<Eigen::Triplet<double>>* K_coupling,
                                            const DofMap* numbering) const {
   const DofMap& dofs = numbering ? *numbering : *s_.dofs;
+  const bool coupling = terms != ContactTerms::gaps, linearised = terms == ContactTerms::linearised;
   out.gamma = Eigen::VectorXd::Zero(m_);
   out.G.clear();
+  out.force = Eigen::VectorXd::Zero(terms == ContactTerms::forces ? dofs.num_free() : 0);
   out.resultants.assign(s_.contacts.size(), Eigen::VectorXd::Zero(dofs.dim()));
   std::vector<int> eq;
   Eigen::MatrixXd Kc;
@@ -148,8 +150,8 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
       add_finite_strain_mortar(dofs, *contact.face, *masters_[c], contact.integration, u,
                                lambda.size() ? Eigen::VectorXd(lambda.segment(offset, count))
                                              : Eigen::VectorXd::Zero(count),
-                               offset, {&out.gamma, coupling ? &out.G : nullptr, K, K_coupling,
-                                        coupling ? &out.resultants[c] : nullptr},
+                               offset, {&out.gamma, linearised ? &out.G : nullptr, coupling && !linearised ? &out.force : nullptr,
+                                        K, K_coupling, coupling ? &out.resultants[c] : nullptr},
                                contact_quadratures_[c], mortar_points_[c]);
       continue;
     }
@@ -172,11 +174,16 @@ void FiniteStrainProblem::evaluate_contact(double t, const Eigen::MatrixXd& u, c
         const double bw = B[k] * v.JxW[q];
         out.gamma[row] += pr.gap * bw;
         lambda_B += lambda[row] * bw;
+        if (!linearised) continue;
         for (int a = 0; a < v.n_loc; ++a)
           for (int i = 0; i < dim; ++i)
             if (eq[a * dim + i] >= 0) out.G.emplace_back(row, eq[a * dim + i], bw * v.N(q, a) * pr.normal[i]);
       }
       out.resultants[c] -= lambda_B * pr.normal;
+      if (!linearised)  // the force alone: lambda_B N_a n
+        for (int a = 0; a < v.n_loc; ++a)
+          for (int i = 0; i < dim; ++i)
+            if (eq[a * dim + i] >= 0) out.force[eq[a * dim + i]] += lambda_B * v.N(q, a) * pr.normal[i];
       // the obstacle's curvature: lambda_B N_a N_b dn/dx, into K by the one scatter
       if (!K || lambda_B == 0.0 || !(pr.normal_derivative.squaredNorm() > 0)) return;
       const int nd = v.n_loc * dim;
@@ -236,8 +243,8 @@ bool FiniteStrainProblem::residual(double t, const Eigen::VectorXd& x, Eigen::Ve
   if (m_ > 0) {
     const Eigen::VectorXd lambda = normal_multipliers(x);
     ContactEval ce;
-    evaluate_contact(t, u, lambda, nullptr, ce);
-    for (const auto& g : ce.G) r[g.col()] += lambda[g.row()] * g.value();
+    evaluate_contact(t, u, lambda, nullptr, ce, ContactTerms::forces);
+    r.head(n_) += ce.force;
     const std::vector<char> active = decide_active(ce.gamma, lambda);  // of (t, x), as active_set
     last_t_ = t;
     last_x_ = x;
@@ -268,10 +275,11 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   Eigen::VectorXd gamma;
   if (m_ > 0) {
     const Eigen::VectorXd lambda = normal_multipliers(x);
-    ContactEval ce;
-    std::vector<Eigen::Triplet<double>> coupling;
+    ContactEval& ce = jacobian_contact_;  // (reused: millions of triplets in 3D, their memory kept)
+    std::vector<Eigen::Triplet<double>>& coupling = jacobian_coupling_;
+    coupling.clear();
     // adds the curvature terms to K (one face's couplings: in the pattern; two bodies': beside it)
-    evaluate_contact(t, u, lambda, &J.K, ce, true, &coupling);
+    evaluate_contact(t, u, lambda, &J.K, ce, ContactTerms::linearised, &coupling);
     active = decide_active(ce.gamma, lambda);
     gamma = ce.gamma;
     if (!friction_) at_jacobian_ = {ce.gamma, lambda, active, {active}};  // (relinearise_active_set)
@@ -355,7 +363,7 @@ int FiniteStrainProblem::active_set_size(double t, const Eigen::VectorXd& x) con
 Eigen::VectorXd FiniteStrainProblem::gaps_at(double t, const Eigen::VectorXd& x) const {
   if (t == last_t_ && x.size() == last_x_.size() && x == last_x_) return last_gamma_;  // the same bits
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce, false);
+  evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce, ContactTerms::gaps);
   return ce.gamma;
 }
 
@@ -447,7 +455,7 @@ Eigen::VectorXd FiniteStrainProblem::weighted_gaps(double t, const Eigen::Vector
 std::vector<Eigen::VectorXd> FiniteStrainProblem::contact_resultants(double t, const Eigen::VectorXd& x) const {
   if (m_ == 0) return {};
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce);
+  evaluate_contact(t, displacement(t, x), normal_multipliers(x), nullptr, ce, ContactTerms::forces);
   if (friction_)
     for (size_t k = 0; k < ce.resultants.size(); ++k) ce.resultants[k] += friction_->tangential_resultant(int(k), tangential(x));
   return ce.resultants;
@@ -459,8 +467,8 @@ Eigen::VectorXd FiniteStrainProblem::contact_forces_on_every_dof(double t, const
   if (m_ == 0) return out;
   const Eigen::VectorXd lambda = normal_multipliers(x);
   ContactEval ce;
-  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, true, nullptr, &every);
-  for (const auto& g : ce.G) f[g.col()] += lambda[g.row()] * g.value();
+  evaluate_contact(t, displacement(t, x), lambda, nullptr, ce, ContactTerms::forces, nullptr, &every);
+  f += ce.force;
   if (friction_) f += friction_->forces_on_every_dof(tangential(x));  // (numbered as `every`, the friction's every_)
   // The dofs of a collapsed point share one equation: each holds its force.
   for (int i = 0; i < every.num_dofs(); ++i) out[i] = f[every.equation(i)];

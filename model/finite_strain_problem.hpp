@@ -208,19 +208,26 @@ class FiniteStrainProblem final : public NonlinearProblem {
   void activate_nearest(Eigen::VectorXd& x, int count) const;
 
  private:
+  // What evaluate_contact computes besides the gaps.
+  enum class ContactTerms {
+    gaps,        // gamma alone
+    forces,      // and the force G^T lambda on the free equations, the resultants
+    linearised,  // and G itself, the resultants (and the curvature terms where K is given)
+  };
   struct ContactEval {
     Eigen::VectorXd gamma;                                // m
-    std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value)
-    std::vector<Eigen::VectorXd> resultants;              // per contact (with the coupling): the force on its face
+    std::vector<Eigen::Triplet<double>> G;                // (K, free eq, value): linearised
+    Eigen::VectorXd force;                                // G^T lambda: forces
+    std::vector<Eigen::VectorXd> resultants;              // per contact (forces, linearised): the force on its face
   };
-  // gamma and (with `coupling`) dgamma/du at displacement u
-  // (ContactQuadrature, the one face loop; a master face: the mortar
-  // points); when K is not null, adds the curvature term (the obstacle's
-  // int lambda B N_A N_B dn/dx, a master's lambda int B Delta delta g) to it,
-  // and a master's slave-master blocks to K_coupling.
-  // `numbering`: the equations G's columns count (null: the problem's own).
+  // gamma and what `terms` asks for at displacement u (ContactQuadrature,
+  // the one face loop; a master face: the mortar points); when K is not
+  // null, adds the curvature term (the obstacle's int lambda B N_A N_B dn/dx,
+  // a master's lambda int B Delta delta g) to it, and a master's
+  // slave-master blocks to K_coupling.  `numbering`: the equations G's
+  // columns and the force count (null: the problem's own).
   void evaluate_contact(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda,
-                        Eigen::SparseMatrix<double>* K, ContactEval& out, bool coupling = true,
+                        Eigen::SparseMatrix<double>* K, ContactEval& out, ContactTerms terms,
                         std::vector<Eigen::Triplet<double>>* K_coupling = nullptr,
                         const DofMap* numbering = nullptr) const;
   // Adds the dead loads at t to f_ext, the tractions and the body force (no
@@ -252,6 +259,10 @@ class FiniteStrainProblem final : public NonlinearProblem {
                   const Eigen::VectorXd* z = nullptr, TotalLagrangianAssembler::LocalDilatation* local = nullptr) const;
   RigidModes modes_;                 // of the free displacements
   BlockJacobian blocks_;             // jacobian()'s, reused across calls
+  // block_jacobian()'s contact terms and slave-master blocks: their triplet
+  // buffers keep their memory from one Jacobian to the next
+  ContactEval jacobian_contact_;
+  std::vector<Eigen::Triplet<double>> jacobian_coupling_;
   // The follower pressures' load stiffness, of the loaded faces' pattern
   // (follower_pressure_pattern; empty: no follower load): handed over as
   // BlockJacobian::K_coupling, so that K stays the symmetric tangent a
