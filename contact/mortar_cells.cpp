@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <optional>
 #include <stdexcept>
 
+#include "engine/free_cores.hpp"
 #include "engine/quadrature.hpp"
 
 namespace igac {
@@ -190,6 +192,52 @@ bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, s
   return cutter.cut;
 }
 
+namespace {
+
+// The quadrature points (Bezier parameters of the face patch) and weights
+// of slave element e: its cells cut by the master's element edges, or its
+// tensor rule when one master element holds it.
+void cut_element_rule(const BezierMesh& mesh, int e, const MasterSurface& master, const TensorGaussRule& tensor,
+                      int ps, std::map<int, TensorGaussRule>& triangle_rules, std::vector<MortarCell>& cells,
+                      std::vector<Eigen::Vector2d>& xi, std::vector<double>& weights) {
+  const BezierElement& el = mesh.element(e);
+  const Eigen::Vector2d lower(el.lower[0], el.lower[1]), span(el.upper[0] - el.lower[0], el.upper[1] - el.lower[1]);
+  const double area = span[0] * span[1];
+  auto add = [&](const Eigen::Vector2d& s, double w) {
+    xi.push_back(lower + s.cwiseProduct(span));
+    weights.push_back(w * area);
+  };
+  if (!mortar_cells(mesh, e, master, cells)) {  // inside one master element: element-based
+    for (size_t q = 0; q < tensor.points.size(); ++q) add(tensor.points[q], tensor.weights[q]);
+    return;
+  }
+  // The degree of the mortar integrands on flat faces: B_K N_A, both slave
+  // (4 p_s - 4) and master (2 p_s + 2 p_m - 4, total degree in s).
+  int pm = 0;
+  for (const MortarCell& c : cells) {
+    const NurbsPatch& mp = master.side_patch(c.side);
+    pm = std::max({pm, mp.degree(0), mp.degree(1)});
+  }
+  const int degree = std::max(4 * ps - 4, 2 * ps + 2 * pm - 4);
+  const int n = std::max(2, degree / 2 + 1);
+  for (const MortarCell& c : cells) {
+    const int nc = c.depth > 0 ? 2 : n;
+    const TensorGaussRule& rule = triangle_rules.try_emplace(nc, triangle_gauss_rule(nc)).first->second;
+    // A fan from the first vertex (the cells are convex).
+    const ParamPolygon& p = c.polygon;
+    const Eigen::Vector2d& apex = p[0];
+    for (size_t i = 1; i + 1 < p.size(); ++i) {
+      const Eigen::Vector2d B = p[i] - apex, C = p[i + 1] - apex;
+      const double tri = 0.5 * cross(B, C);
+      if (tri == 0.0) continue;
+      for (size_t q = 0; q < rule.points.size(); ++q)
+        add(apex + rule.points[q][0] * B + rule.points[q][1] * C, rule.weights[q] * tri);
+    }
+  }
+}
+
+}  // namespace
+
 void segmented_side_rule(const ContactSide& side, const Eigen::MatrixXd* u_side, const MasterSurface& master,
                          int points, std::vector<Eigen::VectorXd>& xi, std::vector<double>& weights) {
   xi.clear();
@@ -199,43 +247,32 @@ void segmented_side_rule(const ContactSide& side, const Eigen::MatrixXd* u_side,
                                : reference);
   const TensorGaussRule tensor = tensor_gauss_rule(2, points);
   const int ps = std::max(reference.degree(0), reference.degree(1));
-  std::map<int, TensorGaussRule> triangle_rules;
-  std::vector<MortarCell> cells;
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const BezierElement& el = mesh.element(e);
-    const Eigen::Vector2d lower(el.lower[0], el.lower[1]), span(el.upper[0] - el.lower[0], el.upper[1] - el.lower[1]);
-    const double area = span[0] * span[1];
-    auto add = [&](const Eigen::Vector2d& s, double w) {
-      xi.push_back(lower + s.cwiseProduct(span));
-      weights.push_back(w * area);
-    };
-    if (!mortar_cells(mesh, e, master, cells)) {  // inside one master element: element-based
-      for (size_t q = 0; q < tensor.points.size(); ++q) add(tensor.points[q], tensor.weights[q]);
-      continue;
-    }
-    // The degree of the mortar integrands on flat faces: B_K N_A, both slave
-    // (4 p_s - 4) and master (2 p_s + 2 p_m - 4, total degree in s).
-    int pm = 0;
-    for (const MortarCell& c : cells) {
-      const NurbsPatch& mp = master.side_patch(c.side);
-      pm = std::max({pm, mp.degree(0), mp.degree(1)});
-    }
-    const int degree = std::max(4 * ps - 4, 2 * ps + 2 * pm - 4);
-    const int n = std::max(2, degree / 2 + 1);
-    for (const MortarCell& c : cells) {
-      const int nc = c.depth > 0 ? 2 : n;
-      const TensorGaussRule& rule = triangle_rules.try_emplace(nc, triangle_gauss_rule(nc)).first->second;
-      // A fan from the first vertex (the cells are convex).
-      const ParamPolygon& p = c.polygon;
-      const Eigen::Vector2d& apex = p[0];
-      for (size_t i = 1; i + 1 < p.size(); ++i) {
-        const Eigen::Vector2d B = p[i] - apex, C = p[i + 1] - apex;
-        const double tri = 0.5 * cross(B, C);
-        if (tri == 0.0) continue;
-        for (size_t q = 0; q < rule.points.size(); ++q)
-          add(apex + rule.points[q][0] * B + rule.points[q][1] * C, rule.weights[q] * tri);
+  // Each slave element cut on its own (the master's closest-point searches,
+  // most of the cost): on the free cores, its points kept apart and joined
+  // in element order, the same rule on any number of threads.
+  const int ne = mesh.num_elements();
+  std::vector<std::vector<Eigen::Vector2d>> element_xi(static_cast<size_t>(ne));
+  std::vector<std::vector<double>> element_weights(static_cast<size_t>(ne));
+  std::exception_ptr failure;
+#pragma omp parallel num_threads(free_cores()) if (ne >= 8)
+  {
+    std::map<int, TensorGaussRule> triangle_rules;
+    std::vector<MortarCell> cells;
+#pragma omp for schedule(dynamic, 1)
+    for (int e = 0; e < ne; ++e) {
+      try {
+        cut_element_rule(mesh, e, master, tensor, ps, triangle_rules, cells, element_xi[size_t(e)],
+                         element_weights[size_t(e)]);
+      } catch (...) {
+#pragma omp critical(igac_segmented_side_rule)
+        if (!failure) failure = std::current_exception();
       }
     }
+  }
+  if (failure) std::rethrow_exception(failure);
+  for (int e = 0; e < ne; ++e) {
+    for (const Eigen::Vector2d& x : element_xi[size_t(e)]) xi.push_back(x);
+    weights.insert(weights.end(), element_weights[size_t(e)].begin(), element_weights[size_t(e)].end());
   }
 }
 

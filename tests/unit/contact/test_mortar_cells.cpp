@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <omp.h>
 
 #include "contact/mortar_cells.hpp"
 #include "engine/geometry/shapes.hpp"
@@ -111,6 +112,28 @@ TEST(MortarCells, AnElementBeyondTheMastersEdgeIsCutWhereItsProjectionCrossesABr
   EXPECT_EQ(c.cut, 7);  // those over x or y in [0.5, 0.75] (holding 2/3): 4 + 4 - 1
   EXPECT_LT(c.worst, kRoundOff);
   EXPECT_NEAR(c.face, 1.0, kRoundOff);
+}
+
+TEST(MortarCells, TheSegmentedRuleIsTheSameOnOneThreadAsOnSeveral) {
+  // The slave elements are cut in parallel and their points joined in
+  // element order: the same points and weights, to the bit, on any number
+  // of threads (5 x 5 turned by 30 degrees on 7 x 7: most elements cut).
+  const Body body({box3(2, 5, 0, 1, 1, 0.5, std::numbers::pi / 6), box3(2, 7, -0.5, 2, 0, 1)}, {});
+  const ContactSide side(body, PatchSide{0, Face{2, false}}, 0);
+  const MasterSurface master(body, {PatchSide{1, Face{2, true}}});
+  std::vector<Eigen::VectorXd> xi_one, xi_two, xi_five;
+  std::vector<double> w_one, w_two, w_five;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  segmented_side_rule(side, nullptr, master, 4, xi_one, w_one);
+  omp_set_num_threads(2);
+  segmented_side_rule(side, nullptr, master, 4, xi_two, w_two);
+  omp_set_num_threads(5);
+  segmented_side_rule(side, nullptr, master, 4, xi_five, w_five);
+  omp_set_num_threads(threads);
+  ASSERT_GT(xi_one.size(), size_t(25 * 16));  // more points than the uncut tensor rule
+  EXPECT_TRUE(xi_two == xi_one && xi_five == xi_one);
+  EXPECT_TRUE(w_two == w_one && w_five == w_one);
 }
 
 }  // namespace
