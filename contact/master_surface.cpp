@@ -46,7 +46,7 @@ template <int N, int SD>
 void evaluate_bezier(const std::array<int, 2>& degree, const std::vector<std::array<double, 4>>& homogeneous,
                      const Eigen::Matrix<double, N, 1>& s, Eigen::Matrix<double, SD, 1>& S,
                      Eigen::Matrix<double, SD, N>& dS) {
-  std::array<std::array<double, 32>, 2> B{}, dB{};
+  std::array<std::array<double, 32>, 2> B, dB;  // (not zeroed: only the first degree + 1 are read)
   for (int d = 0; d < N; ++d) bernstein(degree[d], s[d], B[d].data(), dB[d].data());
   if constexpr (N == 1) B[1][0] = 1, dB[1][0] = 0;
   const int n0 = degree[0] + 1, n1 = N > 1 ? degree[1] + 1 : 1;
