@@ -312,6 +312,7 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x, int*
     stack[pending++] = left_first ? node.right : node.left;
     stack[pending++] = left_first ? node.left : node.right;
   }
+  if (!best_element) return std::nullopt;  // (no finite distance: x not finite)
   return master_point(*best_element, best, x);
 }
 

@@ -50,7 +50,8 @@ class MasterSurface {
   // (n_cp x dim, body numbering); rebuilds the element boxes and the tree.
   void update(const Eigen::MatrixXd& u);
 
-  // The master point nearest to `x` (nullopt only for an empty surface).
+  // The master point nearest to `x` (nullopt for an empty surface, or an x
+  // that is not finite).
   // `candidates`: += the elements it ran Newton on (the search's cost).
   // Safe to call from several threads at once.
   std::optional<MasterPoint> project(const Eigen::VectorXd& x, int* candidates = nullptr) const;

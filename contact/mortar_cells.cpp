@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "engine/free_cores.hpp"
+#include "engine/numerical_failure.hpp"
 #include "engine/quadrature.hpp"
 
 namespace igac {
@@ -95,7 +96,8 @@ struct Cutter {
     const auto key = std::make_pair(s[0], s[1]);
     if (const auto it = known.find(key); it != known.end()) return it->second;
     const std::optional<MasterPoint> mp = master.project(slave.point(e, s));
-    if (!mp) throw std::invalid_argument("a contact's master surface has no elements");
+    if (!mp && master.num_elements() == 0) throw std::invalid_argument("a contact's master surface has no elements");
+    if (!mp) throw NumericalFailure("a slave point of a contact has a position that is not finite");
     return known.emplace(key, Vertex{s, Eigen::Vector2d(mp->xi[0], mp->xi[1]), mp->side}).first->second;
   }
   // The master element (knot span) holding eta along direction d.
