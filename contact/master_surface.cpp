@@ -8,9 +8,9 @@
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
-#include <stdexcept>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 namespace igac {
 
