@@ -6,7 +6,9 @@
 // Newton on each candidate element; those of the slave quadrature points
 // and those that cut the slave elements, segmented integration), counted
 // and timed by the master surface itself during the run; the peak memory
-// of the process.
+// of the process.  Small deformation only: a large-deformation problem
+// searches on its own copies of the master surfaces, which are not counted
+// here (it refuses such a case; bench/newton_vs_linear times those).
 //
 //   build/bench/two_body_search CASE.toml [--integration segmented|element] [--csv FILE]
 //
@@ -43,6 +45,11 @@ int main(int argc, char** argv) {
   }
   Stopwatch clock;
   CaseSpec spec = read_case(argv[1]);
+  if (spec.finite_strain()) {  // (its problem searches on its own copies of the master surfaces: none counted here)
+    fmt::print(stderr, "{}: a large-deformation case; this bench counts the searches of small-deformation runs "
+                       "(for large deformation: build/bench/newton_vs_linear)\n", argv[1]);
+    return 2;
+  }
   if (!integration.empty())
     for (ContactSpec& c : spec.contacts) {
       const auto i = mortar_integration_named(integration);
