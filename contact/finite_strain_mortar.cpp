@@ -52,7 +52,7 @@ namespace {
 // Sums the dense blocks of consecutive mortar points that share their rows
 // (the points of one slave element: its multipliers, or its equations) and
 // hands them on as one triplet per entry, not one per entry and point: a
-// 3D two-body Jacobian had 1.35 million triplets of G for 196 rows.  An
+// 3D two-body Jacobian had about a million triplets of G for 196 rows.  An
 // entry exists where some point added to it, zero or not, as before.
 class BlockSum {
  public:
