@@ -14,4 +14,12 @@ n="$1"; shift
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-1}" OPENBLAS_NUM_THREADS="${OPENBLAS_NUM_THREADS:-1}"
-exec mpirun -n "$n" "${IGAC_BINARY:-$here/build/igac}" "$@"
+# Each run its own session directory: two mpiruns starting at once race to
+# create the shared /tmp/ompi.HOST.UID and one fails with "File exists"
+# (seen under ctest -j2).  Removed when the run ends.
+if [ -z "${OMPI_MCA_orte_tmpdir_base:-}" ]; then
+  session="$(mktemp -d "${TMPDIR:-/tmp}/igac-mpi.XXXXXX")"
+  trap 'rm -rf "$session"' EXIT
+  export OMPI_MCA_orte_tmpdir_base="$session"
+fi
+mpirun -n "$n" "${IGAC_BINARY:-$here/build/igac}" "$@"
