@@ -2,8 +2,9 @@
 // The prolongation between nested discretisations (engine/prolongation):
 // a coarse displacement and its prolongation are the same function (checked
 // at random points of every patch, to round-off), on the graded sphere
-// octant (NURBS, Dirichlet faces eliminated) and on a two-patch quarter disc
-// (a shared interface); between a mesh and itself it is the identity (also
+// octant (NURBS, Dirichlet faces eliminated), on a two-patch quarter disc
+// (a shared interface) and on every level of 2D Hertz's graded mesh up to
+// the one where its multigrid is slow (docs/petsc.md); between a mesh and itself it is the identity (also
 // where the octant's degenerate edge ties coincident points to one equation).
 #include <gtest/gtest.h>
 
@@ -64,6 +65,14 @@ TEST(Prolongation, ReproducesACoarseFieldAcrossTwoRefinementsAndTwoPatches) {
   const Model f = model_at("cases/hertz2d_two_patches.toml", 2, {4, 4});
   ASSERT_EQ(f.body.num_patches(), 2);
   EXPECT_LT(largest_difference(c, f), kRoundOff);
+}
+
+TEST(Prolongation, ReproducesACoarseFieldOnEveryLevelOfTheGradedHertz2d) {
+  for (int r = 1; r <= 3; ++r) {
+    const Model c = model_at("cases/hertz2d.toml", r - 1, {64, 16});
+    const Model f = model_at("cases/hertz2d.toml", r, {64, 16});
+    EXPECT_LT(largest_difference(c, f), kRoundOff) << "refine " << r;
+  }
 }
 
 TEST(Prolongation, IsTheIdentityWhereNothingIsRefined) {
