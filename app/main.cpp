@@ -56,12 +56,12 @@ void apply_solver_options(CaseSpec& spec, const std::string& solver, const std::
   if (!solver.empty()) spec.solver.type = solver_type_named(solver).value();  // (CLI11 checked the name)
   spec.solver.processes = process_count();  // the memory estimate's process count
   if (!preconditioner.empty()) {
-    const auto p = preconditioner_named(preconditioner);
-    if (!p) throw InputError(fmt::format("--preconditioner {}: {}", preconditioner, unknown_preconditioner(preconditioner)));
-    spec.solver.preconditioner = *p;
+    if (!set_preconditioner(spec.solver, preconditioner))
+      throw InputError(fmt::format("--preconditioner {}: {}", preconditioner, unknown_preconditioner(preconditioner)));
   }
   if (const std::string why = check_preconditioner(spec.solver); !why.empty())
-    throw InputError(fmt::format("--preconditioner {}: {}", name_of(spec.solver.preconditioner), why));
+    throw InputError(fmt::format("--preconditioner {}: {}",
+                                 spec.solver.automatic ? "auto" : name_of(spec.solver.preconditioner), why));
   if (!petsc_options.empty()) {
     if (!spec.solver.petsc()) throw InputError("--petsc-options: needs --solver petsc (or [solver] type = \"petsc\")");
     spec.solver.options += " " + petsc_options;
@@ -122,6 +122,7 @@ void print_header(const Model& m) {
                u.length.empty() ? "-" : u.length, u.force.empty() ? "-" : u.force, u.stress.empty() ? "-" : u.stress);
   else
     fmt::print("  units         consistent units (none declared: [units] names them)\n");
+  if (!m.spec.solver.choice.empty()) fmt::print("  solver        {}\n", m.spec.solver.choice);
   std::fflush(stdout);
 }
 
@@ -443,7 +444,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"direct", "petsc"}));
   run->add_option("--petsc-options", petsc_options, "PETSc options, e.g. \"-ksp_type fgmres -pc_type fieldsplit\"");
   run->add_option("--preconditioner", preconditioner,
-                  "PETSc: options (as the PETSc options say; default MUMPS), spline_multigrid or algebraic_multigrid");
+                  "PETSc: options (as the PETSc options say; default MUMPS), spline_multigrid, algebraic_multigrid or "
+                  "auto (the faster of MUMPS and spline_multigrid for the mesh)");
   RestartOptions restart;
   run->add_option("--restart", restart.dir,
                   "continue the run whose output is in this folder (same case file) after its last step");
@@ -472,7 +474,7 @@ int main(int argc, char** argv) {
   study->add_option("--solver", solver, "linear solver: direct (CHOLMOD) or petsc (one process)")
       ->check(CLI::IsMember({"direct", "petsc"}));
   study->add_option("--petsc-options", petsc_options, "PETSc options");
-  study->add_option("--preconditioner", preconditioner, "PETSc: options, spline_multigrid or algebraic_multigrid");
+  study->add_option("--preconditioner", preconditioner, "PETSc: options, spline_multigrid, algebraic_multigrid or auto");
 
   auto* geometry = app.add_subcommand("geometry", "write the case's body (before refinement) as a G+Smo XML file");
   geometry->add_option("case", case_path, "case file (TOML)")->required();

@@ -623,8 +623,7 @@ CaseSpec read_case_table(const toml::table& root, const std::string& path) {
       s.fail("options", "PETSc options need type = \"petsc\"");
     if (const std::string why = check_case_petsc_options(c.solver.options); !why.empty()) s.fail("options", why);
     const std::string preconditioner = s.string("preconditioner", "options");
-    if (const auto p = preconditioner_named(preconditioner)) c.solver.preconditioner = *p;
-    else s.fail("preconditioner", unknown_preconditioner(preconditioner));
+    if (!set_preconditioner(c.solver, preconditioner)) s.fail("preconditioner", unknown_preconditioner(preconditioner));
     if (const std::string why = check_preconditioner(c.solver); !why.empty()) s.fail("preconditioner", why);
     if (c.solver.petsc())
       if (const std::string why = check_petsc_case(c); !why.empty()) s.fail("type", why);
@@ -702,42 +701,6 @@ std::vector<std::string> declared_case_keys() {
   add("units", kUnitsKeys);
   add("model", kModelKeys);
   return {out.begin(), out.end()};
-}
-
-std::string check_petsc_case(const CaseSpec& c) {
-  // Both multigrids need the multipliers apart from the displacements
-  // (the field split's fields, the spline multigrid's block triangular
-  // preconditioner); friction and ties solve them in one block.
-  if (c.solver.algebraic_multigrid() || c.solver.spline_multigrid())
-    for (const ContactSpec& cs : c.contacts)
-      if (cs.friction > 0 || (!cs.law.empty() && cs.law != "frictionless"))
-        return fmt::format("the {} needs the multipliers apart from the displacements, and the {} of contact face "
-                           "'{}' solves them in one block with the displacements; leave preconditioner at "
-                           "\"options\" (default MUMPS LU)",
-                           c.solver.spline_multigrid() ? "spline multigrid" : "algebraic multigrid's field split",
-                           cs.friction > 0 ? fmt::format("friction = {:g}", cs.friction) : "law \"" + cs.law + "\"",
-                           cs.face);
-  // Large deformation: every Newton step's linear solve in PETSc
-  // (solvers/petsc_newton.hpp), whatever the contacts, laws and curves.
-  if (c.finite_strain()) return {};
-  if (c.has_load_curves() && c.solver.spline_multigrid())
-    return "the spline multigrid preconditions a small-deformation run without load curves only (the case has a "
-           "curve); leave preconditioner at \"options\"";
-  return {};
-}
-
-std::string unknown_preconditioner(const std::string& name) {
-  return fmt::format("unknown preconditioner '{}' (options: as [solver] options say, default MUMPS; "
-                     "spline_multigrid: geometric multigrid over the nested meshes; algebraic_multigrid: FGMRES "
-                     "with a field split, GAMG on the displacements)", name);
-}
-
-std::string check_preconditioner(const SolverSpec& s) {
-  if (s.spline_multigrid() && !s.petsc())
-    return "spline_multigrid runs in the PETSc solver: needs type = \"petsc\"";
-  if (s.algebraic_multigrid() && !s.petsc())
-    return "algebraic_multigrid runs in the PETSc solver: needs type = \"petsc\"";
-  return {};
 }
 
 }  // namespace igac

@@ -13,6 +13,7 @@
 
 #include "model/case_spec.hpp"
 #include "model/memory_estimate.hpp"  // apply_overrides
+#include "model/solver_choice.hpp"    // check_petsc_case, check_preconditioner
 
 namespace igac {
 
@@ -36,15 +37,5 @@ std::optional<std::string> nearest_name(const std::string& word, const std::vect
 // Why a case file's [solver] options cannot be given to PETSc ("" when they
 // can): a case file may give only a few known options with checked values.
 std::string check_case_petsc_options(const std::string& options);
-// Why a [solver] preconditioner cannot be used ("" when it can), and the
-// message for a name that is none.
-std::string check_preconditioner(const SolverSpec& solver);
-std::string unknown_preconditioner(const std::string& name);
-// Why the PETSc solver cannot run this case ("" when it can): it runs every
-// large-deformation case (each Newton step's linear solve in PETSc) and the
-// small-deformation solve of solve_model frictionless, without load curves
-// (two bodies, several contacts, the mixed formulation and moving obstacles
-// included).  The one rule of [solver] type = "petsc" and of --solver petsc.
-std::string check_petsc_case(const CaseSpec& c);
 
 }  // namespace igac

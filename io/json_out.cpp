@@ -296,6 +296,7 @@ Json run_summary(const Model& m, const RunResult& r) {
     const LinearSolverRecord& ls = r.linear_solver;
     Json solver = {{"type", ls.type}, {"ranks", ls.ranks}};
     if (!ls.method.empty()) solver["method"] = ls.method;
+    if (!m.spec.solver.choice.empty()) solver["choice"] = m.spec.solver.choice;  // preconditioner = "auto"
     if (ls.condition_estimate > 0) solver["condition_estimate"] = finite_or_null(ls.condition_estimate);
     if (ls.type != "direct") {
       solver["krylov_iterations"] = ls.iterations;

@@ -119,7 +119,8 @@ struct LoadingSpec {
 // "spline_multigrid" (geometric multigrid over the case's nested meshes
 // --refine r, ..., 0, solvers/petsc_multigrid; PETSc only) or
 // "algebraic_multigrid" (FGMRES with a Schur field split, GAMG on the
-// displacements: PETSc options that `options` may override; PETSc only).
+// displacements: PETSc options that `options` may override; PETSc only),
+// or "auto" (one of the first two, chosen per mesh: model/solver_choice).
 // [solver], resolved when the case (or the command line) is read.
 enum class SolverType { direct, petsc };
 enum class Preconditioner { options, spline_multigrid, algebraic_multigrid };
@@ -143,6 +144,10 @@ struct SolverSpec {
   SolverType type = SolverType::direct;
   std::string options;
   Preconditioner preconditioner = Preconditioner::options;
+  // preconditioner = "auto": model/solver_choice picks `preconditioner` for
+  // each mesh the case is run on (a study's levels each), and says why.
+  bool automatic = false;
+  std::string choice;  // why auto chose what it chose ("" without auto)
   int processes = 1;  // MPI processes of the run (set by the launcher, not by the case file)
   bool petsc() const { return type == SolverType::petsc; }
   bool spline_multigrid() const { return preconditioner == Preconditioner::spline_multigrid; }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "model/case_body.hpp"
+#include "model/solver_choice.hpp"
 
 namespace igac {
 
@@ -147,6 +148,9 @@ void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> 
     if (*refine < 0) throw InputError(fmt::format("--refine {}: must be >= 0", *refine));
     c.refine = *refine;
   }
+  // The solver for this mesh (preconditioner = "auto"), which the memory
+  // estimate depends on.
+  settle_preconditioner(c);
   // Memory check before anything is built.
   const double bytes = estimated_peak_bytes(c);
   const MeshCount mesh = estimated_mesh(c);

@@ -66,13 +66,18 @@ SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorX
 
   // Interpolations, coarse to fine; the finest level's rows are A's.
   // -u_pc_mg_levels L keeps the L finest meshes (the coarsest of them then
-  // solved directly); PCMG reads the same option and finds it satisfied.
-  PetscInt wanted = PetscInt(prolongations.size()) + 1;
+  // solved directly).  The case's own count was checked against its
+  // --refine before anything was built (model/solver_choice.cpp); the
+  // coarser solves that start a run (nested iteration) or a study's
+  // coarser levels have fewer meshes and take all of theirs.
+  const PetscInt available = PetscInt(prolongations.size()) + 1;
+  PetscInt wanted = available;
   PetscBool given = PETSC_FALSE;
   check(PetscOptionsGetInt(nullptr, "u_", "-pc_mg_levels", &wanted, &given), "options", true);
-  if (given && (wanted < 1 || wanted > PetscInt(prolongations.size()) + 1))
-    throw PetscOptionError(fmt::format("PETSc option -u_pc_mg_levels {}: the spline hierarchy has 1 to {} levels "
-                                       "(the case's --refine + 1)", wanted, prolongations.size() + 1));
+  if (given && wanted < 1)
+    throw PetscOptionError(fmt::format("PETSc option -u_pc_mg_levels {}: must be at least 1", wanted));
+  const bool fewer_than_asked = given && wanted > available;
+  wanted = std::min(wanted, available);
   const int nl = int(wanted) - 1;
   P_.resize(nl);
   for (int k = 0; k < nl; ++k) {  // prolongations[k]: level nl - k from nl - k - 1
@@ -117,7 +122,18 @@ SplineMultigrid::SplineMultigrid(Mat A, const RowSparse& G, const Eigen::VectorX
   }
   default_option("-u_mg_levels_sub_pc_type", "icc");
   default_option("-u_mg_levels_sub_pc_factor_mat_ordering_type", "rcm");
-  check(KSPSetFromOptions(mg_), "options", true);
+  // PCMG reads -u_pc_mg_levels too: a coarser solve shows it its own count
+  // while it reads the options, and the user's value is put back.
+  if (fewer_than_asked) {
+    char asked[32] = {};
+    check(PetscOptionsGetString(nullptr, "u_", "-pc_mg_levels", asked, sizeof asked, nullptr), "options");
+    check(PetscOptionsSetValue(nullptr, "-u_pc_mg_levels", std::to_string(wanted).c_str()), "options");
+    const PetscErrorCode read = KSPSetFromOptions(mg_);
+    check(PetscOptionsSetValue(nullptr, "-u_pc_mg_levels", asked), "options");
+    check(read, "options", true);
+  } else {
+    check(KSPSetFromOptions(mg_), "options", true);
+  }
 }
 
 SplineMultigrid::~SplineMultigrid() = default;

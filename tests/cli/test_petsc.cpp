@@ -304,6 +304,41 @@ TEST_F(PetscPath, SplineMultigridMatchesDirectIn3D) {
   expect_multigrid_matches_direct("hertz3d", "[4, 2, 4]", 1, tmp);
 }
 
+// -u_pc_mg_levels L keeps the L finest meshes, also when the run starts
+// from the coarser meshes' solutions (solved first, with fewer meshes
+// than L: each takes all of its own); more levels than the case has
+// meshes is one line naming the option, before anything is solved.
+TEST_F(PetscPath, SplineMultigridKeepsTheFinestMeshesAsked) {
+  TempDir tmp("petscmglevels2");
+  const std::string c = quote(coarse_case("hertz2d", "[8, 2]", tmp.path()).string());
+  auto o = run_igac("run " + c + " --quiet --out direct --refine 2", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  o = run_igac(multigrid_args(c, 2) + " --out mg --petsc-options " + quote("-u_pc_mg_levels 2"), tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  expect_same_result(tmp.path() / "direct", tmp.path() / "mg", kKrylovRtol, false);
+  EXPECT_EQ(summary_of(tmp.path() / "mg")["solver"]["method"], "fgmres + spline multigrid (2 levels)");
+  o = run_igac(multigrid_args(c, 2) + " --out many --petsc-options " + quote("-u_pc_mg_levels 4"), tmp.path());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("PETSc option -u_pc_mg_levels 4: the spline multigrid of --refine 2 has 1 to 3 levels"),
+            std::string::npos)
+      << o.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "many" / "summary.json"));
+}
+
+// preconditioner = "auto" says what it chose and why, on the console and
+// in summary.json (the rule itself: tests/unit/model/test_solver_choice.cpp).
+TEST_F(PetscPath, AutoSaysWhatItChose) {
+  TempDir tmp("petscauto");
+  const std::string c = quote(coarse_case("hertz2d", "[8, 2]", tmp.path()).string());
+  const auto o = run_igac("run " + c + " --out out --refine 1 --solver petsc --preconditioner auto", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const std::string line = "auto chose MUMPS: 2D, where a factorisation was the faster at every size measured";
+  EXPECT_NE(o.output.find("  solver        " + line), std::string::npos) << o.output;
+  const auto s = summary_of(tmp.path() / "out");
+  EXPECT_EQ(s["solver"]["choice"], line);
+  EXPECT_EQ(s["status"], "converged");
+}
+
 // The point of multigrid: the iteration count (mean over the active-set
 // iterations) does not grow with the mesh.  Levels 1 and 2 of 2D Hertz on
 // one process and of the 3D Hertz study (its own mesh) on two.  Measured:
