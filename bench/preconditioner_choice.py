@@ -17,7 +17,6 @@ Writes bench/results/preconditioner_choice.csv and a plot of wall time
 against unknowns.  Never run by the tests.
 """
 import argparse
-import csv
 import json
 import os
 import subprocess
@@ -26,6 +25,9 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from results_io import pyplot, write_rows  # noqa: E402
+
 ROOT = os.path.dirname(HERE)
 IGAC = os.path.join(ROOT, "build", "igac")
 CASES = {"2d": "cases/hertz2d.toml", "3d": "cases/hertz3d_study.toml"}
@@ -60,12 +62,8 @@ def run(case, level, preconditioner, out):
 
 
 def plot(rows, path):
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("matplotlib missing: no plot", file=sys.stderr)
+    plt = pyplot()
+    if plt is None:
         return
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for ax, dim in zip(axes, ("2d", "3d")):
@@ -110,11 +108,7 @@ def main():
                         r[key + "_vs_mumps"] = f"{abs(r[key] - m) / abs(m):.1e}"
     keys = ["mesh", "preconditioner", "dofs", "status", "method", "choice", "wall_s", "over_faster", "peak_gib",
             "krylov_iterations", "half_width", "max_pressure", "half_width_vs_mumps", "max_pressure_vs_mumps"]
-    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
-    with open(a.csv, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
+    write_rows(a.csv, [{k: r.get(k, "") for k in keys} for r in rows])
     print(f"wrote {a.csv}", file=sys.stderr)
     plot(rows, a.plot)
 
