@@ -23,8 +23,8 @@ std::vector<std::string> tokens_of(const std::string& options) {
 
 double physical_memory() { return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)); }
 
-// Why `auto` does not take the spline multigrid for this case ("" when it
-// does), and in `why` the reason either way.
+// Whether `auto` takes the spline multigrid for this case; `why` says why,
+// either way.
 bool multigrid_is_faster(const CaseSpec& c, std::string& why) {
   if (c.dim() != 3) {
     why = "2D, where a factorisation was the faster at every size measured";
