@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -30,6 +31,9 @@ constexpr double kSliver = 1e-14;
 // Grid of slave points (per direction) whose projections tell an element
 // inside one master element (integrated whole) from one to cut.
 constexpr int kSamples = 5;
+// An element of the current configuration whose samples all lie farther
+// from the master than this many of its diameters is integrated whole.
+constexpr double kFarInDiameters = 1.0;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a[0] * b[1] - a[1] * b[0]; }
 
@@ -38,6 +42,7 @@ double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a[0] *
 struct Vertex {
   Eigen::Vector2d s, eta;
   int side = 0;
+  double distance = 0;  // from the slave point to its projection
 };
 using Polygon = std::vector<Vertex>;
 
@@ -98,7 +103,7 @@ struct Cutter {
     const std::optional<MasterPoint> mp = master.project(slave.point(e, s));
     if (!mp && master.num_elements() == 0) throw std::invalid_argument("a contact's master surface has no elements");
     if (!mp) throw NumericalFailure("a slave point of a contact has a position that is not finite");
-    return known.emplace(key, Vertex{s, Eigen::Vector2d(mp->xi[0], mp->xi[1]), mp->side}).first->second;
+    return known.emplace(key, Vertex{s, Eigen::Vector2d(mp->xi[0], mp->xi[1]), mp->side, mp->distance}).first->second;
   }
   // The master element (knot span) holding eta along direction d.
   int span_index(int side, int d, double eta) {
@@ -178,7 +183,8 @@ double polygon_area(const ParamPolygon& poly) {
   return 0.5 * a;
 }
 
-bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, std::vector<MortarCell>& cells) {
+bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, std::vector<MortarCell>& cells,
+                  double far) {
   cells.clear();
   Cutter cutter{slave, e, master, cells, false, {}, {}};
   // Inside one master element: the element's own rule.
@@ -187,6 +193,15 @@ bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, s
     for (int i = 0; i < kSamples; ++i)
       one = cutter.same_element(cutter.at({double(i) / (kSamples - 1), double(j) / (kSamples - 1)}), cutter.at({0, 0})) && one;
   if (one) return false;
+  // Far from the master (every sample): the element's own rule.
+  if (std::isfinite(far)) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [s, v] : cutter.known) nearest = std::min(nearest, v.distance);
+    const Eigen::Vector2d s00(0, 0), s11(1, 1), s10(1, 0), s01(0, 1);
+    const double diameter = std::max((slave.point(e, s00) - slave.point(e, s11)).norm(),
+                                     (slave.point(e, s10) - slave.point(e, s01)).norm());
+    if (nearest > far * diameter) return false;
+  }
   const Vertex v00 = cutter.at({0, 0}), v10 = cutter.at({1, 0}), v11 = cutter.at({1, 1}), v01 = cutter.at({0, 1});
   cutter.triangle(v00, v10, v11, 0);
   cutter.triangle(v00, v11, v01, 0);
@@ -199,9 +214,9 @@ namespace {
 // The quadrature points (Bezier parameters of the face patch) and weights
 // of slave element e: its cells cut by the master's element edges, or its
 // tensor rule when one master element holds it.
-void cut_element_rule(const BezierMesh& mesh, int e, const MasterSurface& master, const TensorGaussRule& tensor,
-                      int ps, std::map<int, TensorGaussRule>& triangle_rules, std::vector<MortarCell>& cells,
-                      std::vector<Eigen::Vector2d>& xi, std::vector<double>& weights) {
+void cut_element_rule(const BezierMesh& mesh, int e, const MasterSurface& master, double far,
+                      const TensorGaussRule& tensor, int ps, std::map<int, TensorGaussRule>& triangle_rules,
+                      std::vector<MortarCell>& cells, std::vector<Eigen::Vector2d>& xi, std::vector<double>& weights) {
   const BezierElement& el = mesh.element(e);
   const Eigen::Vector2d lower(el.lower[0], el.lower[1]), span(el.upper[0] - el.lower[0], el.upper[1] - el.lower[1]);
   const double area = span[0] * span[1];
@@ -209,7 +224,7 @@ void cut_element_rule(const BezierMesh& mesh, int e, const MasterSurface& master
     xi.push_back(lower + s.cwiseProduct(span));
     weights.push_back(w * area);
   };
-  if (!mortar_cells(mesh, e, master, cells)) {  // inside one master element: element-based
+  if (!mortar_cells(mesh, e, master, cells, far)) {  // inside one master element, or far: element-based
     for (size_t q = 0; q < tensor.points.size(); ++q) add(tensor.points[q], tensor.weights[q]);
     return;
   }
@@ -249,6 +264,9 @@ void segmented_side_rule(const ContactSide& side, const Eigen::MatrixXd* u_side,
                                : reference);
   const TensorGaussRule tensor = tensor_gauss_rule(2, points);
   const int ps = std::max(reference.degree(0), reference.degree(1));
+  // Elements farther from the master than kFarInDiameters diameters are not
+  // cut at a current position (the header says why); all are in the reference.
+  const double far = u_side ? kFarInDiameters : std::numeric_limits<double>::infinity();
   // Each slave element cut on its own (the master's closest-point searches,
   // most of the cost): on the free cores, its points kept apart and joined
   // in element order, the same rule on any number of threads.
@@ -263,7 +281,7 @@ void segmented_side_rule(const ContactSide& side, const Eigen::MatrixXd* u_side,
 #pragma omp for schedule(dynamic, 1)
     for (int e = 0; e < ne; ++e) {
       try {
-        cut_element_rule(mesh, e, master, tensor, ps, triangle_rules, cells, element_xi[size_t(e)],
+        cut_element_rule(mesh, e, master, far, tensor, ps, triangle_rules, cells, element_xi[size_t(e)],
                          element_weights[size_t(e)]);
       } catch (...) {
 #pragma omp critical(igac_segmented_side_rule)

@@ -33,6 +33,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <limits>
 #include <vector>
 
 #include "contact/master_surface.hpp"
@@ -56,15 +57,24 @@ struct MortarCell {
 
 // The cells of element e of `slave` (a slave face side's Bezier mesh at its
 // current position) against `master` as it stands; false (no cells) when
-// the element lies in one master element: it is then integrated whole.
-bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, std::vector<MortarCell>& cells);
+// the element lies in one master element, or when all its sample points
+// lie farther from the master than `far` times the element's diameter: it
+// is then integrated whole.
+bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, std::vector<MortarCell>& cells,
+                  double far = std::numeric_limits<double>::infinity());
 
 // The quadrature of segmented integration on one side of a 3D slave face:
 // points in the side's face-patch parameters and their weights (parameter
 // area, without the surface Jacobian).  `u_side`: the displacement of the
 // side's control points (its face numbering; null: none), the cut taken at
 // the current position.  `points`: the element-based rule's Gauss points per
-// direction (for uncut elements).
+// direction (for uncut elements).  At a current position (u_side given: large
+// deformation, the rule made again for each state) an element farther from
+// the master than its diameter is not cut: its multipliers cannot be active
+// in this state, and only the sign of their weighted gaps matters (measured:
+// docs/benchmarks.md, "The two-body Newton iteration").  In the reference
+// position (small deformation: one rule for the whole solve, whatever the
+// body's motion) every element is cut.
 void segmented_side_rule(const ContactSide& side, const Eigen::MatrixXd* u_side, const MasterSurface& master,
                          int points, std::vector<Eigen::VectorXd>& xi, std::vector<double>& weights);
 

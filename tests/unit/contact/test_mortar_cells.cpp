@@ -5,7 +5,8 @@
 //  - the cells of a cut slave element tile it: their areas sum to its area
 //    to round-off, on aligned and on turned non-matching meshes, and on a
 //    slave that overhangs the master's edge; the weights of the whole face
-//    sum to its area.
+//    sum to its area;
+//  - at a current position an element far from the master is not cut.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -134,6 +135,35 @@ TEST(MortarCells, TheSegmentedRuleIsTheSameOnOneThreadAsOnSeveral) {
   ASSERT_GT(xi_one.size(), size_t(25 * 16));  // more points than the uncut tensor rule
   EXPECT_TRUE(xi_two == xi_one && xi_five == xi_one);
   EXPECT_TRUE(w_two == w_one && w_five == w_one);
+}
+
+// At a current position (large deformation) an element farther from the
+// master than its diameter is integrated whole: its multipliers cannot be
+// active in that state.  In the reference position every element is cut,
+// however far: a small-deformation rule serves the whole solve.
+TEST(MortarCells, AFarElementIsCutInTheReferencePositionOnly) {
+  // 5 x 5 turned by 30 degrees on 7 x 7 (most elements cut when touching);
+  // element diameter 0.2 sqrt(2) = 0.28.
+  const auto points = [](double lift, bool current) {
+    const Body body({box3(2, 5, 0, 1, 1 + (current ? 0 : lift), 0.5, std::numbers::pi / 6), box3(2, 7, -0.5, 2, 0, 1)},
+                    {});
+    const ContactSide side(body, PatchSide{0, Face{2, false}}, 0);
+    const MasterSurface master(body, {PatchSide{1, Face{2, true}}});
+    Eigen::MatrixXd u = Eigen::MatrixXd::Zero(side.face_patch.points().rows(), 3);
+    u.col(2).setConstant(lift);
+    std::vector<Eigen::VectorXd> xi;
+    std::vector<double> w;
+    segmented_side_rule(side, current ? &u : nullptr, master, 4, xi, w);
+    double face = 0;
+    for (double x : w) face += x;
+    EXPECT_NEAR(face, 1.0, kRoundOff);
+    return xi.size();
+  };
+  const size_t uncut = 25 * 16;
+  EXPECT_GT(points(0.0, true), uncut);   // touching: cut
+  EXPECT_GT(points(0.2, true), uncut);   // nearer than a diameter: cut
+  EXPECT_EQ(points(0.5, true), uncut);   // farther: the tensor rule on every element
+  EXPECT_GT(points(0.5, false), uncut);  // as far, in the reference position: cut
 }
 
 }  // namespace
