@@ -70,9 +70,11 @@ bool mortar_cells(const BezierMesh& slave, int e, const MasterSurface& master, s
 // the current position.  `points`: the element-based rule's Gauss points per
 // direction (for uncut elements).  At a current position (u_side given: large
 // deformation, the rule made again for each state) an element farther from
-// the master than its diameter is not cut: its multipliers cannot be active
-// in this state, and only the sign of their weighted gaps matters (measured:
-// docs/benchmarks.md, "The two-body Newton iteration").  In the reference
+// the master than its diameter is not cut: it is not in contact in this
+// state, and the element rule integrates its share of its multipliers'
+// weighted gaps and of G to the accuracy of element-based integration (at
+// a converged state the elements of active multipliers touch, and are cut;
+// measured: docs/benchmarks.md, "The two-body Newton iteration").  In the reference
 // position (small deformation: one rule for the whole solve, whatever the
 // body's motion) every element is cut.
 void segmented_side_rule(const ContactSide& side, const Eigen::MatrixXd* u_side, const MasterSurface& master,
