@@ -137,6 +137,8 @@ double estimated_peak_bytes(const CaseSpec& c) {
   return kBase + kCalibration * (12 * nnz + 10 * fill * nnz / 2);
 }
 
+double physical_memory_bytes() { return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)); }
+
 void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> refine) {
   if (degree) {
     if (*degree < 1 || *degree > 10) throw InputError(fmt::format("--degree {}: must lie in 1..10", *degree));
@@ -155,7 +157,7 @@ void apply_overrides(CaseSpec& c, std::optional<int> degree, std::optional<int> 
   const double bytes = estimated_peak_bytes(c);
   const MeshCount mesh = estimated_mesh(c);
   const double elements = mesh.elements, dofs = c.dim() * mesh.control_points;
-  const double physical = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  const double physical = physical_memory_bytes();
   if (bytes < physical && elements <= 2e9) return;
   const std::string need = fmt::format("{:.3g} elements and {:.3g} unknowns need about {:.3g} GiB, more than this "
                                        "machine's {:.1f} GiB",

@@ -20,6 +20,8 @@ MeshCount estimated_mesh(const CaseSpec& spec);
 // (bytes), on spec.solver.processes processes: what apply_overrides
 // compares with the machine's memory.
 double estimated_peak_bytes(const CaseSpec& spec);
+// This machine's physical memory (bytes): what a run's estimate must fit in.
+double physical_memory_bytes();
 // Applies a --degree / --refine override, checks it, and checks the memory
 // the mesh would need; throws InputError naming the option.
 void apply_overrides(CaseSpec& spec, std::optional<int> degree, std::optional<int> refine);

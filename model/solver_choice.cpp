@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 #include <cstdlib>
 #include <sstream>
-#include <unistd.h>
 #include <vector>
 
 #include "model/memory_estimate.hpp"
@@ -21,11 +20,9 @@ std::vector<std::string> tokens_of(const std::string& options) {
   return out;
 }
 
-double physical_memory() { return double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE)); }
-
 // Whether `auto` takes the spline multigrid for this case; `why` says why,
 // either way.
-bool multigrid_is_faster(const CaseSpec& c, std::string& why) {
+bool multigrid_is_faster(const CaseSpec& c, double memory_bytes, std::string& why) {
   if (c.dim() != 3) {
     why = "2D, where a factorisation was the faster at every size measured";
     return false;
@@ -52,10 +49,10 @@ bool multigrid_is_faster(const CaseSpec& c, std::string& why) {
     return true;
   }
   const double factor = estimated_peak_bytes(c), levels = estimated_peak_bytes(multigrid);
-  if (factor > physical_memory() && levels <= physical_memory()) {
+  if (factor > memory_bytes && levels <= memory_bytes) {
     why = fmt::format("3D, about {:.0f} unknowns, and a factorisation would need about {:.3g} GiB, more than "
                       "this machine's {:.1f}",
-                      unknowns, factor / (1 << 30), physical_memory() / (1 << 30));
+                      unknowns, factor / (1 << 30), memory_bytes / (1 << 30));
     return true;
   }
   why = fmt::format("3D, about {:.0f} unknowns (fewer than {:.0f})", unknowns, kMultigridUnknowns);
@@ -130,11 +127,11 @@ bool set_preconditioner(SolverSpec& solver, std::string_view name) {
   return true;
 }
 
-void settle_preconditioner(CaseSpec& c) {
+void settle_preconditioner(CaseSpec& c, double memory_bytes) {
   SolverSpec& s = c.solver;
   if (s.automatic) {
     std::string why;
-    const bool multigrid = multigrid_is_faster(c, why);
+    const bool multigrid = multigrid_is_faster(c, memory_bytes, why);
     s.preconditioner = multigrid ? Preconditioner::spline_multigrid : Preconditioner::options;
     s.choice = fmt::format("auto chose {}: {}", multigrid ? "the spline multigrid" : "MUMPS", why);
   }

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "model/case_spec.hpp"
+#include "model/memory_estimate.hpp"
 
 namespace igac {
 
@@ -28,13 +29,14 @@ std::string check_petsc_case(const CaseSpec& c);
 // multigrid where it is the faster of the two on the measurements of
 // docs/petsc.md ("Choosing the preconditioner"): a 3D mesh of at least
 // kMultigridUnknowns unknowns refined at least once (the hierarchy), or
-// one whose factorisation would not fit in memory, and a case the
+// one whose factorisation would not fit in `memory_bytes` (the machine's by
+// default) where the multigrid's would, and a case the
 // multigrid runs (frictionless, no ties, no load curves in small
 // deformation, no -pc_type or -ksp_type in the options); a factorisation
 // (MUMPS) otherwise.  c.solver.choice says which and why.  Without auto,
 // nothing changes.  Then, for the spline multigrid, a -u_pc_mg_levels in
 // the options asks for at most the case's meshes (InputError otherwise).
 inline constexpr double kMultigridUnknowns = 100000;
-void settle_preconditioner(CaseSpec& c);
+void settle_preconditioner(CaseSpec& c, double memory_bytes = physical_memory_bytes());
 
 }  // namespace igac

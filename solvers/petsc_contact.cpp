@@ -395,9 +395,8 @@ ContactSolution solve_contact_petsc(Eigen::SparseMatrix<double>& Kp, const Eigen
   A.p = assemble_matrix(Kp, G, Gt, GtG, L, !multigrid);
   std::optional<SplineMultigrid> mg;
   // ICC(0) in quotient minimum degree order in 2D: in reverse Cuthill-McKee
-  // order (3D's choice) it broke down on hertz2d's graded level 3, 143 s
-  // against 10 s (measured: docs/petsc.md, "Why the spline multigrid loses
-  // in 2D").
+  // order (3D's choice) it broke down on hertz2d's graded level 3 (measured:
+  // docs/petsc.md, "Why the spline multigrid loses in 2D").
   if (multigrid && o.dim == 2) default_option("-u_mg_levels_sub_pc_factor_mat_ordering_type", "qmd");
   if (multigrid) mg.emplace(A, G, W, D, L, o.prolongations);
 

@@ -47,6 +47,24 @@ TEST(SolverChoice, FactorisesASmaller3DMeshAndEvery2DMesh) {
   EXPECT_TRUE(contains(flat.solver.choice, "auto chose MUMPS: 2D")) << flat.solver.choice;
 }
 
+// A mesh below 100k unknowns whose factorisation would not fit where the
+// multigrid's would: the multigrid (the memory given between the two
+// estimates, so that the test does not depend on the machine's).
+TEST(SolverChoice, TakesTheSplineMultigridWhenTheFactorWouldNotFit) {
+  CaseSpec spec = petsc_case("cases/hertz3d_study.toml", "auto");
+  spec.refine = 2;  // 32k unknowns
+  CaseSpec factor = spec, multigrid = spec;
+  factor.solver.preconditioner = Preconditioner::options;
+  multigrid.solver.preconditioner = Preconditioner::spline_multigrid;
+  const double direct = estimated_peak_bytes(factor), levels = estimated_peak_bytes(multigrid);
+  ASSERT_GT(direct, levels);
+  settle_preconditioner(spec, 0.5 * (direct + levels));
+  EXPECT_TRUE(spec.solver.spline_multigrid());
+  EXPECT_TRUE(contains(spec.solver.choice, "a factorisation would need about")) << spec.solver.choice;
+  settle_preconditioner(spec, 2 * direct);
+  EXPECT_FALSE(spec.solver.spline_multigrid());
+}
+
 // A study runs its levels from the same spec through apply_overrides: each
 // level decides anew (the finest, on the multigrid, fits any machine that
 // runs the suite).
