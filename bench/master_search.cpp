@@ -5,7 +5,10 @@
 // elements Newton ran on, by the tree and (up to --brute-max elements) by
 // trying every element, measured in one process.
 //
-//   build/bench/master_search N [N ...] [--queries Q] [--brute-max M] [--csv FILE]
+// The queries lie between radii LO and HI (default 0.99 and 1.01: near the
+// surface; points far from it, as a body's far side asks, are the harder).
+//
+//   build/bench/master_search N [N ...] [--queries Q] [--radius LO HI] [--brute-max M] [--csv FILE]
 #include <chrono>
 #include <fmt/format.h>
 #include <fstream>
@@ -23,15 +26,17 @@ int main(int argc, char** argv) {
   std::vector<int> sizes;
   int queries = 200, brute_max = 4096;
   std::string csv;
+  double radius_lo = 0.99, radius_hi = 1.01;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--queries" && i + 1 < argc) queries = std::stoi(argv[++i]);
     else if (a == "--brute-max" && i + 1 < argc) brute_max = std::stoi(argv[++i]);
     else if (a == "--csv" && i + 1 < argc) csv = argv[++i];
+    else if (a == "--radius" && i + 2 < argc) radius_lo = std::stod(argv[++i]), radius_hi = std::stod(argv[++i]);
     else sizes.push_back(std::stoi(a));
   }
   if (sizes.empty()) {
-    fmt::print(stderr, "usage: {} N [N ...] [--queries Q] [--brute-max M] [--csv FILE]\n", argv[0]);
+    fmt::print(stderr, "usage: {} N [N ...] [--queries Q] [--radius LO HI] [--brute-max M] [--csv FILE]\n", argv[0]);
     return 2;
   }
   const std::string header = "master_elements,queries,tree_s_per_query,tree_elements_per_query,brute_s_per_query,ratio\n";
@@ -44,7 +49,7 @@ int main(int argc, char** argv) {
     const Body body(patch);
     const MasterSurface master(body, {g.faces.at("curved")[0]});
     std::mt19937 rng(1);
-    std::uniform_real_distribution<double> unit(0.05, 1.0), radius(0.99, 1.01);
+    std::uniform_real_distribution<double> unit(0.05, 1.0), radius(radius_lo, radius_hi);
     std::vector<Eigen::VectorXd> points;
     for (int k = 0; k < queries; ++k)
       points.push_back(radius(rng) * Eigen::Vector3d(unit(rng), unit(rng), -unit(rng)).normalized());

@@ -4,6 +4,7 @@
 #include "engine/spline/bezier_extraction.hpp"
 #include "engine/stopwatch.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -34,9 +35,115 @@ class Clock {
   Stopwatch watch_;
 };
 
-// Distance from x to the box [lo, hi] (0 inside).
-double box_distance(const Eigen::VectorXd& x, const Eigen::VectorXd& lo, const Eigen::VectorXd& hi) {
-  return (x - x.cwiseMax(lo).cwiseMin(hi)).norm();
+// An orthonormal frame (columns) whose last column is along normal and
+// first along tangent's part across it; the axes where they are too short
+// or too parallel to fix one (a collapsed element, a node whose elements
+// face many ways).
+Eigen::MatrixXd fitted_frame(const Eigen::VectorXd& tangent, const Eigen::VectorXd& normal) {
+  const int sd = int(normal.size());
+  if (!(normal.norm() > 0)) return Eigen::MatrixXd::Identity(sd, sd);
+  Eigen::MatrixXd frame(sd, sd);
+  frame.col(sd - 1) = normal.normalized();
+  if (sd == 2) {
+    frame(0, 0) = frame(1, 1);
+    frame(1, 0) = -frame(0, 1);
+    return frame;
+  }
+  const Eigen::Vector3d t = tangent - tangent.dot(frame.col(2)) * frame.col(2);
+  if (!(t.norm() > 1e-6 * tangent.norm())) return Eigen::MatrixXd::Identity(sd, sd);
+  frame.col(0) = t.normalized();
+  frame.col(1) = Eigen::Vector3d(frame.col(2)).cross(Eigen::Vector3d(frame.col(0)));
+  return frame;
+}
+
+// The tangent and normal directions of a Bezier element from its control
+// points (n_local x dim, first direction fastest): the sum of the two
+// chords along the first direction, and the normal of the two chord sums
+// (0 where the element has collapsed).
+std::pair<Eigen::VectorXd, Eigen::VectorXd> element_directions(const Eigen::MatrixXd& points,
+                                                               const std::array<int, 2>& degree, int param_dim) {
+  const int sd = int(points.cols());
+  const int n0 = degree[0] + 1, n1 = param_dim > 1 ? degree[1] + 1 : 1;
+  auto P = [&](int i, int j) -> Eigen::VectorXd { return points.row(i + n0 * j).transpose(); };
+  const Eigen::VectorXd a = (P(n0 - 1, 0) - P(0, 0)) + (P(n0 - 1, n1 - 1) - P(0, n1 - 1));
+  const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+  Eigen::VectorXd normal = Eigen::VectorXd::Zero(sd);
+  if (!(a.norm() > 1e-10 * size)) return {a, normal};
+  if (sd == 2) {
+    normal = Eigen::Vector2d(-a[1], a[0]).normalized();
+    return {a.normalized(), normal};
+  }
+  const Eigen::Vector3d b = (P(0, n1 - 1) - P(0, 0)) + (P(n0 - 1, n1 - 1) - P(n0 - 1, 0));
+  const Eigen::Vector3d n = Eigen::Vector3d(a).cross(b);
+  if (n.norm() > 1e-10 * size * a.norm()) normal = n.normalized();
+  return {a.normalized(), normal};
+}
+
+// A rational Bezier element cut into pieces x pieces equal parts (pieces
+// along a curve): each part's control points (n_local x dim, first
+// direction fastest), by de Casteljau's algorithm on the homogeneous
+// points. Each part's points hold that part (positive weights stay
+// positive), closer than the whole element's do.
+std::vector<Eigen::MatrixXd> bezier_parts(const std::vector<std::array<double, 4>>& homogeneous,
+                                          const std::array<int, 2>& degree, int param_dim, int space_dim,
+                                          std::array<int, 2> pieces_along) {
+  const int pieces = pieces_along[0];
+  using Row = std::vector<std::array<double, 4>>;
+  // Cuts one Bezier curve's points into `pieces` equal parts: the first
+  // 1/pieces split off, the rest cut again.
+  auto cut = [](Row curve, int pieces) {
+    std::vector<Row> parts;
+    const int n = int(curve.size());
+    for (int k = pieces; k > 1; --k) {
+      const double t = 1.0 / k;
+      Row left(size_t(n), {0, 0, 0, 0}), work = curve;
+      for (int level = 0; level < n; ++level) {
+        left[size_t(level)] = work[0];
+        curve[size_t(n - 1 - level)] = work[size_t(n - 1 - level)];
+        for (int i = 0; i + 1 < n - level; ++i)
+          for (int c = 0; c < 4; ++c) work[size_t(i)][c] = (1 - t) * work[size_t(i)][c] + t * work[size_t(i + 1)][c];
+      }
+      parts.push_back(left);
+    }
+    parts.push_back(curve);
+    return parts;
+  };
+  const int n0 = degree[0] + 1, n1 = param_dim > 1 ? degree[1] + 1 : 1;
+  const int p1 = param_dim > 1 ? pieces_along[1] : 1;
+  // Along the first direction, row by row: along[k][j] is row j of part k.
+  std::vector<std::vector<Row>> along(static_cast<size_t>(pieces), std::vector<Row>(static_cast<size_t>(n1)));
+  for (int j = 0; j < n1; ++j) {
+    const Row row(homogeneous.begin() + j * n0, homogeneous.begin() + (j + 1) * n0);
+    const std::vector<Row> parts = cut(row, pieces);
+    for (int k = 0; k < pieces; ++k) along[size_t(k)][size_t(j)] = parts[size_t(k)];
+  }
+  std::vector<Eigen::MatrixXd> out;
+  for (int l = 0; l < p1; ++l)
+    for (int k = 0; k < pieces; ++k) out.emplace_back(n0 * n1, space_dim);
+  for (int k = 0; k < pieces; ++k)
+    for (int i = 0; i < n0; ++i) {
+      Row column(static_cast<size_t>(n1));
+      for (int j = 0; j < n1; ++j) column[size_t(j)] = along[size_t(k)][size_t(j)][size_t(i)];
+      const std::vector<Row> parts = n1 > 1 ? cut(column, p1) : std::vector<Row>{column};
+      for (int l = 0; l < p1; ++l)
+        for (int j = 0; j < n1; ++j) {
+          const std::array<double, 4>& h = parts[size_t(l)][size_t(j)];
+          for (int c = 0; c < space_dim; ++c) out[size_t(k + pieces * l)](i + n0 * j, c) = h[c] / h[3];
+        }
+    }
+  return out;
+}
+
+// How many parts bezier_parts cuts an element into along each direction
+// for its parts' boxes: two, four along a direction at least twice as long
+// as the other (a strip of a graded mesh), a curve in four.
+std::array<int, 2> pieces_for_bounds(const Eigen::MatrixXd& points, const std::array<int, 2>& degree, int param_dim) {
+  if (param_dim == 1) return {4, 1};
+  const int n0 = degree[0] + 1, n1 = degree[1] + 1;
+  auto P = [&](int i, int j) -> Eigen::VectorXd { return points.row(i + n0 * j).transpose(); };
+  const double along0 = (P(n0 - 1, 0) - P(0, 0)).norm() + (P(n0 - 1, n1 - 1) - P(0, n1 - 1)).norm();
+  const double along1 = (P(0, n1 - 1) - P(0, 0)).norm() + (P(n0 - 1, n1 - 1) - P(n0 - 1, 0)).norm();
+  return {along0 >= 2 * along1 ? 4 : 2, along1 >= 2 * along0 ? 4 : 2};
 }
 
 // The rational Bezier element's point S and tangents dS/ds at Bezier
@@ -119,8 +226,17 @@ void MasterSurface::build_elements() {
         e.homogeneous[a][3] = be.weights[a];
       }
       // The Bezier control points hold the element (positive weights).
-      e.box_lo = be.points.colwise().minCoeff().transpose();
-      e.box_hi = be.points.colwise().maxCoeff().transpose();
+      const auto [tangent, normal] = element_directions(be.points, e.degree, n);
+      e.bounds.frame = fitted_frame(tangent, normal);
+      e.bounds.hold(be.points);
+      for (const Eigen::MatrixXd& part : bezier_parts(e.homogeneous, e.degree, n, int(be.points.cols()),
+                                                      pieces_for_bounds(be.points, e.degree, n))) {
+        Bounds b;
+        const auto [part_tangent, part_normal] = element_directions(part, e.degree, n);
+        b.frame = fitted_frame(part_tangent, part_normal);
+        b.hold(part);
+        e.parts.push_back(std::move(b));
+      }
       elements_.push_back(std::move(e));
     }
   }
@@ -133,13 +249,24 @@ void MasterSurface::build_elements() {
 int MasterSurface::build_tree(int first, int count) {
   const int id = int(nodes_.size());
   nodes_.emplace_back();
-  Eigen::VectorXd lo = elements_[order_[first]].box_lo, hi = elements_[order_[first]].box_hi;
+  // The node's frame: its elements' mean directions, each element's turned
+  // to agree with the first's (a side's parameters may run either way).
+  const Bounds& first_bounds = elements_[order_[first]].bounds;
+  const int sd = int(first_bounds.frame.rows());
+  Eigen::VectorXd tangent = Eigen::VectorXd::Zero(sd), normal = Eigen::VectorXd::Zero(sd);
   for (int i = first; i < first + count; ++i) {
-    lo = lo.cwiseMin(elements_[order_[i]].box_lo);
-    hi = hi.cwiseMax(elements_[order_[i]].box_hi);
+    const Eigen::MatrixXd f = elements_[order_[i]].bounds.frame;
+    tangent += f.col(0).dot(first_bounds.frame.col(0)) < 0 ? Eigen::VectorXd(-f.col(0)) : Eigen::VectorXd(f.col(0));
+    normal += f.col(sd - 1).dot(first_bounds.frame.col(sd - 1)) < 0 ? Eigen::VectorXd(-f.col(sd - 1))
+                                                                    : Eigen::VectorXd(f.col(sd - 1));
   }
-  nodes_[id].lo = lo;
-  nodes_[id].hi = hi;
+  // (Elements facing many ways, a normal sum shorter than half their
+  // count: the axes.)
+  Bounds bounds;
+  bounds.frame = normal.norm() > 0.5 * count ? fitted_frame(tangent, normal) : Eigen::MatrixXd::Identity(sd, sd);
+  for (int i = first; i < first + count; ++i) bounds.hold(elements_[order_[i]].points);
+  const Eigen::VectorXd lo = bounds.lo, hi = bounds.hi;
+  nodes_[id].bounds = std::move(bounds);
   if (count <= kLeafSize) {
     nodes_[id].first = first;
     nodes_[id].count = count;
@@ -151,8 +278,8 @@ int MasterSurface::build_tree(int first, int count) {
   const int half = count / 2;
   std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
                    [&](int a, int b) {
-                     return elements_[a].box_lo[axis] + elements_[a].box_hi[axis] <
-                            elements_[b].box_lo[axis] + elements_[b].box_hi[axis];
+                     return elements_[a].bounds.lo[axis] + elements_[a].bounds.hi[axis] <
+                            elements_[b].bounds.lo[axis] + elements_[b].bounds.hi[axis];
                    });
   const int left = build_tree(first, half);
   const int right = build_tree(first + half, count - half);
@@ -272,6 +399,46 @@ MasterPoint MasterSurface::master_point(const Element& e, const OnElement& neare
   return mp;
 }
 
+double MasterSurface::Bounds::distance(const Eigen::VectorXd& x) const {
+  double aligned = 0, fitted = 0;
+  const int sd = int(x.size());
+  for (int a = 0; a < sd; ++a) {
+    const double outside = std::max({lo[a] - x[a], 0.0, x[a] - hi[a]});
+    aligned += outside * outside;
+    double v = 0;
+    for (int c = 0; c < sd; ++c) v += frame(c, a) * x[c];
+    const double across = std::max({frame_lo[a] - v, 0.0, v - frame_hi[a]});
+    fitted += across * across;
+  }
+  return std::sqrt(std::max(aligned, fitted));
+}
+
+double MasterSurface::Element::distance_bound(const Eigen::VectorXd& x, double beyond) const {
+  const double whole = bounds.distance(x);
+  if (whole >= beyond || parts.empty()) return whole;
+  double nearest_part = std::numeric_limits<double>::infinity();
+  for (const Bounds& b : parts) {
+    nearest_part = std::min(nearest_part, b.distance(x));
+    if (nearest_part <= whole) return whole;
+  }
+  return std::max(whole, nearest_part);
+}
+
+void MasterSurface::Bounds::hold(const Eigen::MatrixXd& points) {
+  const Eigen::MatrixXd along = points * frame;  // (coordinates along each column)
+  if (lo.size() == 0) {
+    lo = points.colwise().minCoeff().transpose();
+    hi = points.colwise().maxCoeff().transpose();
+    frame_lo = along.colwise().minCoeff().transpose();
+    frame_hi = along.colwise().maxCoeff().transpose();
+    return;
+  }
+  lo = lo.cwiseMin(points.colwise().minCoeff().transpose());
+  hi = hi.cwiseMax(points.colwise().maxCoeff().transpose());
+  frame_lo = frame_lo.cwiseMin(along.colwise().minCoeff().transpose());
+  frame_hi = frame_hi.cwiseMax(along.colwise().maxCoeff().transpose());
+}
+
 std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x, int* candidates) const {
   const Clock clock(counters_);
   ++counters_.queries;
@@ -280,37 +447,49 @@ std::optional<MasterPoint> MasterSurface::project(const Eigen::VectorXd& x, int*
   OnElement best;
   double bound = std::numeric_limits<double>::infinity();
   // A point on the surface to round-off: no other element can be nearer.
-  const double on_surface = 1e-14 * (nodes_[0].hi - nodes_[0].lo).norm();
-  // Depth-first, nearer child first: at most one pending sibling per level
-  // of the median-split tree (depth log2(elements)).
-  std::array<int, 128> stack{};
-  int pending = 0;
-  stack[pending++] = 0;
-  while (pending > 0) {
-    const Node& node = nodes_[stack[--pending]];
-    if (box_distance(x, node.lo, node.hi) >= bound) continue;
-    if (node.left < 0) {
-      for (int i = node.first; i < node.first + node.count; ++i) {
-        const Element& e = elements_[order_[i]];
-        if (box_distance(x, e.box_lo, e.box_hi) >= bound) continue;
-        ++counters_.candidates;
-        if (candidates) ++*candidates;
-        OnElement nearest = nearest_on_element(e, x);
-        if (nearest.distance < bound) {
-          bound = nearest.distance;
-          best = std::move(nearest);
-          best_element = &e;
-          if (bound <= on_surface) return master_point(e, best, x);
-        }
+  const double on_surface = 1e-14 * (nodes_[0].bounds.hi - nodes_[0].bounds.lo).norm();
+  // Best first: the pending nodes and elements in a heap by their bound,
+  // Newton on an element only when no pending bound is lower, and done when
+  // the lowest is no nearer than the best point found. (The order does not
+  // depend on the thread: each query on its own.)
+  struct Pending {
+    double bound;
+    int node, element;  // a node, or (node -1) an element
+    bool operator<(const Pending& o) const { return bound > o.bound; }  // (min-heap)
+  };
+  thread_local std::vector<Pending> heap;
+  heap.clear();
+  heap.push_back({nodes_[0].bounds.distance(x), 0, -1});
+  auto push = [&](Pending p) {
+    if (p.bound >= bound) return;
+    heap.push_back(p);
+    std::push_heap(heap.begin(), heap.end());
+  };
+  while (!heap.empty() && heap.front().bound < bound) {
+    std::pop_heap(heap.begin(), heap.end());
+    const Pending next = heap.back();
+    heap.pop_back();
+    if (next.node < 0) {
+      const Element& e = elements_[next.element];
+      ++counters_.candidates;
+      if (candidates) ++*candidates;
+      OnElement nearest = nearest_on_element(e, x);
+      if (nearest.distance < bound) {
+        bound = nearest.distance;
+        best = std::move(nearest);
+        best_element = &e;
+        if (bound <= on_surface) return master_point(e, best, x);
       }
       continue;
     }
-    // Nearer child on top of the stack: visited first.
-    const double dl = box_distance(x, nodes_[node.left].lo, nodes_[node.left].hi);
-    const double dr = box_distance(x, nodes_[node.right].lo, nodes_[node.right].hi);
-    const bool left_first = dl <= dr;
-    stack[pending++] = left_first ? node.right : node.left;
-    stack[pending++] = left_first ? node.left : node.right;
+    const Node& node = nodes_[next.node];
+    if (node.left < 0) {
+      for (int i = node.first; i < node.first + node.count; ++i)
+        push({elements_[order_[i]].distance_bound(x, bound), -1, order_[i]});
+      continue;
+    }
+    push({nodes_[node.left].bounds.distance(x), node.left, -1});
+    push({nodes_[node.right].bounds.distance(x), node.right, -1});
   }
   if (!best_element) return std::nullopt;  // (no finite distance: x not finite)
   return master_point(*best_element, best, x);

@@ -8,11 +8,17 @@
 // control points) and the master's outward normal there.
 //
 // The search must not visit every master element per slave point: the
-// master's elements are kept in a bounding-volume hierarchy (an AABB tree
-// over the boxes of each element's rational Bezier control points, which
-// contain the element by the convex hull property, positive weights).  A query descends the tree nearest box first and prunes every
-// box farther than the best point found: O(log n) elements per point for a
-// point near the surface.  On each candidate element the projection is
+// master's elements are kept in a bounding-volume hierarchy (a tree over
+// the rational Bezier control points of each element, which contain the
+// element by the convex hull property, positive weights).  Each element
+// and each node holds its points in two boxes, one axis-aligned and one in
+// a frame fitted to the surface there (thin across a curved surface, where
+// the axis-aligned box is as thick as the element is long); an element
+// also has the boxes of its parts (cut by de Casteljau), thin where a long
+// curved element's own box is as thick as its sagitta.  A query takes
+// pending nodes and elements best bound first and stops when none is
+// nearer than the best point found: O(log n) elements per point, about one
+// for a point near the surface, a few far from it (docs/design.md).  On each candidate element the projection is
 // Newton's method on the element's Bezier coordinates (Gauss-Newton first),
 // kept inside the element, started at its centre; the element is evaluated
 // in its Bezier form (Bernstein polynomials, no knot search).  update()
@@ -78,10 +84,29 @@ class MasterSurface {
     NurbsPatch reference, current;
     std::vector<int> cps;
   };
+  // Two boxes that hold a set of control points, the distance to either a
+  // lower bound of the distance to the surface they hold: axis-aligned, and
+  // in an orthonormal frame (columns: the tangent directions, then the
+  // normal; the axes where no frame fits).
+  struct Bounds {
+    using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;  // (held inline: read per query)
+    Vector lo, hi;
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> frame;
+    Vector frame_lo, frame_hi;
+    // The larger of the two boxes' distances from x (0 inside both).
+    double distance(const Eigen::VectorXd& x) const;
+    // Grows both boxes to hold points (rows), the frame kept.
+    void hold(const Eigen::MatrixXd& points);
+  };
   struct Element {
     int side = 0, index = 0;
     Eigen::VectorXd lo, hi;              // parameter box
-    Eigen::VectorXd box_lo, box_hi;      // bounding box in space
+    Bounds bounds;                       // in space
+    std::vector<Bounds> parts;           // of its parts (bezier_parts): tighter
+    // A lower bound of the distance from x to the element: the larger of
+    // its boxes' distance and its nearest part's, or (enough to prune it)
+    // the boxes' alone when that is beyond `beyond`.
+    double distance_bound(const Eigen::VectorXd& x, double beyond) const;
     std::array<int, 2> degree{0, 0};
     Eigen::MatrixXd points;              // rational Bezier control points (n_local x dim), first direction fastest
     Eigen::VectorXd weights;
@@ -90,7 +115,7 @@ class MasterSurface {
     std::vector<std::array<double, 4>> homogeneous;
   };
   struct Node {
-    Eigen::VectorXd lo, hi;
+    Bounds bounds;
     int left = -1, right = -1;           // children, or -1 for a leaf
     int first = 0, count = 0;            // a leaf's range in order_
   };
