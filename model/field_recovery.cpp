@@ -414,51 +414,66 @@ ContactPartFields recover_contact_fields(const BezierMesh& mesh, const std::vect
   out.cell_gap.resize(ne);
   out.cell_active.assign(ne, false);
   const TensorGaussRule rule = tensor_gauss_rule(mesh.param_dim(), max_degree(mesh) + 3);
-  Eigen::VectorXd R;
-  Eigen::MatrixXd dR, M(nl, nl), b(nl, nf);
-  Eigen::RowVectorXd f(nf);
-  std::vector<int> idx;
-  std::vector<double> val;
-  for (int e = 0; e < ne; ++e) {
-    const BezierElement& el = mesh.element(e);
-    const ContactSide& side = *side_of[e];
-    M.setZero();
-    b.setZero();
-    double area = 0, p_int = 0, g_int = 0, gap_int = 0;
-    bool active = false;
-    for (size_t q = 0; q < rule.points.size(); ++q) {
-      mesh.basis(el, rule.points[q], R, &dR);
-      const double wt = rule.weights[q] * measure(el.points.transpose() * dR);
-      const Eigen::VectorXd xi = el.parameter(rule.points[q]);
-      side.space.basis(xi, idx, val);
-      for (int& K : idx) K += side.first_multiplier;
-      double p = 0, g = 0;
-      for (size_t k = 0; k < idx.size(); ++k) {
-        p -= sol.lambda[idx[k]] * val[k];
-        g += sol.weighted_gap[idx[k]] * val[k];
-        if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
+  // Each element on its own (the partner's closest-point search at every
+  // point is most of a two-body output): on the free cores, each element's
+  // result the same on any thread. What one throws is rethrown here (none
+  // may leave an OpenMP region).
+  std::exception_ptr failure;
+#pragma omp parallel num_threads(free_cores()) if (ne >= 64)
+  {
+    Eigen::VectorXd R;
+    Eigen::MatrixXd dR, M(nl, nl), b(nl, nf);
+    Eigen::RowVectorXd f(nf);
+    std::vector<int> idx;
+    std::vector<double> val;
+#pragma omp for schedule(dynamic, 8)
+    for (int e = 0; e < ne; ++e) {
+      try {
+        const BezierElement& el = mesh.element(e);
+        const ContactSide& side = *side_of[e];
+        M.setZero();
+        b.setZero();
+        double area = 0, p_int = 0, g_int = 0, gap_int = 0;
+        bool active = false;
+        for (size_t q = 0; q < rule.points.size(); ++q) {
+          mesh.basis(el, rule.points[q], R, &dR);
+          const double wt = rule.weights[q] * measure(el.points.transpose() * dR);
+          const Eigen::VectorXd xi = el.parameter(rule.points[q]);
+          side.space.basis(xi, idx, val);
+          for (int& K : idx) K += side.first_multiplier;
+          double p = 0, g = 0;
+          for (size_t k = 0; k < idx.size(); ++k) {
+            p -= sol.lambda[idx[k]] * val[k];
+            g += sol.weighted_gap[idx[k]] * val[k];
+            if (val[k] != 0.0 && sol.active[idx[k]]) active = true;
+          }
+          // The contact pushes along the partner's normal at the deformed point.
+          const ObstacleProbe probe = partner(el.points.transpose() * R + el.fields[0].transpose() * R);
+          f[0] = p;
+          f.segment(1, sd) = p * probe.normal.transpose();
+          f[nf - 1] = probe.gap;
+          M.noalias() += wt * R * R.transpose();
+          b.noalias() += (wt * R) * f;
+          area += wt;
+          p_int += wt * p;
+          g_int += wt * g;
+          gap_int += wt * probe.gap;
+        }
+        const Eigen::MatrixXd c = M.llt().solve(b);
+        out.point_pressure.segment(e * nl, nl) = c.col(0);
+        out.point_traction.middleRows(e * nl, nl) = c.middleCols(1, sd);
+        out.point_gap.segment(e * nl, nl) = c.col(nf - 1);
+        out.cell_pressure[e] = p_int / area;
+        out.cell_weighted_gap[e] = g_int / area;
+        out.cell_gap[e] = gap_int / area;
+        out.cell_active[e] = active;
+      } catch (...) {
+#pragma omp critical(igac_contact_fields)
+        if (!failure) failure = std::current_exception();
       }
-      // The contact pushes along the partner's normal at the deformed point.
-      const ObstacleProbe probe = partner(el.points.transpose() * R + el.fields[0].transpose() * R);
-      f[0] = p;
-      f.segment(1, sd) = p * probe.normal.transpose();
-      f[nf - 1] = probe.gap;
-      M.noalias() += wt * R * R.transpose();
-      b.noalias() += (wt * R) * f;
-      area += wt;
-      p_int += wt * p;
-      g_int += wt * g;
-      gap_int += wt * probe.gap;
     }
-    const Eigen::MatrixXd c = M.llt().solve(b);
-    out.point_pressure.segment(e * nl, nl) = c.col(0);
-    out.point_traction.middleRows(e * nl, nl) = c.middleCols(1, sd);
-    out.point_gap.segment(e * nl, nl) = c.col(nf - 1);
-    out.cell_pressure[e] = p_int / area;
-    out.cell_weighted_gap[e] = g_int / area;
-    out.cell_gap[e] = gap_int / area;
-    out.cell_active[e] = active;
   }
+  if (failure) std::rethrow_exception(failure);
   return out;
 }
 

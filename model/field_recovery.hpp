@@ -132,7 +132,7 @@ struct ContactPartFields {
   std::vector<double> cell_pressure;       // per element: mean of -lambda_h over the reference face
   std::vector<double> cell_weighted_gap;   // per element: mean of sum_K (Pi g)_K B_K
   std::vector<double> cell_gap;            // per element: mean of g_n(X + u)
-  std::vector<bool> cell_active;           // a multiplier whose support meets the element is active
+  std::vector<char> cell_active;           // a multiplier whose support meets the element is active (char: threads write it)
 };
 // `side_of[e]`: the contact side element e of `mesh` lies on; field 0 of
 // `mesh` the displacement.  The traction p_h n on the body: n the partner's
