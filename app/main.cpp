@@ -331,13 +331,14 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   VtkSeries series(dir);
   if (!quiet && earlier.stopped)
     fmt::print(stderr, "igac: continuing after step {} of the run stopped in {}\n", control.resume.size(), earlier.folder);
-  if (folder && !control.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
-    series.resume(adopt_earlier_steps(earlier, dir, vtk));
-    if (vtk) write_pvd(dir, series.steps());
-    // Our staging folder now holds the steps: it is the stopped run if this one stops too.
-    folder->keep_on_termination();
-    if (earlier.stopped) std::filesystem::remove_all(earlier.folder);
-  } else if (vtk) {  // step 0: the undeformed body, at load factor 0
+  // Step 0: the undeformed body, at load factor 0, and its contact faces
+  // (no pressure, the initial gaps). A run solved once whose contacts do
+  // not change with the load writes it after the solve, from the solve's
+  // own contact operator: assembling it again repeated a two-body case's
+  // whole segmented set-up (two unequal spheres: 6 s).
+  const bool step_zero_after_the_solve =
+      !stepped && std::none_of(model.contacts.begin(), model.contacts.end(), changes_with_the_load);
+  auto write_step_zero = [&](const WeightedGapOperator* reference) {
     // (quiet unless it runs long: a large mesh's step 0 took half a minute without a word)
     if (setup) setup->phase("writing step 0 of the ParaView files (the undeformed body)");
     RunResult undeformed;
@@ -345,7 +346,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
     if (!model.contacts.empty()) {  // and its contact faces: no pressure, the initial gaps
       // (the large-deformation obstacles stand at their reference position: factor 1 keeps them there)
       ContactSolve& c = undeformed.contact.emplace();
-      c.op = assemble_contact_operator(model, model.spec.finite_strain() ? 1.0 : 0.0);
+      c.op = reference ? *reference : assemble_contact_operator(model, model.spec.finite_strain() ? 1.0 : 0.0);
       c.solution.lambda = Eigen::VectorXd::Zero(c.op.weights.size());
       c.solution.weighted_gap = c.op.g0.cwiseQuotient(c.op.weights);
       c.solution.active.assign(size_t(c.op.weights.size()), 0);
@@ -359,6 +360,15 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
       }
     }
     series.write_step(model, undeformed, 0.0);
+  };
+  if (folder && !control.resume.empty()) {  // the earlier run's steps 0..N, as it wrote them
+    series.resume(adopt_earlier_steps(earlier, dir, vtk));
+    if (vtk) write_pvd(dir, series.steps());
+    // Our staging folder now holds the steps: it is the stopped run if this one stops too.
+    folder->keep_on_termination();
+    if (earlier.stopped) std::filesystem::remove_all(earlier.folder);
+  } else if (vtk && !step_zero_after_the_solve) {
+    write_step_zero(nullptr);
   }
   // Large deformation and load curves: one ParaView step per converged load
   // step, at its time, and the state to restart from.
@@ -401,6 +411,10 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
                                                                         spec.has_load_curves())));
     }
     // ParaView files (and the stress recovery they need) only when asked for.
+    if (vtk && step_zero_after_the_solve) {
+      const bool same_faces = r.contact && r.contact->op.weights.size() == model.num_multipliers();
+      write_step_zero(same_faces ? &r.contact->op : nullptr);
+    }
     if (vtk && !stepped && finite) series.write_step(model, r, 1.0);
     write_file_atomically(dir + "/summary.json", summary.dump(2) + "\n");
     if (const std::string note = folder->commit(); !note.empty()) fmt::print(stderr, "igac: warning: {}\n", note);

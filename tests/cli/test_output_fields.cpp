@@ -17,6 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/case_file.hpp"
+#include "model/model.hpp"
+#include "model/solve.hpp"
 #include "tests/support/igac_process.hpp"
 #include "tests/support/vtu_file.hpp"
 
@@ -65,6 +68,32 @@ TEST(VtkOutput, ScalarsThatCannotBeNegativeAreNotOnTheCycledFrictionCase) {
   EXPECT_GE(igac_test::min_over_steps(tmp.path() / "out", "von_mises", files), 0.0);
   EXPECT_GE(igac_test::min_over_steps(tmp.path() / "out", "stress_magnitude", files), 0.0);
   EXPECT_EQ(files, 33);  // step 0 and the 32 steps
+}
+
+// Step 0 of a run solved once whose contact does not change with the load
+// is written after the solve from the solve's own contact operator (two
+// bodies: not a second segmented set-up). Its weighted gaps are the
+// undeformed ones: those of the operator assembled afresh at load 0, to
+// round-off, on the roller pressed on a block (two bodies, small
+// deformation).
+TEST(VtkOutput, StepZeroFromTheSolvesOperatorHasTheUndeformedGaps) {
+  igac_test::TempDir tmp("step_zero");
+  const std::string toml = std::string(IGAC_SOURCE_DIR) + "/cases/roller_on_block.toml";
+  const auto o = igac_test::run_igac("run " + igac_test::quote(toml) + " --quiet --out out", tmp.path());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const igac::Model m = igac::build_model(igac::read_case(toml));
+  const igac::WeightedGapOperator fresh = igac::assemble_contact_operator(m, 0.0);
+  const auto grid = igac_test::read_vtu((tmp.path() / "out" / "multipliers_0000.vtu").string());
+  vtkDataArray* gap = grid->GetPointData()->GetArray("weighted_gap");
+  vtkDataArray* lambda = grid->GetPointData()->GetArray("lambda");
+  ASSERT_NE(gap, nullptr);
+  ASSERT_NE(lambda, nullptr);
+  ASSERT_EQ(gap->GetNumberOfTuples(), fresh.weights.size());
+  const Eigen::VectorXd expected = fresh.g0.cwiseQuotient(fresh.weights);
+  for (vtkIdType k = 0; k < gap->GetNumberOfTuples(); ++k) {
+    EXPECT_NEAR(gap->GetComponent(k, 0), expected[k], 1e-12 * (1 + std::abs(expected[k]))) << k;
+    EXPECT_EQ(lambda->GetComponent(k, 0), 0.0) << k;
+  }
 }
 
 // The fields an engineer looks for (issue 25), on the two-patch Hertz case
