@@ -335,7 +335,7 @@ int run_command(const std::string& path, std::string out, std::optional<int> ref
   // (no pressure, the initial gaps). A run solved once whose contacts do
   // not change with the load writes it after the solve, from the solve's
   // own contact operator: assembling it again repeated a two-body case's
-  // whole segmented set-up (two unequal spheres: 6 s).
+  // whole segmented set-up (docs/benchmarks.md, "Two unequal spheres").
   const bool step_zero_after_the_solve =
       !stepped && std::none_of(model.contacts.begin(), model.contacts.end(), changes_with_the_load);
   auto write_step_zero = [&](const WeightedGapOperator* reference) {

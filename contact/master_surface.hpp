@@ -17,8 +17,9 @@
 // also has the boxes of its parts (cut by de Casteljau), thin where a long
 // curved element's own box is as thick as its sagitta.  A query takes
 // pending nodes and elements best bound first and stops when none is
-// nearer than the best point found: O(log n) elements per point, about one
-// for a point near the surface, a few far from it (docs/design.md).  On each candidate element the projection is
+// nearer than the best point found: O(log n) nodes per point, Newton on
+// about one element for a point near the surface, a few far from it
+// (docs/design.md).  On each candidate element the projection is
 // Newton's method on the element's Bezier coordinates (Gauss-Newton first),
 // kept inside the element, started at its centre; the element is evaluated
 // in its Bezier form (Bernstein polynomials, no knot search).  update()
