@@ -173,43 +173,40 @@ void FiniteStrainFriction::residual(double t, const Eigen::MatrixXd& u, const Ei
   }
 }
 
-void FiniteStrainFriction::jacobian(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda_n,
-                                    const Eigen::VectorXd& gamma, const std::vector<char>& normal_active,
-                                    const Eigen::VectorXd& lambda_t, const RowSparse& G,
-                                    std::vector<Eigen::Triplet<double>>& out) const {
-  const int first = n_ + m_;  // the first tangential unknown (and row)
-  for (int r = 0; r < T_free_.outerSize(); ++r)
-    for (RowSparse::InnerIterator it(T_free_, r); it; ++it) out.emplace_back(int(it.col()), first + r, it.value());
+void FiniteStrainFriction::constraint_rows(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda_n,
+                                           const Eigen::VectorXd& gamma, const std::vector<char>& normal_active,
+                                           const Eigen::VectorXd& lambda_t, TangentialRows& out) const {
+  const int first = m_;  // the first tangential row among the constraints
+  out.T = T_free_;
+  out.s = Eigen::VectorXd::Zero(m_ * nt_);
+  out.d = Eigen::VectorXd::Zero(m_ * nt_);
+  out.mixed_B.clear();
+  out.mixed_lambda.clear();
   const Eigen::VectorXd s = slip(t, u);
   const std::vector<char> st = states(t, u, lambda_n, gamma, normal_active, lambda_t);
   for (int K = 0; K < m_; ++K) {
     const double w = weights_[K];
-    const int row = first + K * nt_;
+    const int row = K * nt_;  // among the tangential rows
     if (st[K] == kStick) {
-      for (int j = 0; j < nt_; ++j)
-        for (RowSparse::InnerIterator it(T_free_, K * nt_ + j); it; ++it)
-          out.emplace_back(row + j, int(it.col()), c_ * it.value());
+      out.s.segment(row, nt_).setConstant(c_);  // c s_K: c T_K du
     } else if (st[K] == kSlip && friction_[K] > 0) {
       // r = w Phi(lambda_t, s / w, b), b = -f (lambda_n + c gamma / w)
       const double f = friction_[K];
-      const Eigen::VectorXd lt = lambda_t.segment(K * nt_, nt_), sk = s.segment(K * nt_, nt_) / w;
+      const Eigen::VectorXd lt = lambda_t.segment(row, nt_), sk = s.segment(row, nt_) / w;
       const double b = -f * (lambda_n[K] + c_ * gamma[K] / w);
       const SlipLinearisation lin = linearise_slip(lt, sk, b, ct_[K]);
       for (int i = 0; i < nt_; ++i) {
         for (int j = 0; j < nt_; ++j) {
-          out.emplace_back(row + i, row + j, w * lin.d_lambda_t(i, j));
+          out.mixed_lambda.emplace_back(first + row + i, first + row + j, w * lin.d_lambda_t(i, j));
           // d s_K / du = T: w d_s (1 / w) T
-          if (lin.d_s(i, j) != 0.0)
-            for (RowSparse::InnerIterator it(T_free_, K * nt_ + j); it; ++it)
-              out.emplace_back(row + i, int(it.col()), lin.d_s(i, j) * it.value());
+          if (lin.d_s(i, j) != 0.0) out.mixed_B.emplace_back(first + row + i, first + row + j, lin.d_s(i, j));
         }
-        // w d_b db: db = -f dlambda_n - f c / w dgamma
-        out.emplace_back(row + i, n_ + K, w * lin.d_b[i] * -f);
-        for (RowSparse::InnerIterator it(G, K); it; ++it)
-          out.emplace_back(row + i, int(it.col()), lin.d_b[i] * -f * c_ * it.value());
+        // w d_b db: db = -f dlambda_n - f c / w dgamma, dgamma = G_K du
+        out.mixed_lambda.emplace_back(first + row + i, K, w * lin.d_b[i] * -f);
+        out.mixed_B.emplace_back(first + row + i, K, lin.d_b[i] * -f * c_);
       }
     } else {
-      for (int j = 0; j < nt_; ++j) out.emplace_back(row + j, row + j, w);
+      out.d.segment(row, nt_).setConstant(w);
     }
   }
 }

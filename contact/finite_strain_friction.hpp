@@ -109,12 +109,20 @@ class FiniteStrainFriction {
   void residual(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda_n, const Eigen::VectorXd& gamma,
                 const std::vector<char>& normal_active, const Eigen::VectorXd& lambda_t,
                 Eigen::Ref<Eigen::VectorXd> r_u, Eigen::Ref<Eigen::VectorXd> r_t) const;
-  // Their derivatives as triplets of the whole Newton matrix (unknowns
-  // [u (n); lambda_n (m); lambda_t]): the columns T^T of the u rows and
-  // the tangential rows; G: d gamma / du (m x n).
-  void jacobian(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda_n, const Eigen::VectorXd& gamma,
-                const std::vector<char>& normal_active, const Eigen::VectorXd& lambda_t, const RowSparse& G,
-                std::vector<Eigen::Triplet<double>>& out) const;
+  // Their derivatives as the Newton matrix's constraint rows
+  // (engine/block_jacobian.hpp), numbered after the m normal ones: the
+  // tangential rows T of B (their columns T^T in the u rows), and per row
+  // stick: s = c (c T_K du), open: d = K_K, slip: through M_B (its T rows
+  // and the gap row G_K) and M_l (its lambda_t and lambda_n).  Indices of
+  // mixed_B and mixed_lambda are among all m + rows() constraints.
+  struct TangentialRows {
+    RowSparse T;
+    Eigen::VectorXd s, d;  // rows() each
+    std::vector<Eigen::Triplet<double>> mixed_B, mixed_lambda;
+  };
+  void constraint_rows(double t, const Eigen::MatrixXd& u, const Eigen::VectorXd& lambda_n,
+                       const Eigen::VectorXd& gamma, const std::vector<char>& normal_active,
+                       const Eigen::VectorXd& lambda_t, TangentialRows& out) const;
   // sum_K lambda_t,K . ds_K/du on every dof (num_dofs): T_all^T lambda_t.
   Eigen::VectorXd forces_on_every_dof(const Eigen::VectorXd& lambda_t) const { return T_all_.transpose() * lambda_t; }
   // The tangential force on the (slave) face of contact k, -sum_K lambda_t,K . int B_K t_j.

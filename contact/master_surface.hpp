@@ -67,6 +67,7 @@ class MasterSurface {
 
   int num_elements() const { return int(elements_.size()); }
   // Body numbers of side s's control points, in its face patch's numbering.
+  int num_sides() const { return int(sides_.size()); }
   const std::vector<int>& side_control_points(int s) const { return sides_[s].cps; }
   const NurbsPatch& side_patch(int s) const { return sides_[s].current; }
   // What the search has cost since construction (or reset): project()

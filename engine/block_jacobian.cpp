@@ -40,6 +40,17 @@ RowSparse condensed_rows(const BlockJacobian& J, int begin, int end, int columns
       }
       if (mine(row) && row < columns) take(row, row, J.d[k]);
     }
+    if (J.has_mixed_rows())
+      for (int k = std::max(begin - n, 0); k < std::min(end - n, m); ++k) {
+        const int row = n + k;
+        if (J.mixed_B.rows() > 0)
+          for (RowSparse::InnerIterator j(J.mixed_B, k); j; ++j)
+            for (RowSparse::InnerIterator it(J.B, int(j.col())); it; ++it)
+              if (it.col() < columns) take(row, int(it.col()), j.value() * it.value());
+        if (J.mixed_lambda.rows() > 0)
+          for (RowSparse::InnerIterator j(J.mixed_lambda, k); j; ++j)
+            if (n + j.col() < columns) take(row, n + int(j.col()), j.value());
+      }
     if (extra)
       for (int r = std::max(begin, 0); r < std::min(end, int(extra->rows())); ++r)
         for (RowSparse::InnerIterator it(*extra, r); it; ++it)
@@ -81,6 +92,25 @@ RowSparse condensed_rows(const BlockJacobian& J, int begin, int end, int columns
   outer[rows] = kept;
   R.resizeNonZeros(kept);
   return R;
+}
+
+bool BlockJacobian::closed_row(int k) const {
+  if (s[k] != 0.0) return true;
+  const auto holds = [k](const Eigen::SparseMatrix<double, Eigen::RowMajor>& M) {
+    return M.rows() > k && M.outerIndexPtr()[k + 1] > M.outerIndexPtr()[k];  // (compressed: its entries in row k)
+  };
+  return holds(mixed_B) || holds(mixed_lambda);
+}
+
+BlockJacobian as_one_block(const BlockJacobian& J) {
+  BlockJacobian one;
+  one.K = assemble_condensed(J);
+  one.general = true;
+  one.B.resize(0, one.K.cols());
+  one.rigid_modes = J.rigid_modes;
+  one.pinned = J.pinned;
+  one.local = J.local;
+  return one;
 }
 
 Eigen::SparseMatrix<double> assemble_full(const BlockJacobian& J) {

@@ -3,15 +3,21 @@
 // hands to the load-stepping driver (engine/load_stepping.hpp) and the driver
 // to its linear backend (engine/linear_backend.hpp).
 //
-//   J = [ K            B^T     ]   K: n x n (symmetric pattern), B: m x n,
-//       [ diag(s) B    diag(d) ]   and per constraint row k either s_k = 0
-//                                  (inactive: d_k dl_k = b_k) or d_k = 0
-//                                  (active: s_k B_k du = b_k).
+//   J = [ K                  B^T              ]   K: n x n (symmetric
+//       [ (diag(s) + M_B) B  diag(d) + M_l    ]   pattern), B: m x n
 //
 // This is the semismooth-Newton matrix of weighted-gap contact
 // (model/finite_strain_problem.hpp): B holds the gap derivatives, s the scale c of
-// the active rows, d the weights of the inactive ones.  Element-local
-// unknowns (the mixed formulation's dilatations) come condensed (Local).
+// the active rows, d the weights of the inactive ones: per constraint row k
+// either s_k = 0 (inactive: d_k dl_k = b_k) or d_k = 0 (active:
+// s_k B_k du = b_k).  M_B and M_l (m x m, sparse, usually empty) let a row
+// combine several of B's rows and several multipliers: Coulomb friction's
+// slip rows (contact/finite_strain_friction.hpp), whose tangential
+// multipliers lean on their normal one and on its gap, B holding the
+// tangential slips' rows below the gaps'.  A row is closed (solved with
+// the displacements) when s_k != 0 or M_B or M_l holds an entry in it;
+// otherwise it is d_k dl_k = b_k.  Element-local unknowns (the mixed
+// formulation's dilatations) come condensed (Local).
 #pragma once
 
 #include <Eigen/Dense>
@@ -31,16 +37,28 @@ struct BlockJacobian {
   // element of either body joins.  Its pattern may change every call.
   Eigen::SparseMatrix<double> K_coupling;
   // K is the whole Newton matrix (B empty), unsymmetric beyond what GMRES
-  // absorbs: factorised by UMFPACK as it stands (large-deformation friction,
-  // contact/finite_strain_friction.hpp, whose slip rows tie the tangential
-  // multipliers to the normal ones).
+  // absorbs: factorised by an LU as it stands (the small-deformation
+  // frictional solve's last iterations, contact/small_strain_friction.cpp;
+  // as_one_block below).
   bool general = false;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B;  // m x n (m = 0: no constraints)
   Eigen::VectorXd s, d;                            // m each
+  // m x m each, or empty (0 x 0): rows that combine (above)
+  Eigen::SparseMatrix<double, Eigen::RowMajor> mixed_B, mixed_lambda;
+  bool has_mixed_rows() const { return mixed_B.nonZeros() > 0 || mixed_lambda.nonZeros() > 0; }
+  // Whether constraint row k is closed: s_k != 0, or M_B or M_l holds an entry in row k.
+  bool closed_row(int k) const;
   // Motions the constraints must hold (K R = 0 up to the terms GMRES
   // absorbs; n x k, orthonormal) and k equations where they are pinned.
   Eigen::MatrixXd rigid_modes;
   std::vector<int> pinned;
+  // Optional: every equation the constraint rows may touch in the run (the
+  // contact faces' and master faces' control points).  A factorisation
+  // orders them last from its first setup on, so that its ordering does not
+  // follow the state it first sees: a run restarted at step k factorises as
+  // the uninterrupted one did, to the bit.  Empty: the equations B touches
+  // at the first setup (fixed from then on).
+  std::vector<int> constraint_equations;
   // Optional: element-local unknowns z, the last C.rows() entries of x
   // (after the multipliers), condensed in the solve: the mixed
   // formulation's block dilatations (u-p Newton, engine/volumetric_projection.hpp).
@@ -75,6 +93,11 @@ Eigen::SparseMatrix<double> assemble_condensed(const BlockJacobian& J);
 Eigen::SparseMatrix<double, Eigen::RowMajor> condensed_rows(
     const BlockJacobian& J, int begin, int end, int columns = -1,
     const Eigen::SparseMatrix<double, Eigen::RowMajor>* extra = nullptr);
+
+// J with the constraint rows and the K_coupling inside K, as one block
+// (general = true, B empty; Local and the rigid modes kept): for a solver
+// that factorises the whole (PETSc's LU) and does not read M_B and M_l.
+BlockJacobian as_one_block(const BlockJacobian& J);
 
 // A right-hand side b of the whole J (local unknowns last) condensed to
 // assemble_condensed's rows: b_u += C^T diag(g) b_z / h; and the local part

@@ -52,6 +52,17 @@ struct SaddleSolver::Impl {
   const Eigen::MatrixXd* held_modes = nullptr;
   Eigen::MatrixXd reduced_modes;
   BorderedSpdSolver M;
+  // Rows that combine (BlockJacobian::mixed_B, mixed_lambda; friction's slip
+  // rows): C_A = (diag(s) + M_B)_A B is not B_A, so the Schur complement
+  // C_A K_s^-1 B_A^T - (diag(d) + M_l)_AA is not symmetric.  Y then holds
+  // the columns of every B row a closed row reads (`reads`, the closed ones
+  // among them, by the order of their first row), mixed_rows C_A's
+  // coefficients on them, and the bordered system is solved by LU.
+  bool mixed = false;
+  std::vector<int> reads;        // the B rows whose columns Y holds (a superset of `active`)
+  std::vector<int> active_in_Y;  // per active multiplier: its column of Y
+  RowSparse mixed_rows;          // na x reads.size()
+  BorderedLuSolver M_lu;
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
   Eigen::SparseMatrix<double> full;
 
@@ -89,11 +100,19 @@ struct SaddleSolver::Impl {
       y.head(n).noalias() += J->B.transpose() * x.tail(m);
       const Eigen::VectorXd Bu = J->B * x.head(n);
       y.tail(m) = J->s.cwiseProduct(Bu) + J->d.cwiseProduct(x.tail(m));
+      if (J->mixed_B.rows() > 0) y.tail(m).noalias() += J->mixed_B * Bu;
+      if (J->mixed_lambda.rows() > 0) y.tail(m).noalias() += J->mixed_lambda * x.tail(m);
     }
     return y;
   }
 
   // x = P^-1 b for P = J with K replaced by K_s (exact when K_s R = 0).
+  // With rows that combine (`mixed`) the closed rows read
+  //   C_A du + E_AA dl_A = b_A - E_AI dl_I,  E = diag(d) + M_l,
+  // du = K_s^-1 (f - B_A^T dl_A) + R c, f = b_u - B_I^T dl_I, and
+  //   [ C_A K_s^-1 B_A^T - E_AA   -C_A R ] [dl_A]   [ C_A K_s^-1 f - b_A + E_AI dl_I ]
+  //   [ -R^T B_A^T                  0    ] [ c  ] = [ -R^T f                         ];
+  // without, each active row is divided by its s_k: C_A = B_A, E = 0.
   void precondition(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     x.setZero(n + m);
     Eigen::VectorXd lambda = Eigen::VectorXd::Zero(m);
@@ -104,15 +123,28 @@ struct SaddleSolver::Impl {
     for (int p : J->pinned) fp[p] = 0;
     Eigen::VectorXd y = chol().forward_full(fp);
     const int na = int(active.size());
-    Eigen::VectorXd rhs(na + k), yr(Eigen::Index(reach.rows.size()));
+    Eigen::VectorXd yr(Eigen::Index(reach.rows.size()));
     for (size_t i = 0; i < reach.rows.size(); ++i) yr[i] = y[reach.rows[i]];
-    rhs.head(na).noalias() = Y.transpose() * yr;
-    for (int i = 0; i < na; ++i) rhs[i] -= b[n + active[i]] / J->s[active[i]];
-    if (k > 0) rhs.tail(k).noalias() = held_modes->transpose() * f;
-    Eigen::VectorXd lambda_A, c;
-    M.solve(rhs.head(na), rhs.tail(k), lambda_A, c);
+    const Eigen::VectorXd q = k > 0 ? Eigen::VectorXd(held_modes->transpose() * f) : Eigen::VectorXd();
+    Eigen::VectorXd lambda_A, c, in_Y;
+    if (!mixed) {
+      Eigen::VectorXd r = Y.transpose() * yr;
+      for (int i = 0; i < na; ++i) r[i] -= b[n + active[i]] / J->s[active[i]];
+      M.solve(r, q, lambda_A, c);
+      in_Y = lambda_A;
+    } else {
+      Eigen::VectorXd r = mixed_rows * (Y.transpose() * yr);
+      for (int i = 0; i < na; ++i) {
+        r[i] -= b[n + active[i]];
+        if (J->mixed_lambda.rows() > 0)
+          for (RowSparse::InnerIterator it(J->mixed_lambda, active[i]); it; ++it) r[i] += it.value() * lambda[it.col()];
+      }
+      M_lu.solve(r, q, lambda_A, c);
+      in_Y = Eigen::VectorXd::Zero(Eigen::Index(reads.size()));
+      for (int i = 0; i < na; ++i) in_Y[active_in_Y[i]] = lambda_A[i];
+    }
     if (na > 0) {
-      yr.noalias() = Y * lambda_A;
+      yr.noalias() = Y * in_Y;
       for (size_t i = 0; i < reach.rows.size(); ++i) y[reach.rows[i]] -= yr[i];
     }
     x.head(n) = chol().backward_full(y);
@@ -179,6 +211,30 @@ struct SaddleSolver::Impl {
       r = b - apply_J(x);
     }
     return done(r);
+  }
+
+  // Y = L^-1 P B_rows^T on the reach of B's rows `rows` (the pinned
+  // equations left out), its columns, and so `rows`, reordered by their
+  // first row: both the solve and the Gram matrix skip the zeros above it.
+  // Returns each column's first row.
+  std::vector<int> columns_of_rows(const BlockJacobian& Jac, std::vector<int>& rows) {
+    const int nr = int(rows.size());
+    std::vector<Eigen::Triplet<double>> t;
+    std::vector<int> eqs;
+    for (int i = 0; i < nr; ++i)
+      for (RowSparse::InnerIterator it(Jac.B, rows[i]); it; ++it)
+        if (!pinned[it.col()] && it.value() != 0.0) {
+          t.emplace_back(it.col(), i, it.value());
+          eqs.push_back(it.col());
+        }
+    Eigen::SparseMatrix<double> C(n, nr);
+    C.setFromTriplets(t.begin(), t.end());
+    reach = chol().reach(eqs);
+    SparseCholesky::ColumnsByStart columns = chol().forward_by_start(reach, C);
+    Y = std::move(columns.Y);
+    const std::vector<int> by_row = rows;
+    for (int i = 0; i < nr; ++i) rows[i] = by_row[columns.order[i]];
+    return std::move(columns.start);
   }
 
   // held_modes and BR from the rigid modes R and the active rows: the
@@ -292,6 +348,15 @@ double infinity_norm(const BlockJacobian& J) {
       rows[n + k] += std::abs(J.s[k] * it.value());
     }
   if (m > 0) rows.tail(m) += J.d.cwiseAbs();
+  if (J.has_mixed_rows()) {  // (|M_B| |B| bounds the rows' sums from above: a scale)
+    Eigen::VectorXd row_sums = Eigen::VectorXd::Zero(m);
+    for (int k = 0; k < m; ++k)
+      for (RowSparse::InnerIterator it(J.B, k); it; ++it) row_sums[k] += std::abs(it.value());
+    for (const RowSparse* M : {&J.mixed_B, &J.mixed_lambda})
+      for (int k = 0; k < M->outerSize(); ++k)
+        for (RowSparse::InnerIterator it(*M, k); it; ++it)
+          rows[n + k] += std::abs(it.value()) * (M == &J.mixed_B ? row_sums[it.col()] : 1.0);
+  }
   return rows.size() ? rows.maxCoeff() : 0.0;
 }
 }  // namespace
@@ -338,11 +403,13 @@ bool SaddleSolver::setup(const BlockJacobian& J) {
   bool analysed = true;
   try {
     if (!I.chol().analyzed()) {
-      std::vector<int> last;  // the equations B touches, ordered last
+      std::vector<int> last;  // the equations B touches (may touch: constraint_equations), ordered last
       std::vector<char> touched(I.n, 0);
-      for (int k = 0; k < I.m; ++k)
+      for (int k = 0; k < I.m && J.constraint_equations.empty(); ++k)
         for (RowSparse::InnerIterator it(J.B, k); it; ++it)
           if (it.value() != 0.0 && !I.pinned[it.col()]) touched[it.col()] = 1;
+      for (int eq : J.constraint_equations)
+        if (!I.pinned[eq]) touched[eq] = 1;
       for (int i = 0; i < I.n; ++i)
         if (touched[i]) last.push_back(i);
       I.chol().analyze(I.Ks, last);
@@ -377,31 +444,16 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
   I.active.clear();
   I.inactive.clear();
   for (int k = 0; k < I.m; ++k) {
-    if (J.s[k] != 0.0) I.active.push_back(k);
+    if (J.closed_row(k)) I.active.push_back(k);
     else I.inactive.push_back(k);
   }
-  const int na = int(I.active.size());
-  std::vector<int> start;
-  {
-    std::vector<Eigen::Triplet<double>> t;
-    std::vector<int> eqs;
-    for (int i = 0; i < na; ++i)
-      for (RowSparse::InnerIterator it(J.B, I.active[i]); it; ++it)
-        if (!I.pinned[it.col()] && it.value() != 0.0) {
-          t.emplace_back(it.col(), i, it.value());
-          eqs.push_back(it.col());
-        }
-    Eigen::SparseMatrix<double> C(I.n, na);
-    C.setFromTriplets(t.begin(), t.end());
-    I.reach = I.chol().reach(eqs);
-    // Y's columns, and so the active rows, in the order of their first
-    // row: both the solve and the Gram matrix skip the zeros above it.
-    SparseCholesky::ColumnsByStart columns = I.chol().forward_by_start(I.reach, C);
-    I.Y = std::move(columns.Y);
-    start = std::move(columns.start);
-    const std::vector<int> by_row = I.active;
-    for (int i = 0; i < na; ++i) I.active[i] = by_row[columns.order[i]];
+  I.mixed = J.has_mixed_rows();
+  if (I.mixed) {
+    const bool ok = schur_of_mixed_rows(J);
+    stats_.schur_s += schur_clock.seconds();
+    return ok;
   }
+  const std::vector<int> start = I.columns_of_rows(J, I.active);
   I.hold_rigid_modes(J);
   const Eigen::MatrixXd S = dense::gram(I.Y, start);  // Y^T Y on OpenBLAS (engine/dense_kernels.hpp)
   if (!I.M.compute(S, I.BR)) {  // dependent constraints: let LU on J decide
@@ -411,6 +463,75 @@ bool SaddleSolver::schur_of_active_rows(const BlockJacobian& J) {
     return ok;
   }
   stats_.schur_s += schur_clock.seconds();
+  return true;
+}
+
+// The same with rows that combine (Impl::precondition): Y holds the
+// columns of every B row a closed row reads, S = C_A K_s^-1 B_A^T - E_AA is
+// a product with the Gram matrix of Y, and the bordered system an LU.
+bool SaddleSolver::schur_of_mixed_rows(const BlockJacobian& J) {
+  auto& I = *impl_;
+  std::vector<int> where(I.m, -1);  // a B row's place in `reads`
+  I.reads = I.active;
+  for (int k : I.reads) where[k] = 0;
+  if (J.mixed_B.rows() > 0)
+    for (int k : I.active)
+      for (RowSparse::InnerIterator it(J.mixed_B, k); it; ++it)
+        if (where[it.col()] < 0) {
+          where[it.col()] = 0;
+          I.reads.push_back(int(it.col()));
+        }
+  const int nr = int(I.reads.size()), na = int(I.active.size());
+  const std::vector<int> start = I.columns_of_rows(J, I.reads);
+  for (int i = 0; i < nr; ++i) where[I.reads[i]] = i;
+  // the closed rows in Y's order, each with its column of Y
+  std::vector<char> closed(I.m, 0);
+  for (int k : I.active) closed[k] = 1;
+  I.active.clear();
+  I.active_in_Y.clear();
+  for (int i = 0; i < nr; ++i)
+    if (closed[I.reads[i]]) {
+      I.active.push_back(I.reads[i]);
+      I.active_in_Y.push_back(i);
+    }
+  // C_A's coefficients on the rows Y holds, and E_AA
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < na; ++i) {
+    const int k = I.active[i];
+    if (J.s[k] != 0.0) t.emplace_back(i, where[k], J.s[k]);
+    if (J.mixed_B.rows() > 0)
+      for (RowSparse::InnerIterator it(J.mixed_B, k); it; ++it) t.emplace_back(i, where[it.col()], it.value());
+  }
+  I.mixed_rows.resize(na, nr);
+  I.mixed_rows.setFromTriplets(t.begin(), t.end());
+  I.hold_rigid_modes(J);
+  const Eigen::MatrixXd gram = dense::gram(I.Y, start);  // Y^T Y (engine/dense_kernels.hpp)
+  Eigen::MatrixXd S(na, na);
+  if (nr == na) {  // (the usual case: every row a closed row reads is closed)
+    S.noalias() = I.mixed_rows * gram;
+  } else {
+    Eigen::MatrixXd gram_active(nr, na);
+    for (int i = 0; i < na; ++i) gram_active.col(i) = gram.col(I.active_in_Y[i]);
+    S.noalias() = I.mixed_rows * gram_active;
+  }
+  std::vector<int> in_active(I.m, -1);
+  for (int i = 0; i < na; ++i) in_active[I.active[i]] = i;
+  for (int i = 0; i < na; ++i) {
+    const int k = I.active[i];
+    S(i, i) -= J.d[k];
+    if (J.mixed_lambda.rows() > 0)
+      for (RowSparse::InnerIterator it(J.mixed_lambda, k); it; ++it)
+        if (in_active[it.col()] >= 0) S(i, in_active[it.col()]) -= it.value();
+  }
+  // the borders: B_A R_h (the balance) and C_A R_h (the rows)
+  Eigen::MatrixXd read_R(nr, I.k);
+  for (int i = 0; i < nr && I.k > 0; ++i) read_R.row(i) = J.B.row(I.reads[i]) * *I.held_modes;
+  const Eigen::MatrixXd rows_R = I.mixed_rows * read_R;
+  if (!I.M_lu.compute(S, rows_R, I.BR)) {  // dependent constraints: let LU on J decide
+    const bool ok = I.factor_full(why_);
+    stats_.fallbacks += ok;
+    return ok;
+  }
   return true;
 }
 

@@ -26,6 +26,10 @@
 //    the stiffness), and GMRES also absorbs what makes K_s R != 0 (the
 //    curvature of a curved obstacle) and the rest of K_coupling.  For a
 //    symmetric K and no K_coupling one application is exact.
+// Rows that combine (BlockJacobian::mixed_B, mixed_lambda: Coulomb
+// friction's slip rows) keep the same factor: the closed rows' Schur
+// complement C_A K_s^-1 B_A^T - E_AA is not symmetric and its bordered
+// system is solved by a dense LU instead of a Cholesky factor.
 // When K_s is not positive definite (a buckling state, a law without
 // convexity) or GMRES stalls, that Newton iteration falls back to UMFPACK
 // on the whole J: never a wrong step, only a slower one.
@@ -67,6 +71,7 @@ class SaddleSolver final : public LinearBackend {
 
  private:
   bool schur_of_active_rows(const BlockJacobian& J);
+  bool schur_of_mixed_rows(const BlockJacobian& J);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::string why_;

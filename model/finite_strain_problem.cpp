@@ -44,6 +44,18 @@ FiniteStrainProblem::FiniteStrainProblem(FiniteStrainSetup setup) : s_(std::move
   if (m_ > 0) {
     // tabulated once: every residual and Jacobian walks the same face points
     for (const auto& c : s_.contacts) contact_quadratures_.emplace_back(*c.face);
+    // the equations a contact row may touch (BlockJacobian::constraint_equations)
+    std::vector<int> cps;
+    for (const auto& c : s_.contacts) {
+      for (const ContactSide& side : c.face->sides) cps.insert(cps.end(), side.face_cps.begin(), side.face_cps.end());
+      for (int s = 0; c.master && s < c.master->num_sides(); ++s)
+        cps.insert(cps.end(), c.master->side_control_points(s).begin(), c.master->side_control_points(s).end());
+    }
+    std::sort(cps.begin(), cps.end());
+    cps.erase(std::unique(cps.begin(), cps.end()), cps.end());
+    for (int a : cps)
+      for (int i = 0; i < s_.dofs->dim(); ++i)
+        if (const int eq = s_.dofs->equation(a * s_.dofs->dim() + i); eq >= 0) contact_equations_.push_back(eq);
     mortar_points_.resize(s_.contacts.size());
     // K_K on the reference faces: the small-deformation operator's weights
     for (size_t k = 0; k < s_.contacts.size(); ++k) {
@@ -263,12 +275,13 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   TotalLagrangianAssembler::LocalDilatation local;
   const Eigen::VectorXd z = x.tail(nz_);
   if (!elasticity(u, f_int, &J.K, nz_ ? &z : nullptr, nz_ ? &local : nullptr)) return false;
-  J.local = {};  // set last: the friction's whole matrix below is the condensed one
+  J.local = {};  // (set below)
   J.B.resize(m_, n_);
   J.s = Eigen::VectorXd::Zero(m_);
   J.d = Eigen::VectorXd::Zero(m_);
   J.rigid_modes = modes_.modes;
   J.pinned = modes_.pinned;
+  J.constraint_equations = contact_equations_;
   J.general = false;
   J.K_coupling.resize(n_, n_);  // (empty)
   std::vector<char> active;
@@ -304,22 +317,29 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
     if (J.K_coupling.nonZeros() > 0) J.K_coupling = Eigen::SparseMatrix<double>(J.K_coupling + load_stiffness_);
     else J.K_coupling = load_stiffness_;
   }
-  if (friction_) {  // the whole matrix: the slip rows tie lambda_t to lambda_n and gamma
-    const Eigen::SparseMatrix<double> normal = assemble_full(J);
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(normal.nonZeros() + 4 * J.B.nonZeros());
-    for (int c = 0; c < normal.outerSize(); ++c)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(normal, c); it; ++it)
-        trip.emplace_back(int(it.row()), int(it.col()), it.value());
-    friction_->jacobian(t, u, normal_multipliers(x), gamma, active, tangential(x), J.B, trip);
-    J.K.resize(n_ + m_ + mt_, n_ + m_ + mt_);  // the dilatations condensed (J.local, below)
-    J.K.setFromTriplets(trip.begin(), trip.end());
-    J.K.makeCompressed();
-    J.K_coupling.resize(0, 0);
-    J.B.resize(0, n_ + m_ + mt_);
-    J.s.resize(0);
-    J.d.resize(0);
-    J.general = true;
+  J.mixed_B.resize(0, 0);
+  J.mixed_lambda.resize(0, 0);
+  if (friction_) {  // the tangential rows below the normal ones; the slip rows tie lambda_t to lambda_n and gamma
+    FiniteStrainFriction::TangentialRows& rows = jacobian_tangential_;
+    friction_->constraint_rows(t, u, normal_multipliers(x), gamma, active, tangential(x), rows);
+    const int all = m_ + mt_;
+    std::vector<Eigen::Triplet<double>> b;
+    b.reserve(J.B.nonZeros() + rows.T.nonZeros());
+    for (int r = 0; r < J.B.outerSize(); ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J.B, r); it; ++it) b.emplace_back(r, int(it.col()), it.value());
+    for (int r = 0; r < rows.T.outerSize(); ++r)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows.T, r); it; ++it)
+        b.emplace_back(m_ + r, int(it.col()), it.value());
+    J.B.resize(all, n_);
+    J.B.setFromTriplets(b.begin(), b.end());
+    J.s.conservativeResize(all);
+    J.d.conservativeResize(all);
+    J.s.tail(mt_) = rows.s;
+    J.d.tail(mt_) = rows.d;
+    J.mixed_B.resize(all, all);
+    J.mixed_B.setFromTriplets(rows.mixed_B.begin(), rows.mixed_B.end());
+    J.mixed_lambda.resize(all, all);
+    J.mixed_lambda.setFromTriplets(rows.mixed_lambda.begin(), rows.mixed_lambda.end());
   }
   if (nz_ > 0) {  // the dilatations, condensed by the solver (BlockJacobian::local)
     J.local.C = local.mean_B;

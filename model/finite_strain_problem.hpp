@@ -263,6 +263,8 @@ class FiniteStrainProblem final : public NonlinearProblem {
   // buffers keep their memory from one Jacobian to the next
   ContactEval jacobian_contact_;
   std::vector<Eigen::Triplet<double>> jacobian_coupling_;
+  FiniteStrainFriction::TangentialRows jacobian_tangential_;
+  std::vector<int> contact_equations_;  // every equation a contact row may touch (BlockJacobian::constraint_equations)  // (the friction rows: their memory kept)
   // The follower pressures' load stiffness, of the loaded faces' pattern
   // (follower_pressure_pattern; empty: no follower load): handed over as
   // BlockJacobian::K_coupling, so that K stays the symmetric tangent a

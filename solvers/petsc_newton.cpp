@@ -24,6 +24,7 @@ constexpr double kTight = 1e-11;
 
 struct PetscNewtonSolver::Impl {
   const BlockJacobian* J = nullptr;
+  BlockJacobian one_block;  // J as one block when its rows combine (as_one_block)
   PetscInt N = -1, first = 0, local = 0;  // rows [first, first + local) are this process's
   PetscInt m = 0;                         // of which the last m are multipliers
   bool general = false;                   // (BlockJacobian::general)
@@ -424,14 +425,18 @@ bool PetscNewtonSolver::setup(const BlockJacobian& J) {
   ++stats_.setups;
   why_.clear();
   I.J = &J;
+  if (J.has_mixed_rows()) {  // (friction's slip rows) MUMPS factorises the whole: the rows inside it
+    I.one_block = as_one_block(J);
+    I.J = &I.one_block;
+  }
   if (I.hierarchy) {
-    I.setup_spline_multigrid(J);  // (the hierarchy's setup counted as the matrix's)
+    I.setup_spline_multigrid(*I.J);  // (the hierarchy's setup counted as the matrix's)
     stats_.schur_s += clock.seconds();
     why_ = I.mg->setup_failure();
     return why_.empty();
   }
   RowMat R;
-  if (I.take_rows(J, R) && I.A.p) {
+  if (I.take_rows(*I.J, R) && I.A.p) {
     I.refill(R, I.first);
   } else {
     I.new_matrix(R, I.local, I.N);

@@ -173,3 +173,54 @@ TEST(SaddleSolver, MoreNegativeModesThanShiftsTakeTheLuOfJ) {
   EXPECT_EQ(solver.stats().shifted, 0);
   EXPECT_LE(relative_residual(J, x, b), 1e-12);
 }
+
+TEST(SaddleSolver, RowsThatCombineGapsAndMultipliersAreSolvedWithKsFactor) {
+  // A free chain (its translation pinned at node 0) held by one active
+  // stop (row 0) and two rows that combine, as Coulomb friction's slip rows
+  // do: row 1 reads B rows 1 and 0 and multipliers 1, 0 and the inactive 3;
+  // row 2 reads B row 3 (an inactive row's) and multipliers 2 and 0.  The
+  // preconditioner is J's inverse (K symmetric, K R = 0): one GMRES
+  // iteration, no LU of J, the dense solution to round-off.
+  const int n = 24, m = 4;
+  std::vector<Eigen::Triplet<double>> t;
+  add_free_chain(t, 0, n);
+  BlockJacobian J;
+  J.K.resize(n, n);
+  J.K.setFromTriplets(t.begin(), t.end());
+  J.rigid_modes = Eigen::MatrixXd::Constant(n, 1, 1 / std::sqrt(double(n)));
+  J.pinned = {0};
+  J.B.resize(m, n);
+  J.B.insert(0, 5) = 1.0;
+  J.B.insert(1, 8) = 0.6, J.B.insert(1, 9) = 0.4;
+  J.B.insert(2, 15) = 1.0;
+  J.B.insert(3, 20) = 0.5, J.B.insert(3, 21) = 0.5;
+  J.s = Eigen::Vector4d(2.0, 0.0, 0.0, 0.0);
+  J.d = Eigen::Vector4d(0.0, 0.0, 0.0, 1.5);
+  std::vector<Eigen::Triplet<double>> mb{{1, 1, 0.7}, {1, 0, -0.3}, {2, 3, 0.4}, {2, 2, 0.2}};
+  std::vector<Eigen::Triplet<double>> ml{{1, 1, 0.5}, {1, 0, -0.25}, {1, 3, 0.3}, {2, 2, 0.9}, {2, 0, 0.2}};
+  J.mixed_B.resize(m, m);
+  J.mixed_B.setFromTriplets(mb.begin(), mb.end());
+  J.mixed_lambda.resize(m, m);
+  J.mixed_lambda.setFromTriplets(ml.begin(), ml.end());
+  EXPECT_TRUE(J.closed_row(0) && J.closed_row(1) && J.closed_row(2) && !J.closed_row(3));
+  // the condensed J against the block formula written out densely
+  const Eigen::MatrixXd B(J.B);
+  Eigen::MatrixXd whole = Eigen::MatrixXd::Zero(n + m, n + m);
+  whole.topLeftCorner(n, n) = Eigen::MatrixXd(J.K);
+  whole.topRightCorner(n, m) = B.transpose();
+  whole.bottomLeftCorner(m, n) = (Eigen::MatrixXd(J.s.asDiagonal()) + Eigen::MatrixXd(J.mixed_B)) * B;
+  whole.bottomRightCorner(m, m) = Eigen::MatrixXd(J.d.asDiagonal()) + Eigen::MatrixXd(J.mixed_lambda);
+  EXPECT_LE((Eigen::MatrixXd(assemble_condensed(J)) - whole).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LE((Eigen::MatrixXd(as_one_block(J).K) - whole).cwiseAbs().maxCoeff(), 1e-15);
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n + m, 1.0, -0.5);
+  b.head(n).array() -= b.head(n).mean() - 0.1;  // a net load the active stop carries
+  SaddleSolver solver;
+  ASSERT_TRUE(solver.setup(J));
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.solve(b, x));
+  EXPECT_EQ(solver.stats().fallbacks, 0);
+  EXPECT_LE(solver.stats().krylov_iterations, 1);
+  const Eigen::VectorXd dense = whole.fullPivLu().solve(b);
+  EXPECT_LE((x - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
+  EXPECT_LE(relative_residual(J, x, b), 1e-13);
+}
