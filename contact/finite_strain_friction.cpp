@@ -177,7 +177,6 @@ void FiniteStrainFriction::constraint_rows(double t, const Eigen::MatrixXd& u, c
                                            const Eigen::VectorXd& gamma, const std::vector<char>& normal_active,
                                            const Eigen::VectorXd& lambda_t, TangentialRows& out) const {
   const int first = m_;  // the first tangential row among the constraints
-  out.T = T_free_;
   out.s = Eigen::VectorXd::Zero(m_ * nt_);
   out.d = Eigen::VectorXd::Zero(m_ * nt_);
   out.mixed_B.clear();

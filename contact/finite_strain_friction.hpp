@@ -85,6 +85,8 @@ class FiniteStrainFriction {
                        const Eigen::VectorXd& tangential_scale);
   int rows() const { return int(T_free_.rows()); }  // m (dim-1)
   int per_multiplier() const { return nt_; }
+  // T: d s / du on the free equations (rows() x n), for the step's start.
+  const RowSparse& slip_rows() const { return T_free_; }
 
   // The weighted tangential position T u + t0(t) of the body relative to the
   // obstacles, u per control point (n_cp x dim, prescribed values included).
@@ -111,12 +113,11 @@ class FiniteStrainFriction {
                 Eigen::Ref<Eigen::VectorXd> r_u, Eigen::Ref<Eigen::VectorXd> r_t) const;
   // Their derivatives as the Newton matrix's constraint rows
   // (engine/block_jacobian.hpp), numbered after the m normal ones: the
-  // tangential rows T of B (their columns T^T in the u rows), and per row
-  // stick: s = c (c T_K du), open: d = K_K, slip: through M_B (its T rows
-  // and the gap row G_K) and M_l (its lambda_t and lambda_n).  Indices of
-  // mixed_B and mixed_lambda are among all m + rows() constraints.
+  // tangential rows T of B (slip_rows(); their columns T^T in the u rows),
+  // and per row stick: s = c (c T_K du), open: d = K_K, slip: through M_B
+  // (its T rows and the gap row G_K) and M_l (its lambda_t and lambda_n).
+  // Indices of mixed_B and mixed_lambda are among all m + rows() constraints.
   struct TangentialRows {
-    RowSparse T;
     Eigen::VectorXd s, d;  // rows() each
     std::vector<Eigen::Triplet<double>> mixed_B, mixed_lambda;
   };

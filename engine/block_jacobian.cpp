@@ -97,7 +97,7 @@ RowSparse condensed_rows(const BlockJacobian& J, int begin, int end, int columns
 bool BlockJacobian::closed_row(int k) const {
   if (s[k] != 0.0) return true;
   const auto holds = [k](const Eigen::SparseMatrix<double, Eigen::RowMajor>& M) {
-    return M.rows() > k && M.outerIndexPtr()[k + 1] > M.outerIndexPtr()[k];  // (compressed: its entries in row k)
+    return M.rows() > k && bool(Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator(M, k));
   };
   return holds(mixed_B) || holds(mixed_lambda);
 }

@@ -322,14 +322,15 @@ bool FiniteStrainProblem::block_jacobian(double t, const Eigen::VectorXd& x, Blo
   if (friction_) {  // the tangential rows below the normal ones; the slip rows tie lambda_t to lambda_n and gamma
     FiniteStrainFriction::TangentialRows& rows = jacobian_tangential_;
     friction_->constraint_rows(t, u, normal_multipliers(x), gamma, active, tangential(x), rows);
+    using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+    const RowSparse& T = friction_->slip_rows();
     const int all = m_ + mt_;
     std::vector<Eigen::Triplet<double>> b;
-    b.reserve(J.B.nonZeros() + rows.T.nonZeros());
+    b.reserve(J.B.nonZeros() + T.nonZeros());
     for (int r = 0; r < J.B.outerSize(); ++r)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(J.B, r); it; ++it) b.emplace_back(r, int(it.col()), it.value());
-    for (int r = 0; r < rows.T.outerSize(); ++r)
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(rows.T, r); it; ++it)
-        b.emplace_back(m_ + r, int(it.col()), it.value());
+      for (RowSparse::InnerIterator it(J.B, r); it; ++it) b.emplace_back(r, int(it.col()), it.value());
+    for (int r = 0; r < T.outerSize(); ++r)
+      for (RowSparse::InnerIterator it(T, r); it; ++it) b.emplace_back(m_ + r, int(it.col()), it.value());
     J.B.resize(all, n_);
     J.B.setFromTriplets(b.begin(), b.end());
     J.s.conservativeResize(all);
