@@ -270,3 +270,31 @@ TEST(LoadStepping, TangentPredictorAtEveryStep) {
     EXPECT_NEAR(x[0], 1.0, 1e-12);
   }
 }
+
+// A stall from the predicted start is not a converged step.  R = x - t +
+// 5e-9: the solution is x = t - 5e-9.  At t > 0 within 1e-6 of x = t the
+// problem's Jacobian reads 1e10 (wrong: a round-off floor the steps cannot
+// get under), so Newton from the tangent predictor (x = t exactly, |R| =
+// 5e-9, between the tolerance 1e-9 and the 10x slack) takes steps of
+// 5e-19 and KINSOL stops on its step tolerance.  That attempt is solved
+// again from the last solution, x = 0, whose Jacobian is right: one Newton
+// step to the solution.  Accepting the stall would end the step at x = t.
+TEST(LoadStepping, AStallFromThePredictedStartIsSolvedAgainFromTheLastSolution) {
+  ScalarProblem problem;
+  problem.f = [](double t, double x, double& r) {
+    r = x - t + 5e-9;
+    return true;
+  };
+  problem.df = [](double t, double x) { return t > 0 && std::abs(x - t) < 1e-6 ? 1e10 : 1.0; };
+  LoadSteppingOptions opt = quiet_options();
+  opt.steps = 1;
+  opt.line_search = false;
+  ASSERT_TRUE(opt.tangent_predictor);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(1);
+  const LoadSteppingSummary s = run_load_steps(problem, x, opt, {});
+  ASSERT_EQ(s.status, "converged");
+  ASSERT_EQ(s.steps.size(), 1u);
+  EXPECT_NEAR(s.steps[0].residual_norms.front(), 1.0, 1e-8);  // the attempt from x = 0 at t = 1
+  EXPECT_LE(s.steps[0].residual_norms.back(), opt.tolerance);
+  EXPECT_NEAR(x[0], 1.0 - 5e-9, 1e-15);
+}
